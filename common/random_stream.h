@@ -59,7 +59,8 @@ class RandomStream {
   // Uniform integer in [0, n), n > 0 (Lemire's multiply-shift; the bias is
   // below 2^-32 for the sizes used here).
   std::uint64_t Below(std::uint64_t n) {
-    return static_cast<std::uint64_t>((static_cast<unsigned __int128>(NextU64()) * n) >> 64);
+    __extension__ typedef unsigned __int128 Wide;  // GCC/Clang builtin
+    return static_cast<std::uint64_t>((static_cast<Wide>(NextU64()) * n) >> 64);
   }
   // Standard normal by Box-Muller; the spare value is kept, so the sequence
   // is a pure function of the stream's coordinates.

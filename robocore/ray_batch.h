@@ -1,0 +1,31 @@
+#pragma once
+// A batch of ray-casting queries of one kernel, in launch order. For DeliBot
+// the order is particle-major, beam-minor, one query per thread, as the CUDA
+// kernels launch them. Backends take a batch and return the same hits; they
+// differ only in what they say the batch cost.
+#include <cstdint>
+#include <vector>
+
+#include "robocore/ray_cast.h"
+
+namespace rc {
+
+struct RayQuery {
+  double origin_x_m = 0.0;
+  double origin_y_m = 0.0;
+  double angle_rad = 0.0;
+};
+
+struct RayBatch {
+  std::vector<RayQuery> queries;
+  double max_range_m = 10.0;
+};
+
+// Functional execution on the host, parallel over queries with OpenMP; the
+// result does not depend on the thread count (each query is independent).
+void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits);
+
+// Sum of hits[i].nodes.
+std::uint64_t TotalNodes(const std::vector<RayHit>& hits);
+
+}  // namespace rc

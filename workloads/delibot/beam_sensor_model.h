@@ -1,0 +1,43 @@
+#pragma once
+// Beam range-finder model (Thrun et al., Probabilistic Robotics, 6.3): each
+// beam's density is a mixture of a Gaussian around the ray-cast range (hit),
+// an exponential for unexpected short readings (short), a point mass at the
+// maximum range (max) and a uniform floor (rand). The log of each beam's
+// mixture is summed over beams.
+#include <memory>
+
+#include "robocore/ray_batch.h"
+#include "workloads/delibot/sensor_model.h"
+
+namespace rc {
+
+struct BeamModelParams {
+  // Mixture weights: nav2 AMCL's defaults (REFERENCE.md section 4).
+  double z_hit = 0.5;
+  double z_short = 0.05;
+  double z_max = 0.05;
+  double z_rand = 0.5;
+  double sigma_hit_m = 0.2;          // m, nav2 default
+  double lambda_short_per_m = 0.1;   // 1/m, nav2 default
+  double max_range_m = 10.0;         // m: readings at or beyond are "max"
+  bool IsValid(std::string* error) const;
+};
+
+// Per-beam log density of measured range z given expected range z_star.
+double BeamLogDensity(const BeamModelParams& p, double z, double z_star);
+
+class BeamSensorModel final : public SensorModel {
+ public:
+  BeamSensorModel(std::shared_ptr<const RayCastScene> scene, BeamModelParams params);
+  std::string name() const override { return "beam"; }
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                      const LaserGeometry& geometry, const BeamSelection& beams,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
+  const BeamModelParams& params() const { return params_; }
+
+ private:
+  std::shared_ptr<const RayCastScene> scene_;
+  BeamModelParams params_;
+};
+
+}  // namespace rc

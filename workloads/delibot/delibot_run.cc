@@ -1,0 +1,162 @@
+#include "workloads/delibot/delibot_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "workloads/delibot/monte_carlo_localizer.h"
+#include "workloads/delibot/scan_consistency.h"
+
+namespace rc {
+namespace {
+
+constexpr int kSustainRecords = 10;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return -1.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return -1.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::min<double>(v.size() - 1, std::floor(q * v.size())))];
+}
+
+std::unique_ptr<SensorModel> MakeSensorModel(const OccupancyGrid& grid, const DelibotSettings& s) {
+  if (s.sensor_model == SensorModelKind::kBeam) {
+    return std::make_unique<BeamSensorModel>(std::make_shared<RayCastScene>(grid, s.ray_caster), s.beam);
+  }
+  LikelihoodFieldParams lf = s.likelihood;
+  lf.max_range_m = s.beam.max_range_m;
+  return std::make_unique<LikelihoodFieldModel>(grid, lf);
+}
+
+DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSettings& s) {
+  DelibotSummary sum;
+  sum.records = static_cast<long>(rows.size());
+  for (const auto& r : rows) {
+    sum.sensor_updates += r.sensor_updated;
+    sum.rays += r.rays;
+    sum.nodes += r.nodes;
+    sum.wall_s += r.wall_s;
+    sum.resamples += r.resampled;
+    sum.injected += r.injected;
+  }
+  const bool gt = !rows.empty() && rows.front().has_ground_truth;
+  auto localized = [&](const DelibotRow& r) {
+    return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad)
+              : r.spread_m < s.converged_spread_m;
+  };
+  int run = 0;
+  for (const auto& r : rows) {
+    run = localized(r) ? run + 1 : 0;
+    if (run == kSustainRecords) {
+      sum.convergence_iteration = r.iteration - kSustainRecords + 1;
+      break;
+    }
+  }
+  if (sum.convergence_iteration >= 0) {
+    std::vector<double> exy, eth, cons;
+    long consistent = 0;
+    for (const auto& r : rows) {
+      if (r.iteration < sum.convergence_iteration) continue;
+      if (gt) {
+        exy.push_back(r.err_xy_m);
+        eth.push_back(r.err_theta_rad);
+      }
+      cons.push_back(r.consistency);
+      consistent += r.consistency >= 0.5;
+    }
+    sum.median_err_xy_m = Median(exy);
+    sum.p95_err_xy_m = Percentile(exy, 0.95);
+    sum.median_err_theta_rad = Median(eth);
+    sum.median_consistency = Median(cons);
+    sum.fraction_consistent = cons.empty() ? 0.0 : static_cast<double>(consistent) / cons.size();
+    sum.converged = localized(rows.back());
+  }
+  if (gt && !rows.empty()) {
+    sum.final_err_xy_m = rows.back().err_xy_m;
+    sum.final_err_theta_rad = rows.back().err_theta_rad;
+  }
+  return sum;
+}
+
+}  // namespace
+
+SensorModelKind ParseSensorModelKind(const std::string& name) {
+  if (name == "beam") return SensorModelKind::kBeam;
+  if (name == "likelihood") return SensorModelKind::kLikelihoodField;
+  throw std::invalid_argument("unknown sensor model '" + name + "' (expected beam or likelihood)");
+}
+
+std::string ToString(SensorModelKind k) { return k == SensorModelKind::kBeam ? "beam" : "likelihood"; }
+
+DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
+                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                         const ProgressCallback& progress) {
+  std::string error;
+  if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
+  if (!settings.likelihood.IsValid(&error)) throw std::invalid_argument("likelihood model: " + error);
+  if (settings.mcl.beams.beam_step > trace.geometry.beam_count)
+    throw std::invalid_argument("beam step exceeds the trace's beam count");
+  if (ground_truth && ground_truth->size() != trace.scans.size())
+    throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) +
+                                " poses for " + std::to_string(trace.scans.size()) + " laser records");
+
+  MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), settings.mcl);
+  if (settings.initial_pose)
+    mcl.InitializeAround(*settings.initial_pose, settings.initial_sigma_xy_m, settings.initial_sigma_theta_rad);
+  else
+    mcl.InitializeUniform();
+  const RayCastScene exact_scene(grid, RayCastMethod::kDda);
+
+  std::size_t count = trace.scans.size();
+  if (settings.max_records > 0) count = std::min<std::size_t>(count, settings.max_records);
+  DelibotResult result;
+  result.rows.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const LaserScan& scan = trace.scans[k];
+    const auto start = std::chrono::steady_clock::now();
+    const MclStepResult step = mcl.Update(scan, trace.geometry, k);
+    const PoseEstimate estimate = mcl.Estimate();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    DelibotRow row;
+    row.iteration = static_cast<long>(k);
+    row.time_s = scan.time_s;
+    row.estimate = estimate.pose;
+    row.ess = step.ess;
+    row.sensor_updated = step.sensor_updated;
+    row.resampled = step.resampled;
+    row.injected = step.injected;
+    if (step.work) {
+      row.rays = step.work->rays;
+      row.nodes = step.work->nodes;
+    }
+    row.wall_s = wall;
+    row.spread_m = estimate.spread_m;
+    row.consistency = MeasureScanConsistency(exact_scene, estimate.pose, scan, trace.geometry,
+                                             settings.beam.max_range_m,
+                                             settings.consistency_sigmas * settings.beam.sigma_hit_m)
+                          .Fraction();
+    if (ground_truth) {
+      const Pose2& truth = (*ground_truth)[k];
+      row.has_ground_truth = true;
+      row.err_xy_m = std::hypot(estimate.pose.x - truth.x, estimate.pose.y - truth.y);
+      row.err_theta_rad = std::abs(WrapAngle(estimate.pose.theta - truth.theta));
+    }
+    if (!std::isfinite(row.ess) || !std::isfinite(row.estimate.x) || !std::isfinite(row.estimate.y))
+      result.summary.any_non_finite_weight = true;
+    result.rows.push_back(row);
+    if (progress) progress(k + 1, count);
+  }
+  const bool non_finite = result.summary.any_non_finite_weight;
+  result.summary = Summarize(result.rows, settings);
+  result.summary.any_non_finite_weight = non_finite;
+  return result;
+}
+
+}  // namespace rc

@@ -1,0 +1,91 @@
+#pragma once
+// One DeliBot run: a Monte Carlo localizer driven through a sensor trace,
+// one timeline row per laser record, plus accuracy statistics.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "maps/occupancy_grid.h"
+#include "robocore/ray_cast.h"
+#include "traces/sensor_trace.h"
+#include "workloads/delibot/beam_sensor_model.h"
+#include "workloads/delibot/likelihood_field_model.h"
+#include "workloads/delibot/mcl_options.h"
+
+namespace rc {
+
+enum class SensorModelKind { kBeam, kLikelihoodField };
+SensorModelKind ParseSensorModelKind(const std::string& name);  // "beam" | "likelihood"
+std::string ToString(SensorModelKind k);
+
+struct DelibotSettings {
+  MclOptions mcl;
+  SensorModelKind sensor_model = SensorModelKind::kBeam;
+  RayCastMethod ray_caster = RayCastMethod::kDda;
+  BeamModelParams beam;           // max_range_m is shared by both models
+  LikelihoodFieldParams likelihood;
+  long max_records = 0;           // 0 = the whole trace
+  // Tracking mode: start around this pose instead of uniformly.
+  std::optional<Pose2> initial_pose;
+  double initial_sigma_xy_m = 0.2;
+  double initial_sigma_theta_rad = 0.1;
+  // Ground-truth-free consistency: beams within this many sigma_hit.
+  double consistency_sigmas = 3.0;
+  // Thresholds that define "localized" for the summary.
+  double converged_xy_m = 0.2;
+  double converged_theta_rad = 5.0 * 3.14159265358979323846 / 180.0;
+  double converged_spread_m = 0.5;  // ground-truth-free: particle spread
+};
+
+struct DelibotRow {
+  long iteration = 0;            // 0-based index of the laser record in the trace
+  double time_s = 0.0;
+  Pose2 estimate;
+  double ess = 0.0;
+  std::uint64_t rays = 0;
+  std::uint64_t nodes = 0;
+  double wall_s = 0.0;           // host time of the filter update
+  bool sensor_updated = false;
+  bool resampled = false;
+  int injected = 0;
+  double spread_m = 0.0;
+  double consistency = 0.0;      // fraction of beams within k sigma at the estimate
+  bool has_ground_truth = false;
+  double err_xy_m = 0.0;
+  double err_theta_rad = 0.0;
+  double NodesPerRay() const { return rays > 0 ? static_cast<double>(nodes) / rays : 0.0; }
+};
+
+struct DelibotSummary {
+  long records = 0;
+  long sensor_updates = 0;
+  std::uint64_t rays = 0, nodes = 0;
+  double wall_s = 0.0;
+  long resamples = 0;
+  long injected = 0;
+  // -1 when never reached. With ground truth: error below both thresholds for
+  // 10 consecutive records; without: spread below its threshold likewise.
+  long convergence_iteration = -1;
+  bool converged = false;        // also true at the end of the run
+  double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
+  double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
+  double median_consistency = 0.0;       // after convergence
+  double fraction_consistent = 0.0;      // records after convergence with consistency >= 0.5
+  bool any_non_finite_weight = false;
+};
+
+struct DelibotResult {
+  std::vector<DelibotRow> rows;
+  DelibotSummary summary;
+};
+
+using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
+
+// ground_truth: one pose per laser record of the trace (map frame), or null.
+DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
+                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                         const ProgressCallback& progress = {});
+
+}  // namespace rc

@@ -1,0 +1,65 @@
+#include "workloads/delibot/likelihood_field_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rc {
+namespace {
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+}
+
+bool LikelihoodFieldParams::IsValid(std::string* error) const {
+  auto fail = [&](const char* what) {
+    if (error) *error = what;
+    return false;
+  };
+  if (!(z_hit >= 0 && z_rand > 0)) return fail("z_hit must be >= 0 and z_rand > 0");
+  if (!(sigma_hit_m > 0)) return fail("sigma_hit must be > 0 m");
+  if (!(max_occ_dist_m > 0)) return fail("max_occ_dist must be > 0 m");
+  if (!(max_range_m > 0)) return fail("max_range must be > 0 m");
+  return true;
+}
+
+LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid, LikelihoodFieldParams params)
+    : grid_(&grid), field_(DistanceField::Build(grid, DistanceTarget::kOccupied)), params_(params) {}
+
+double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
+  const double r = grid_->resolution_m();
+  const double fx = std::floor(x_m / r), fy = std::floor(y_m / r);
+  if (!(fx >= 0 && fy >= 0 && fx < grid_->size_x() && fy < grid_->size_y())) return params_.max_occ_dist_m;
+  return std::min<double>(field_.At(static_cast<int>(fx), static_cast<int>(fy)), params_.max_occ_dist_m);
+}
+
+void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                          const LaserGeometry& geometry, const BeamSelection& beams,
+                                          std::vector<double>& log_likelihoods,
+                                          SensorUpdateWork& work) {
+  const int beams_per_particle = beams.Count(geometry.beam_count);
+  const long n = static_cast<long>(particles.size());
+  log_likelihoods.resize(particles.size());
+  const double gauss_norm = params_.z_hit * kInvSqrt2Pi / params_.sigma_hit_m;
+  const double floor_density = params_.z_rand / params_.max_range_m;
+  long used_beams = 0;
+  for (int k = 0; k < beams_per_particle; ++k)
+    used_beams += scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step] < params_.max_range_m;
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const Pose2 sensor = SensorPose(particles[i], geometry);
+    double sum = 0.0;
+    for (int k = 0; k < beams_per_particle; ++k) {
+      const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
+      if (z >= params_.max_range_m) continue;
+      const double a = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
+      const double d = DistanceAt(sensor.x + z * std::cos(a), sensor.y + z * std::sin(a));
+      const double e = d / params_.sigma_hit_m;
+      sum += std::log(gauss_norm * std::exp(-0.5 * e * e) + floor_density);
+    }
+    log_likelihoods[i] = sum;
+  }
+  work.batch.queries.clear();
+  work.hits.clear();
+  work.rays = static_cast<std::uint64_t>(used_beams) * particles.size();
+  work.nodes = work.rays;
+}
+
+}  // namespace rc

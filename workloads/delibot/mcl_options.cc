@@ -1,0 +1,26 @@
+#include "workloads/delibot/mcl_options.h"
+
+namespace rc {
+
+bool MclOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& what) {
+    if (error) *error = what;
+    return false;
+  };
+  if (particle_count < 1 || particle_count > 10000000) return fail("particles must be in [1, 10^7]");
+  if (beams.beam_step < 1) return fail("beam step must be >= 1");
+  if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
+    return fail("resample ESS fraction must be in (0, 1]");
+  if (!(alpha_slow >= 0.0 && alpha_fast >= 0.0 && alpha_slow <= 1.0 && alpha_fast <= 1.0))
+    return fail("recovery alphas must be in [0, 1]");
+  if (alpha_slow > 0.0 && !(alpha_fast > alpha_slow))
+    return fail("alpha_fast must exceed alpha_slow for recovery to mean anything");
+  if (!(update_min_d_m >= 0.0 && update_min_a_rad >= 0.0)) return fail("update thresholds must be >= 0");
+  if (!(estimate_kernel_radius_m > 0.0)) return fail("estimate kernel radius must be > 0 m");
+  const auto& m = motion;
+  if (!(m.alpha1 >= 0 && m.alpha2 >= 0 && m.alpha3 >= 0 && m.alpha4 >= 0))
+    return fail("motion noise alphas must be >= 0");
+  return true;
+}
+
+}  // namespace rc

@@ -1,0 +1,143 @@
+#include "workloads/delibot/monte_carlo_localizer.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "common/log_domain.h"
+#include "common/random_stream.h"
+#include "workloads/delibot/motion_model.h"
+#include "workloads/delibot/resampling.h"
+
+namespace rc {
+
+MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
+                                         std::unique_ptr<SensorModel> sensor_model,
+                                         MclOptions options)
+    : grid_(grid), sensor_model_(std::move(sensor_model)), options_(options) {
+  std::string error;
+  if (!options_.IsValid(&error)) throw std::invalid_argument(error);
+  free_cells_ = grid_.FreeCellIndices();
+  if (free_cells_.empty())
+    throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
+}
+
+Pose2 MonteCarloLocalizer::RandomFreePose(RandomStream& stream) const {
+  const std::uint32_t cell = free_cells_[stream.Below(free_cells_.size())];
+  const int ix = static_cast<int>(cell / static_cast<std::uint32_t>(grid_.size_y()));
+  const int iy = static_cast<int>(cell % static_cast<std::uint32_t>(grid_.size_y()));
+  const double r = grid_.resolution_m();
+  return {(ix + stream.Uniform()) * r, (iy + stream.Uniform()) * r, stream.Uniform(-kPi, kPi)};
+}
+
+void MonteCarloLocalizer::InitializeUniform() {
+  const auto n = static_cast<std::size_t>(options_.particle_count);
+  particles_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    RandomStream stream(options_.seed, StreamPurpose::kInitialization, 0, i);
+    particles_[i] = RandomFreePose(stream);
+  }
+  log_weights_.assign(n, -std::log(static_cast<double>(n)));
+}
+
+void MonteCarloLocalizer::InitializeAround(const Pose2& pose, double sigma_xy_m, double sigma_theta_rad) {
+  const auto n = static_cast<std::size_t>(options_.particle_count);
+  particles_.resize(n);
+  constexpr int kMaxTries = 1000;
+  for (std::size_t i = 0; i < n; ++i) {
+    RandomStream stream(options_.seed, StreamPurpose::kInitialization, 0, i);
+    Pose2 p = pose;
+    for (int attempt = 0; attempt < kMaxTries; ++attempt) {
+      p = {pose.x + stream.Gaussian(sigma_xy_m), pose.y + stream.Gaussian(sigma_xy_m),
+           WrapAngle(pose.theta + stream.Gaussian(sigma_theta_rad))};
+      if (grid_.IsFreePoint(p.x, p.y)) break;
+    }
+    particles_[i] = p;
+  }
+  log_weights_.assign(n, -std::log(static_cast<double>(n)));
+}
+
+MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeometry& geometry,
+                                          std::uint64_t iteration) {
+  if (particles_.empty()) throw std::logic_error("MonteCarloLocalizer::Update before initialization");
+  MclStepResult result;
+  if (have_odometry_) {
+    const OdometryDelta delta = ComputeOdometryDelta(last_odometry_, scan.odometry);
+    if (!delta.IsZero()) {
+      const long n = static_cast<long>(particles_.size());
+#pragma omp parallel for schedule(static)
+      for (long i = 0; i < n; ++i) {
+        RandomStream stream(options_.seed, StreamPurpose::kMotion, iteration, static_cast<std::uint64_t>(i));
+        particles_[i] = SampleOdometryMotion(particles_[i], delta, options_.motion, stream);
+      }
+    }
+    moved_d_m_ += delta.trans;
+    moved_a_rad_ += std::abs(delta.rot1) + std::abs(delta.rot2);
+  }
+  last_odometry_ = scan.odometry;
+  have_odometry_ = true;
+
+  const bool moved_enough =
+      moved_d_m_ >= options_.update_min_d_m || moved_a_rad_ >= options_.update_min_a_rad;
+  if (first_sensor_update_done_ && !moved_enough) {
+    result.ess = EffectiveSampleSize(log_weights_);
+    return result;
+  }
+  first_sensor_update_done_ = true;
+  moved_d_m_ = moved_a_rad_ = 0.0;
+
+  sensor_model_->LogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
+  for (std::size_t i = 0; i < particles_.size(); ++i) log_weights_[i] += log_likelihoods_[i];
+  // With normalized prior weights, the normalizer is the weighted mean
+  // likelihood of the scan: augmented MCL's w_avg, kept in the log domain.
+  const double log_w_avg = NormalizeLogWeights(log_weights_);
+  result.log_mean_likelihood = log_w_avg;
+  result.sensor_updated = true;
+  result.work = &work_;
+  if (options_.alpha_slow > 0.0) {
+    if (!have_recovery_averages_) {
+      log_w_slow_ = log_w_fast_ = log_w_avg;
+      have_recovery_averages_ = true;
+    } else {
+      // w += alpha * (w_avg - w), i.e. w = (1 - alpha) w + alpha w_avg.
+      log_w_slow_ = LogAddExp(std::log1p(-options_.alpha_slow) + log_w_slow_,
+                              std::log(options_.alpha_slow) + log_w_avg);
+      log_w_fast_ = LogAddExp(std::log1p(-options_.alpha_fast) + log_w_fast_,
+                              std::log(options_.alpha_fast) + log_w_avg);
+    }
+    result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
+  }
+  result.ess = EffectiveSampleSize(log_weights_);
+  if (result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
+    Resample(iteration, result);
+  return result;
+}
+
+void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& result) {
+  RandomStream pointer_stream(options_.seed, StreamPurpose::kResample, iteration, 0);
+  const std::vector<std::size_t> ancestors = SystematicResample(log_weights_, pointer_stream.Uniform());
+  std::vector<Pose2> next(particles_.size());
+  int injected = 0;
+  for (std::size_t slot = 0; slot < next.size(); ++slot) {
+    next[slot] = particles_[ancestors[slot]];
+    if (result.injection_probability > 0.0) {
+      RandomStream stream(options_.seed, StreamPurpose::kInjection, iteration, slot);
+      if (stream.Uniform() < result.injection_probability) {
+        next[slot] = RandomFreePose(stream);
+        ++injected;
+      }
+    }
+  }
+  particles_.swap(next);
+  log_weights_.assign(particles_.size(), -std::log(static_cast<double>(particles_.size())));
+  result.resampled = true;
+  result.injected = injected;
+  // AMCL resets the averages after an injection so that one bad stretch
+  // does not keep spraying random particles forever.
+  if (injected > 0) have_recovery_averages_ = false;
+}
+
+PoseEstimate MonteCarloLocalizer::Estimate() const {
+  return EstimatePose(particles_, log_weights_, options_.estimate_kernel_radius_m);
+}
+
+}  // namespace rc

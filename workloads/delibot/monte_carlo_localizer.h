@@ -1,0 +1,70 @@
+#pragma once
+// Monte Carlo Localization with log-domain weights, per-particle random
+// streams, systematic resampling on low ESS, and augmented-MCL recovery.
+// Parallel over particles (OpenMP); every random draw comes from a stream
+// keyed by (seed, purpose, iteration, particle), so the result is identical
+// at any thread count.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "maps/occupancy_grid.h"
+#include "workloads/delibot/mcl_options.h"
+#include "workloads/delibot/pose_estimate.h"
+#include "workloads/delibot/sensor_model.h"
+
+namespace rc {
+
+struct MclStepResult {
+  bool sensor_updated = false;
+  bool resampled = false;
+  int injected = 0;              // particles replaced by random free-space poses
+  double ess = 0.0;              // effective sample size after the update, before resampling
+  double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
+  double injection_probability = 0.0;
+  const SensorUpdateWork* work = nullptr;  // valid until the next Update()
+};
+
+class MonteCarloLocalizer {
+ public:
+  // Throws std::invalid_argument for invalid options or a grid with no free
+  // cell (global localization has nowhere to put a particle).
+  MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_ptr<SensorModel> sensor_model,
+                      MclOptions options);
+
+  // Global localization: particles uniform over free cells, headings uniform.
+  void InitializeUniform();
+  // Tracking: particles around a known pose, rejecting non-free positions.
+  void InitializeAround(const Pose2& pose, double sigma_xy_m, double sigma_theta_rad);
+
+  // Processes one laser record (its odometry pose and ranges). `iteration`
+  // keys the random streams and must increase by one per record.
+  MclStepResult Update(const LaserScan& scan, const LaserGeometry& geometry, std::uint64_t iteration);
+
+  PoseEstimate Estimate() const;
+  const std::vector<Pose2>& particles() const { return particles_; }
+  const std::vector<double>& log_weights() const { return log_weights_; }
+  const MclOptions& options() const { return options_; }
+  const SensorModel& sensor_model() const { return *sensor_model_; }
+
+ private:
+  Pose2 RandomFreePose(RandomStream& stream) const;
+  void Resample(std::uint64_t iteration, MclStepResult& result);
+
+  const OccupancyGrid& grid_;
+  std::unique_ptr<SensorModel> sensor_model_;
+  MclOptions options_;
+  std::vector<std::uint32_t> free_cells_;
+  std::vector<Pose2> particles_;
+  std::vector<double> log_weights_;     // normalized: sum of exp == 1
+  std::vector<double> log_likelihoods_; // scratch
+  SensorUpdateWork work_;
+  bool have_odometry_ = false;
+  Pose2 last_odometry_;
+  double moved_d_m_ = 0.0, moved_a_rad_ = 0.0;  // since the last sensor update
+  bool first_sensor_update_done_ = false;
+  bool have_recovery_averages_ = false;
+  double log_w_slow_ = 0.0, log_w_fast_ = 0.0;
+};
+
+}  // namespace rc

@@ -1,0 +1,49 @@
+#pragma once
+// The sensor-model interface of the particle filter (Beluga's split: motion
+// model, sensor model and resampling policy are independent components).
+// A sensor model turns one scan into a log-likelihood per particle. It never
+// multiplies raw beam probabilities: per-beam densities are summed as logs.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/angles.h"
+#include "robocore/ray_batch.h"
+#include "traces/sensor_trace.h"
+
+namespace rc {
+
+// The beams a filter update uses: every beam_step-th beam of the scan,
+// starting at beam 0.
+struct BeamSelection {
+  int beam_step = 1;
+  int Count(int beam_count) const { return (beam_count + beam_step - 1) / beam_step; }
+};
+
+// What one update asked of the kernels, for timelines and backends.
+struct SensorUpdateWork {
+  std::uint64_t rays = 0;   // queries issued (rays, or endpoint lookups)
+  std::uint64_t nodes = 0;  // nodes (cells or distance samples) fetched
+  // The batch and hits of the last update; empty for models without rays.
+  RayBatch batch;
+  std::vector<RayHit> hits;
+};
+
+class SensorModel {
+ public:
+  virtual ~SensorModel() = default;
+  virtual std::string name() const = 0;
+  // Writes one log-likelihood per particle into log_likelihoods.
+  virtual void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                              const LaserGeometry& geometry, const BeamSelection& beams,
+                              std::vector<double>& log_likelihoods, SensorUpdateWork& work) = 0;
+};
+
+// Sensor origin (m) and beam angle (rad) in the map frame for a robot pose.
+inline Pose2 SensorPose(const Pose2& robot, const LaserGeometry& geometry) {
+  return {robot.x + geometry.offset_forward_m * std::cos(robot.theta),
+          robot.y + geometry.offset_forward_m * std::sin(robot.theta), robot.theta};
+}
+
+}  // namespace rc
