@@ -131,9 +131,11 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
   log_weights_.assign(particles_.size(), -std::log(static_cast<double>(particles_.size())));
   result.resampled = true;
   result.injected = injected;
-  // AMCL resets the averages after an injection so that one bad stretch
-  // does not keep spraying random particles forever.
-  if (injected > 0) have_recovery_averages_ = false;
+  // AMCL resets both averages after an injection; then a kidnap injects
+  // one small batch, the averages restart at the new low level, and the
+  // few random particles rarely land near the truth. We keep Thrun's
+  // original rule: injection continues until the short-term average
+  // likelihood has recovered.
 }
 
 PoseEstimate MonteCarloLocalizer::Estimate() const {

@@ -1,0 +1,156 @@
+// Unit tests of the MCL components: log-domain weights, resampling, motion
+// model, sensor models, pose estimate, and thread-count determinism. Several
+// of these are the RoWild defects of REFERENCE.md section 3 turned into tests.
+#include <cmath>
+#include <omp.h>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "common/log_domain.h"
+#include "workloads/delibot/beam_sensor_model.h"
+#include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/motion_model.h"
+#include "workloads/delibot/pose_estimate.h"
+#include "workloads/delibot/resampling.h"
+#include "synthetic_world.h"
+
+namespace rc {
+namespace {
+
+TEST(LogDomainTest, NormalizesWeightsFarBelowDoubleUnderflow) {
+  // exp(-1e5) is 0 in double; the ratios must survive anyway.
+  std::vector<double> lw = {-1e5, -1e5 - std::log(2.0), -1e5 - std::log(4.0), -1e5 - std::log(4.0)};
+  NormalizeLogWeights(lw);
+  EXPECT_NEAR(std::exp(lw[0]), 0.5, 1e-12);
+  EXPECT_NEAR(std::exp(lw[1]), 0.25, 1e-12);
+  EXPECT_NEAR(std::exp(lw[2]), 0.125, 1e-12);
+  EXPECT_NEAR(EffectiveSampleSize(lw), 1.0 / (0.25 + 0.0625 + 2 * 0.015625), 1e-9);
+}
+
+TEST(LogDomainTest, LogAddExpIsStable) {
+  EXPECT_NEAR(LogAddExp(-1000.0, -1000.0), -1000.0 + std::log(2.0), 1e-12);
+  EXPECT_EQ(LogAddExp(5.0, -std::numeric_limits<double>::infinity()), 5.0);
+}
+
+TEST(ResamplingTest, SystematicPointersFollowTheCumulativeWeights) {
+  std::vector<double> lw = {std::log(0.5), std::log(0.25), std::log(0.25), -std::numeric_limits<double>::infinity()};
+  EXPECT_EQ(SystematicResample(lw, 0.0), (std::vector<std::size_t>{0, 0, 0, 1}));
+  EXPECT_EQ(SystematicResample(lw, 0.5), (std::vector<std::size_t>{0, 0, 1, 2}));
+  // A particle of zero weight is never drawn, whatever the offset.
+  for (double u : {0.0, 0.3, 0.999}) {
+    for (std::size_t a : SystematicResample(lw, u)) EXPECT_NE(a, 3u);
+  }
+}
+
+TEST(ResamplingTest, CopiesAreWithinOneOfTheExpectedCount) {
+  const int n = 1000;
+  std::vector<double> lw(n);
+  for (int i = 0; i < n; ++i) lw[i] = std::log(1.0 + (i % 7));
+  NormalizeLogWeights(lw);
+  std::vector<int> copies(n, 0);
+  for (std::size_t a : SystematicResample(lw, 0.37)) ++copies[a];
+  for (int i = 0; i < n; ++i) EXPECT_LE(std::abs(copies[i] - n * std::exp(lw[i])), 1.0 + 1e-9);
+}
+
+TEST(MotionModelTest, NoiselessMotionReplaysTheOdometryDeltaInTheMapFrame) {
+  const OdometryMotionNoise none{0, 0, 0, 0};
+  const Pose2 odom_a{10.0, 5.0, 0.3}, odom_b{10.0 + std::cos(0.3) * 2.0, 5.0 + std::sin(0.3) * 2.0, 0.3 + 0.5};
+  const OdometryDelta d = ComputeOdometryDelta(odom_a, odom_b);
+  RandomStream s(1, StreamPurpose::kTest, 0, 0);
+  const Pose2 out = SampleOdometryMotion({1.0, 1.0, kPi / 2}, d, none, s);
+  EXPECT_NEAR(out.x, 1.0, 1e-12);
+  EXPECT_NEAR(out.y, 3.0, 1e-12);
+  EXPECT_NEAR(out.theta, kPi / 2 + 0.5, 1e-12);
+}
+
+TEST(MotionModelTest, BackwardMotionIsNotAHalfTurn) {
+  const OdometryMotionNoise none{0, 0, 0, 0};
+  const OdometryDelta d = ComputeOdometryDelta({0, 0, 0}, {-1.0, 0, 0});
+  RandomStream s(1, StreamPurpose::kTest, 0, 0);
+  const Pose2 out = SampleOdometryMotion({5, 5, kPi / 2}, d, none, s);
+  EXPECT_NEAR(out.x, 5.0, 1e-12);
+  EXPECT_NEAR(out.y, 4.0, 1e-12);
+  EXPECT_NEAR(out.theta, kPi / 2, 1e-12);
+}
+
+TEST(MotionModelTest, EveryParticleDrawsItsOwnNoise) {
+  // RoWild draws one sample for all particles: the set collapses. Here 1000
+  // particles starting at one pose must end at 1000 distinct poses.
+  const OdometryDelta d = ComputeOdometryDelta({0, 0, 0}, {1.0, 0.2, 0.1});
+  std::set<std::pair<double, double>> distinct;
+  for (int i = 0; i < 1000; ++i) {
+    RandomStream s(7, StreamPurpose::kMotion, 3, i);
+    const Pose2 p = SampleOdometryMotion({0, 0, 0}, d, OdometryMotionNoise{}, s);
+    distinct.insert({p.x, p.y});
+  }
+  EXPECT_EQ(distinct.size(), 1000u);
+}
+
+TEST(BeamModelTest, AllOutlierScanGivesFiniteLogLikelihoods) {
+  // 180 beams that are all far shorter than the map predicts: the product of
+  // densities would underflow; the log-domain sum must stay finite.
+  const BeamModelParams p;
+  double sum = 0.0;
+  for (int i = 0; i < 180; ++i) sum += BeamLogDensity(p, 0.05, 9.0);
+  EXPECT_TRUE(std::isfinite(sum));
+  // Each beam is at least the uniform floor.
+  EXPECT_GE(sum, 180 * std::log(p.z_rand / p.max_range_m));
+  // A matching beam is far more likely than a mismatched one.
+  EXPECT_GT(BeamLogDensity(p, 4.0, 4.0), BeamLogDensity(p, 4.0, 6.0) + 2.0);
+  // Max readings are scored by the point mass, not by the Gaussian.
+  EXPECT_NEAR(BeamLogDensity(p, p.max_range_m, 3.0), std::log(p.z_max), 1e-9);
+}
+
+TEST(PoseEstimateTest, HeadingsAreAveragedOnTheCircle) {
+  std::vector<Pose2> particles = {{1, 1, kPi - 0.01}, {1, 1, -kPi + 0.01}};
+  std::vector<double> lw = {std::log(0.5), std::log(0.5)};
+  const PoseEstimate e = EstimatePose(particles, lw);
+  EXPECT_NEAR(std::abs(e.pose.theta), kPi, 1e-9);
+}
+
+TEST(PoseEstimateTest, EstimateIsTheHeavierModeNotTheOverallMean) {
+  std::vector<Pose2> particles;
+  std::vector<double> lw;
+  for (int i = 0; i < 60; ++i) {
+    particles.push_back({2.0 + 0.01 * (i % 5), 2.0, 0.0});
+    lw.push_back(std::log(0.6 / 60));
+  }
+  for (int i = 0; i < 40; ++i) {
+    particles.push_back({8.0, 8.0 + 0.01 * (i % 5), 1.0});
+    lw.push_back(std::log(0.4 / 40));
+  }
+  const PoseEstimate e = EstimatePose(particles, lw);
+  EXPECT_NEAR(e.pose.x, 2.02, 1e-9);
+  EXPECT_NEAR(e.pose.y, 2.0, 1e-9);
+  EXPECT_NEAR(e.mode_weight, 0.6, 1e-9);
+}
+
+TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.2, 0.03, 5);
+  DelibotSettings s;
+  s.mcl.particle_count = 800;
+  s.mcl.beams.beam_step = 10;
+  s.mcl.seed = 42;
+  s.max_records = 40;
+  for (auto caster : {RayCastMethod::kMarch, RayCastMethod::kRayMarching}) {
+    s.ray_caster = caster;
+    omp_set_num_threads(1);
+    const DelibotResult one = RunDelibot(g, run.trace, &run.truth, s);
+    omp_set_num_threads(2);
+    const DelibotResult two = RunDelibot(g, run.trace, &run.truth, s);
+    ASSERT_EQ(one.rows.size(), two.rows.size());
+    for (std::size_t i = 0; i < one.rows.size(); ++i) {
+      EXPECT_EQ(one.rows[i].estimate.x, two.rows[i].estimate.x) << i;
+      EXPECT_EQ(one.rows[i].estimate.y, two.rows[i].estimate.y) << i;
+      EXPECT_EQ(one.rows[i].estimate.theta, two.rows[i].estimate.theta) << i;
+      EXPECT_EQ(one.rows[i].ess, two.rows[i].ess) << i;
+      EXPECT_EQ(one.rows[i].nodes, two.rows[i].nodes) << i;
+      EXPECT_EQ(one.rows[i].injected, two.rows[i].injected) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rc
