@@ -2,6 +2,7 @@
 // A small asymmetric test world and an exact (noise-free or lightly noisy)
 // trace through it, built directly from the dda ray caster so that MCL tests
 // do not depend on the trace simulator.
+#include <stdexcept>
 #include <vector>
 
 #include "common/random_stream.h"
@@ -55,6 +56,8 @@ inline SyntheticRun DriveThrough(const OccupancyGrid& g, const std::vector<Pose2
     const int steps = std::max(1, static_cast<int>(len / step_m));
     for (int s = 0; s < steps; ++s, ++k) {
       Pose2 p{a.x + (b.x - a.x) * s / steps, a.y + (b.y - a.y) * s / steps, heading};
+      if (!g.IsFreePoint(p.x, p.y) || !g.IsFreePoint(SensorPose(p, run.trace.geometry).x, SensorPose(p, run.trace.geometry).y))
+        throw std::logic_error("synthetic route passes through an obstacle");
       LaserScan scan;
       scan.time_s = 0.1 * k;
       const double c = std::cos(odom_origin.theta), sn = std::sin(odom_origin.theta);

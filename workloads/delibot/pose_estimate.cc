@@ -1,20 +1,17 @@
 #include "workloads/delibot/pose_estimate.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rc {
 
-PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
-                          const std::vector<double>& normalized_log_weights, double kernel_radius_m) {
+namespace {
+
+// Mean shift with a flat kernel from one start particle.
+PoseEstimate ShiftToMode(const std::vector<Pose2>& particles, const std::vector<double>& w,
+                         std::size_t start, double kernel_radius_m) {
   PoseEstimate out;
-  if (particles.empty()) return out;
-  std::vector<double> w(particles.size());
-  std::size_t best = 0;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    w[i] = std::exp(normalized_log_weights[i]);
-    if (w[i] > w[best]) best = i;
-  }
-  double cx = particles[best].x, cy = particles[best].y;
+  double cx = particles[start].x, cy = particles[start].y;
   const double r2 = kernel_radius_m * kernel_radius_m;
   CircularMean heading;
   double mode_weight = 0.0;
@@ -39,8 +36,37 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
     mode_weight = sw;
     if (settled) break;
   }
-  out.pose = {cx, cy, mode_weight > 0.0 ? heading.Mean() : particles[best].theta};
+  out.pose = {cx, cy, mode_weight > 0.0 ? heading.Mean() : particles[start].theta};
   out.mode_weight = mode_weight;
+  return out;
+}
+
+// How many of the heaviest particles seed a mean-shift search. One seed is
+// not enough: right after random particles are injected, a lone stray
+// particle can outweigh every single member of the true, populous mode.
+constexpr std::size_t kModeSeeds = 16;
+
+}  // namespace
+
+PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
+                          const std::vector<double>& normalized_log_weights, double kernel_radius_m) {
+  PoseEstimate out;
+  if (particles.empty()) return out;
+  std::vector<double> w(particles.size());
+  for (std::size_t i = 0; i < particles.size(); ++i) w[i] = std::exp(normalized_log_weights[i]);
+  std::vector<std::size_t> order(particles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const std::size_t seeds = std::min(kModeSeeds, order.size());
+  // Heaviest first; ties broken by index so the result is deterministic.
+  std::partial_sort(order.begin(), order.begin() + seeds, order.end(), [&](std::size_t a, std::size_t b) {
+    return w[a] != w[b] ? w[a] > w[b] : a < b;
+  });
+  out.mode_weight = -1.0;
+  for (std::size_t k = 0; k < seeds; ++k) {
+    const PoseEstimate candidate = ShiftToMode(particles, w, order[k], kernel_radius_m);
+    if (candidate.mode_weight > out.mode_weight + 1e-12) out = candidate;
+  }
+  const double cx = out.pose.x, cy = out.pose.y;
   double spread = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const double dx = particles[i].x - cx, dy = particles[i].y - cy;

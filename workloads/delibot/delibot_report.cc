@@ -1,0 +1,144 @@
+#include "workloads/delibot/delibot_report.h"
+
+#include <cstdio>
+
+#include "common/atomic_file.h"
+#include "traces/csv_table.h"
+
+namespace rc {
+namespace {
+
+CsvCell MaybeNumber(bool present, double value) { return present ? CsvCell(value) : CsvCell::Empty(); }
+
+}  // namespace
+
+void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) {
+  const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
+  std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
+                                      "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
+                                      "sensor_updated", "resampled", "injected", "spread_m", "consistency"};
+  if (gt) {
+    columns.push_back("err_xy_m");
+    columns.push_back("err_theta_rad");
+  }
+  CsvTable table(path, columns);
+  for (const DelibotRow& r : result.rows) {
+    std::vector<CsvCell> cells = {r.iteration,
+                                  r.time_s,
+                                  r.estimate.x,
+                                  r.estimate.y,
+                                  r.estimate.theta,
+                                  r.ess,
+                                  r.rays,
+                                  r.nodes,
+                                  MaybeNumber(r.rays > 0, r.NodesPerRay()),
+                                  r.wall_s * 1e3,
+                                  static_cast<int>(r.sensor_updated),
+                                  static_cast<int>(r.resampled),
+                                  r.injected,
+                                  r.spread_m,
+                                  r.consistency};
+    if (gt) {
+      cells.emplace_back(r.err_xy_m);
+      cells.emplace_back(r.err_theta_rad);
+    }
+    table.AddRow(cells);
+  }
+  table.Commit();
+}
+
+nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& s,
+                                  const DelibotProvenance& p) {
+  using nlohmann::json;
+  const DelibotSummary& m = result.summary;
+  json config = {
+      {"map", {{"path", p.map_path}, {"format", p.map_format}, {"value_convention", p.map_convention}}},
+      {"trace", {{"path", p.trace_path}, {"format", p.trace_format}, {"ground_truth", p.ground_truth_path}}},
+      {"particles", s.mcl.particle_count},
+      {"seed", s.mcl.seed},
+      {"beam_step", s.mcl.beams.beam_step},
+      {"ray_caster", ToString(s.ray_caster)},
+      {"sensor_model", ToString(s.sensor_model)},
+      {"max_range_m", s.beam.max_range_m},
+      {"beam_model",
+       {{"z_hit", s.beam.z_hit}, {"z_short", s.beam.z_short}, {"z_max", s.beam.z_max}, {"z_rand", s.beam.z_rand},
+        {"sigma_hit_m", s.beam.sigma_hit_m}, {"lambda_short_per_m", s.beam.lambda_short_per_m}}},
+      {"likelihood_field",
+       {{"z_hit", s.likelihood.z_hit}, {"z_rand", s.likelihood.z_rand}, {"sigma_hit_m", s.likelihood.sigma_hit_m},
+        {"max_occ_dist_m", s.likelihood.max_occ_dist_m}}},
+      {"motion_noise",
+       {{"alpha1", s.mcl.motion.alpha1}, {"alpha2", s.mcl.motion.alpha2}, {"alpha3", s.mcl.motion.alpha3},
+        {"alpha4", s.mcl.motion.alpha4}}},
+      {"resample_ess_fraction", s.mcl.resample_ess_fraction},
+      {"recovery_alpha_slow", s.mcl.alpha_slow},
+      {"recovery_alpha_fast", s.mcl.alpha_fast},
+      {"update_min_d_m", s.mcl.update_min_d_m},
+      {"update_min_a_rad", s.mcl.update_min_a_rad},
+      {"max_records", s.max_records},
+      {"initialization", s.initial_pose ? "tracking" : "global"},
+      {"threads", p.threads},
+  };
+  if (s.initial_pose)
+    config["initial_pose"] = {{"x_m", s.initial_pose->x}, {"y_m", s.initial_pose->y},
+                              {"theta_rad", s.initial_pose->theta}};
+  json totals = {{"records", m.records},       {"sensor_updates", m.sensor_updates},
+                 {"rays", m.rays},             {"nodes", m.nodes},
+                 {"nodes_per_ray", m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0},
+                 {"wall_s", m.wall_s},
+                 {"wall_per_update_s", m.sensor_updates ? m.wall_s / m.sensor_updates : 0.0},
+                 {"rays_per_s", m.wall_s > 0 ? m.rays / m.wall_s : 0.0},
+                 {"resamples", m.resamples},   {"injected", m.injected}};
+  json accuracy = {{"convergence_iteration", m.convergence_iteration},
+                   {"converged_at_end", m.converged},
+                   {"median_consistency_after_convergence", m.median_consistency},
+                   {"fraction_consistent_after_convergence", m.fraction_consistent},
+                   {"non_finite_weights", m.any_non_finite_weight},
+                   {"criterion",
+                    p.ground_truth_path.empty()
+                        ? "particle spread < " + std::to_string(s.converged_spread_m) + " m for 10 records"
+                        : "error < " + std::to_string(s.converged_xy_m) + " m and < " +
+                              std::to_string(s.converged_theta_rad) + " rad for 10 records"}};
+  if (!p.ground_truth_path.empty()) {
+    accuracy["median_err_xy_m"] = m.median_err_xy_m;
+    accuracy["p95_err_xy_m"] = m.p95_err_xy_m;
+    accuracy["median_err_theta_rad"] = m.median_err_theta_rad;
+    accuracy["final_err_xy_m"] = m.final_err_xy_m;
+    accuracy["final_err_theta_rad"] = m.final_err_theta_rad;
+  }
+  return {{"workload", "delibot"}, {"config", config}, {"totals", totals}, {"accuracy", accuracy}};
+}
+
+void WriteJsonFile(const std::string& path, const nlohmann::json& json) {
+  AtomicFile file(path);
+  file.stream() << json.dump(2) << "\n";
+  file.Commit();
+}
+
+void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const DelibotSettings& s) {
+  const DelibotSummary& m = result.summary;
+  char line[256];
+  auto emit = [&](const char* fmt, auto... args) {
+    std::snprintf(line, sizeof line, fmt, args...);
+    out << line << "\n";
+  };
+  emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
+       m.sensor_updates, m.resamples, m.injected);
+  emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
+       m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);
+  emit("host time               %.3f s total, %.2f ms per update, %.2f M rays/s", m.wall_s,
+       m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0, m.wall_s > 0 ? m.rays / m.wall_s / 1e6 : 0.0);
+  if (m.convergence_iteration >= 0)
+    emit("converged at record     %ld (%s)", m.convergence_iteration, m.converged ? "still localized at the end" : "LOST by the end");
+  else
+    emit("converged at record     never");
+  emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
+       m.median_consistency, s.consistency_sigmas);
+  if (!result.rows.empty() && result.rows.front().has_ground_truth) {
+    emit("error after convergence %.3f m median, %.3f m p95, %.4f rad median heading", m.median_err_xy_m,
+         m.p95_err_xy_m, m.median_err_theta_rad);
+    emit("final error             %.3f m, %.4f rad", m.final_err_xy_m, m.final_err_theta_rad);
+  }
+  if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");
+}
+
+}  // namespace rc

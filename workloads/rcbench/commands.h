@@ -1,0 +1,11 @@
+#pragma once
+// Each rcbench subcommand lives in its own file and registers itself here.
+#include <CLI/CLI.hpp>
+
+namespace rc {
+
+void AddDelibotCommand(CLI::App& app);
+void AddSimulateCommand(CLI::App& app);
+void AddMakeMapCommand(CLI::App& app);
+
+}  // namespace rc

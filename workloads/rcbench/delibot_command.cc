@@ -1,0 +1,184 @@
+// `rcbench delibot`: Monte Carlo Localization on a map and a laser trace.
+// With neither --map nor --trace it runs the built-in demo: the generated
+// office map and a simulated trace with ground truth, written to out/demo/.
+#include <filesystem>
+#include <iostream>
+#include <omp.h>
+
+#include "common/input_error.h"
+#include "maps/map_loader.h"
+#include "maps/office_map_generator.h"
+#include "maps/ros_map_io.h"
+#include "traces/cmu_log_writer.h"
+#include "traces/ground_truth_io.h"
+#include "traces/trace_reader.h"
+#include "workloads/delibot/delibot_report.h"
+#include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/trace_simulator.h"
+#include "workloads/rcbench/commands.h"
+#include "workloads/rcbench/demo_inputs.h"
+#include "workloads/rcbench/progress_bar.h"
+
+namespace rc {
+namespace {
+
+struct DelibotCli {
+  std::string map_path, map_format = "auto", map_convention;
+  double map_resolution_m = 0.0;
+  std::string trace_path, trace_format = "auto", ground_truth_path;
+  std::string sensor_model = "beam", ray_caster = "dda";
+  std::vector<double> initial_pose;
+  std::string timeline_path, summary_path;
+  int threads = 0;
+  bool quiet = false;
+  DelibotSettings settings;
+};
+
+void Run(DelibotCli& cli) {
+  DelibotSettings& s = cli.settings;
+  s.sensor_model = ParseSensorModelKind(cli.sensor_model);
+  s.ray_caster = ParseRayCastMethod(cli.ray_caster);
+  if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
+  if (cli.threads > 0) omp_set_num_threads(cli.threads);
+  std::string error;
+  if (!s.mcl.IsValid(&error)) throw UsageError(error);
+  if (!s.beam.IsValid(&error)) throw UsageError("beam model: " + error);
+  if (!s.likelihood.IsValid(&error)) throw UsageError("likelihood field: " + error);
+  if (cli.map_path.empty() != cli.trace_path.empty())
+    throw UsageError("give both --map and --trace, or neither for the built-in demo");
+  if (cli.map_path.empty() && !cli.ground_truth_path.empty())
+    throw UsageError("--ground-truth needs --map and --trace");
+
+  DelibotProvenance provenance;
+  provenance.threads = omp_get_max_threads();
+  OccupancyGrid grid;
+  SensorTrace trace;
+  std::vector<Pose2> truth;
+  bool have_truth = false;
+  if (cli.map_path.empty()) {
+    const DemoInputs demo = MakeDemoInputs("out/demo");
+    std::cout << "demo: generated office map and simulated trace written to out/demo/ ("
+              << demo.trace.scans.size() << " laser records)\n";
+    grid = demo.grid;
+    trace = demo.trace;
+    for (const auto& p : demo.ground_truth) truth.push_back(p.pose);
+    have_truth = true;
+    provenance = {demo.map_path, "ros", "generated office map (occupied 0, free 254, unknown 205)",
+                  demo.trace_path, "cmu", demo.ground_truth_path, provenance.threads};
+    if (cli.timeline_path.empty()) cli.timeline_path = "out/demo/delibot_timeline.csv";
+    if (cli.summary_path.empty()) cli.summary_path = "out/demo/delibot_summary.json";
+  } else {
+    MapLoadOptions map_options;
+    map_options.format = cli.map_format;
+    if (!cli.map_convention.empty()) map_options.convention = ParseValueConvention(cli.map_convention);
+    if (cli.map_resolution_m > 0) map_options.resolution_m = cli.map_resolution_m;
+    LoadedMap loaded = LoadMap(cli.map_path, map_options);
+    std::cout << "map: " << cli.map_path << " (" << loaded.format << ", " << loaded.grid.size_x() << " x "
+              << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
+              << loaded.value_convention << ")\n";
+    grid = std::move(loaded.grid);
+    TraceReadOptions trace_options;
+    trace_options.format = cli.trace_format;
+    trace = ReadTrace(cli.trace_path, trace_options);
+    std::cout << "trace: " << cli.trace_path << " (" << trace.format << ", " << trace.scans.size()
+              << " laser records, " << trace.geometry.beam_count << " beams)\n";
+    provenance.map_path = cli.map_path;
+    provenance.map_format = loaded.format;
+    provenance.map_convention = loaded.value_convention;
+    provenance.trace_path = cli.trace_path;
+    provenance.trace_format = trace.format;
+    if (!cli.ground_truth_path.empty()) {
+      const GroundTruth gt = ReadGroundTruth(cli.ground_truth_path);
+      CheckGroundTruthMatches(trace, gt);
+      for (const auto& p : gt.poses) truth.push_back(p.pose);
+      have_truth = true;
+      provenance.ground_truth_path = cli.ground_truth_path;
+    }
+  }
+
+  std::cout << "filter: " << s.mcl.particle_count << " particles, " << ToString(s.sensor_model) << " model, "
+            << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
+            << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
+            << provenance.threads << " thread(s)\n";
+  DelibotResult result;
+  {
+    ProgressBar bar("delibot", !cli.quiet);
+    result = RunDelibot(grid, trace, have_truth ? &truth : nullptr, s,
+                        [&](std::size_t done, std::size_t total) { bar.Update(done, total); });
+  }
+  // Outputs are written only after the whole run succeeded.
+  if (!cli.timeline_path.empty()) WriteDelibotTimeline(cli.timeline_path, result);
+  if (!cli.summary_path.empty()) WriteJsonFile(cli.summary_path, DelibotSummaryJson(result, s, provenance));
+  PrintDelibotSummary(std::cout, result, s);
+  if (!cli.timeline_path.empty()) std::cout << "timeline                " << cli.timeline_path << "\n";
+  if (!cli.summary_path.empty()) std::cout << "summary                 " << cli.summary_path << "\n";
+}
+
+}  // namespace
+
+void AddDelibotCommand(CLI::App& app) {
+  auto cli = std::make_shared<DelibotCli>();
+  DelibotSettings& s = cli->settings;
+  CLI::App* cmd = app.add_subcommand(
+      "delibot", "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
+                 "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
+  cmd->add_option("--map", cli->map_path, "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, or an image");
+  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")->capture_default_str();
+  cmd->add_option("--map-convention", cli->map_convention,
+                  "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
+                  "('occupied')");
+  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size for MovingAI maps and images (m)");
+  cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, or CARMEN .clf");
+  cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen")->capture_default_str();
+  cmd->add_option("--ground-truth", cli->ground_truth_path,
+                  "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
+  cmd->add_option("--particles", s.mcl.particle_count, "Number of particles [1, 1e7]")->capture_default_str();
+  cmd->add_option("--beam-step", s.mcl.beams.beam_step, "Use every K-th beam (K >= 1; 6 of 180 gives 30 beams)")
+      ->capture_default_str();
+  cmd->add_option("--raycaster", cli->ray_caster, "march (fixed 1-cell step) | dda (exact) | rm (distance field)")
+      ->capture_default_str();
+  cmd->add_option("--sensor-model", cli->sensor_model, "beam (ray casting) | likelihood (likelihood field)")
+      ->capture_default_str();
+  cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
+  cmd->add_option("--max-records", s.max_records, "Process at most N laser records (0 = all)")->capture_default_str();
+  cmd->add_option("--max-range", s.beam.max_range_m, "Model max range (m); readings at or beyond are 'no return'")
+      ->capture_default_str();
+  cmd->add_option("--sigma-hit", s.beam.sigma_hit_m, "Beam model hit sigma (m)")->capture_default_str();
+  cmd->add_option("--z-hit", s.beam.z_hit, "Beam model hit weight (unitless)")->capture_default_str();
+  cmd->add_option("--z-short", s.beam.z_short, "Beam model short weight (unitless)")->capture_default_str();
+  cmd->add_option("--z-max", s.beam.z_max, "Beam model max-range weight (unitless)")->capture_default_str();
+  cmd->add_option("--z-rand", s.beam.z_rand, "Beam model random weight (unitless)")->capture_default_str();
+  cmd->add_option("--lambda-short", s.beam.lambda_short_per_m, "Beam model short-reading rate (1/m)")
+      ->capture_default_str();
+  cmd->add_option("--lf-sigma-hit", s.likelihood.sigma_hit_m, "Likelihood field sigma (m)")->capture_default_str();
+  cmd->add_option("--lf-max-dist", s.likelihood.max_occ_dist_m, "Likelihood field distance cap (m)")
+      ->capture_default_str();
+  cmd->add_option("--alpha1", s.mcl.motion.alpha1, "Rotation noise from rotation (rad^2/rad^2)")->capture_default_str();
+  cmd->add_option("--alpha2", s.mcl.motion.alpha2, "Rotation noise from translation (rad^2/m^2)")->capture_default_str();
+  cmd->add_option("--alpha3", s.mcl.motion.alpha3, "Translation noise from translation (m^2/m^2)")
+      ->capture_default_str();
+  cmd->add_option("--alpha4", s.mcl.motion.alpha4, "Translation noise from rotation (m^2/rad^2)")->capture_default_str();
+  cmd->add_option("--update-min-d", s.mcl.update_min_d_m, "Sensor update after this much travel (m)")
+      ->capture_default_str();
+  cmd->add_option("--update-min-a", s.mcl.update_min_a_rad, "Sensor update after this much rotation (rad)")
+      ->capture_default_str();
+  cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (0, 1]")
+      ->capture_default_str();
+  cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (0 = no recovery)")
+      ->capture_default_str();
+  cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate")->capture_default_str();
+  cmd->add_option("--initial-pose", cli->initial_pose, "Track from X,Y,THETA (m, m, rad) instead of global localization")
+      ->expected(3)
+      ->delimiter(',');
+  cmd->add_option("--initial-sigma-xy", s.initial_sigma_xy_m, "Tracking start spread (m)")->capture_default_str();
+  cmd->add_option("--initial-sigma-theta", s.initial_sigma_theta_rad, "Tracking start spread (rad)")
+      ->capture_default_str();
+  cmd->add_option("--threads", cli->threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  cmd->add_option("--timeline", cli->timeline_path, "Write the per-record timeline CSV here");
+  cmd->add_option("--summary", cli->summary_path, "Write the run summary JSON here");
+  cmd->add_flag("--quiet", cli->quiet, "No progress bar");
+  cmd->callback([cli] { Run(*cli); });
+}
+
+}  // namespace rc
