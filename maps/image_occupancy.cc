@@ -1,0 +1,115 @@
+#include "maps/image_occupancy.h"
+
+#include <cmath>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "common/input_error.h"
+#include "maps/grid_size_limits.h"
+
+namespace rc {
+namespace {
+
+constexpr int kRawUnknown = 255;  // -1 as the signed byte map_server stores
+
+std::string Text(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+std::string PixelField(int row, int column) {
+  return "pixel (row " + std::to_string(row) + ", column " + std::to_string(column) + ")";
+}
+
+// Raw mode: the mean must be an exact occupancy percentage or 255.
+CellState ClassifyRawPixel(double v, const PixelThresholds& t, const std::string& image_path,
+                           int row, int column) {
+  if (v == kRawUnknown) return CellState::kUnknown;
+  if (v != std::floor(v) || v > 100.0)
+    throw InputError(
+        image_path, 0, PixelField(row, column),
+        "raw-mode value " + Text(v) + " is not an occupancy percentage (0..100) or 255 (unknown)");
+  const double p = v / 100.0;
+  if (p > t.occupied_thresh) return CellState::kOccupied;
+  if (p < t.free_thresh) return CellState::kFree;
+  return CellState::kUnknown;
+}
+
+}  // namespace
+
+std::string ToString(ImageMapMode mode) {
+  switch (mode) {
+    case ImageMapMode::kTrinary: return "trinary";
+    case ImageMapMode::kScale: return "scale";
+    case ImageMapMode::kRaw: return "raw";
+  }
+  return "?";
+}
+
+bool CheckPixelThresholds(const PixelThresholds& t, std::string* field, std::string* problem) {
+  auto fail = [&](const char* f, const std::string& p) {
+    *field = f;
+    *problem = p;
+    return false;
+  };
+  if (!std::isfinite(t.occupied_thresh) || t.occupied_thresh < 0.0 || t.occupied_thresh > 1.0)
+    return fail("occupied_thresh", "must be a number in [0, 1], got " + Text(t.occupied_thresh));
+  if (!std::isfinite(t.free_thresh) || t.free_thresh < 0.0 || t.free_thresh > 1.0)
+    return fail("free_thresh", "must be a number in [0, 1], got " + Text(t.free_thresh));
+  if (t.free_thresh >= t.occupied_thresh)
+    return fail("free_thresh", "must be below occupied_thresh (" + Text(t.free_thresh) +
+                                   " >= " + Text(t.occupied_thresh) + ")");
+  return true;
+}
+
+CellState ClassifyPixelMean(double v, const PixelThresholds& t) {
+  // Same order of operations as map_server, so results match bit for bit.
+  if (t.negate) v = 255.0 - v;
+  const double p = (255.0 - v) / 255.0;
+  if (p > t.occupied_thresh) return CellState::kOccupied;
+  if (p < t.free_thresh) return CellState::kFree;
+  return CellState::kUnknown;
+}
+
+OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
+                            const PixelThresholds& thresholds, ImageMapMode mode) {
+  // Checked first: OpenCV would also print its own warning for a missing file.
+  if (!std::ifstream(image_path)) throw InputError(image_path, 0, "", "cannot open image file");
+  const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+  if (image.empty())
+    throw InputError(image_path, 0, "",
+                     "cannot decode the image (not an image format OpenCV knows, or corrupt)");
+  if (image.depth() != CV_8U)
+    throw InputError(image_path, 0, "",
+                     "only 8-bit images are supported (this one has " +
+                         std::to_string(8 * image.elemSize1()) + "-bit channels)");
+  const int channels = image.channels();
+  if (channels != 1 && channels != 3 && channels != 4)
+    throw InputError(
+        image_path, 0, "",
+        "unsupported channel count " + std::to_string(channels) + " (expected 1, 3 or 4)");
+  CheckMapSize(image_path, 0, "", image.cols, image.rows);
+
+  // Alpha is the last channel of a 4-channel image (BGRA).
+  const bool has_alpha = channels == 4;
+  const int averaged = (has_alpha && mode != ImageMapMode::kTrinary) ? channels - 1 : channels;
+  OccupancyGrid grid(image.cols, image.rows, resolution_m, CellState::kUnknown);
+  for (int row = 0; row < image.rows; ++row) {
+    const std::uint8_t* pixel = image.ptr<std::uint8_t>(row);
+    const int iy = image.rows - 1 - row;
+    for (int column = 0; column < image.cols; ++column, pixel += channels) {
+      int sum = 0;
+      for (int k = 0; k < averaged; ++k) sum += pixel[k];
+      const double mean = sum / static_cast<double>(averaged);
+      const CellState state = mode == ImageMapMode::kRaw
+                                  ? ClassifyRawPixel(mean, thresholds, image_path, row, column)
+                                  : ClassifyPixelMean(mean, thresholds);
+      grid.Set(column, iy, state);
+    }
+  }
+  return grid;
+}
+
+}  // namespace rc
