@@ -1,0 +1,100 @@
+#include "traces/trace_reader.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_data.h"
+#include "trace_test_util.h"
+
+namespace rc {
+namespace {
+
+using test::ExpectInputError;
+using test::ScratchDir;
+
+std::string Repeat(const std::string& token, int n) {
+  std::string out;
+  for (int i = 0; i < n; ++i) out += " " + token;
+  return out;
+}
+
+const std::string kCmuLaser =
+    "L 100 200 0 125 200 0" + Repeat("300", 180) + " 1.5\n";
+const std::string kRowild = "100 200 0" + Repeat("300", 180) + "\n";
+const std::string kFlaser361 =
+    "FLASER 361" + Repeat("3.0", 361) + " 1 2 0 1 2 0 10.0 host 10.1\n";
+
+TEST(DetectTraceFormat, ByContentNotExtension) {
+  ScratchDir dir;
+  EXPECT_EQ(DetectTraceFormat(dir.Write("a.log", "\nO 1 2 3 4\n" + kCmuLaser)), "cmu");
+  EXPECT_EQ(DetectTraceFormat(dir.Write("b.txt", kRowild)), "rowild");
+  EXPECT_EQ(DetectTraceFormat(dir.Write("c.clf", "# CARMEN Logfile\n" + kFlaser361)), "carmen");
+  // CARMEN's own logger names its files .log.
+  EXPECT_EQ(DetectTraceFormat(dir.Write("d.log", "PARAM robot_use_laser on\n" + kFlaser361)), "carmen");
+}
+
+TEST(DetectTraceFormat, UnknownContentIsAnError) {
+  ScratchDir dir;
+  const std::string path = dir.Write("map.dat", "\nrobot_specifications->resolution 10\n");
+  ExpectInputError([&] { DetectTraceFormat(path); }, path, 2, "format");
+  const std::string empty = dir.Write("empty.log", "\n");
+  ExpectInputError([&] { DetectTraceFormat(empty); }, empty, 0, "format");
+}
+
+TEST(DetectTraceFormat, RowildShapedLineWithText) {
+  ScratchDir dir;
+  const std::string path = dir.Write("bad.txt", "100 200 zero" + Repeat("300", 180) + "\n");
+  ExpectInputError([&] { DetectTraceFormat(path); }, path, 1, "field 3");
+}
+
+TEST(ReadTrace, DispatchesOnDetectedFormat) {
+  ScratchDir dir;
+  TraceReadOptions options;
+  EXPECT_EQ(ReadTrace(dir.Write("a.log", kCmuLaser), options).format, "cmu");
+  EXPECT_EQ(ReadTrace(dir.Write("b.txt", kRowild), options).format, "rowild");
+  const SensorTrace carmen = ReadTrace(dir.Write("c.clf", kFlaser361), options);
+  EXPECT_EQ(carmen.format, "carmen");
+  EXPECT_EQ(carmen.geometry.beam_count, 361);
+}
+
+TEST(ReadTrace, ExplicitFormatOverridesDetection) {
+  ScratchDir dir;
+  TraceReadOptions options;
+  options.format = "rowild";
+  const std::string path = dir.Write("a.log", kCmuLaser);
+  ExpectInputError([&] { ReadTrace(path, options); }, path, 1, "field 184");  // 188 fields, not 183
+}
+
+TEST(ReadTrace, WrongBeamCountForTheRun) {
+  ScratchDir dir;
+  TraceReadOptions options;
+  options.expected_beam_count = 180;
+  const std::string path = dir.Write("wide.clf", "# log\n" + kFlaser361);
+  ExpectInputError([&] { ReadTrace(path, options); }, path, 2, "beam count");
+  EXPECT_EQ(ReadTrace(dir.Write("ok.log", kCmuLaser), options).scans.size(), 1u);
+}
+
+TEST(ReadTrace, UnknownFormatNameIsAUsageError) {
+  ScratchDir dir;
+  TraceReadOptions options;
+  options.format = "bag";
+  EXPECT_THROW(ReadTrace(dir.Write("a.log", kCmuLaser), options), UsageError);
+  options.format = "auto";
+  options.expected_beam_count = -1;
+  EXPECT_THROW(ReadTrace(dir.Write("b.log", kCmuLaser), options), UsageError);
+}
+
+TEST(ReadTrace, RealLogsByAutoDetection) {
+  RC_REQUIRE_SHARED_DATA("wean/robotdata3.log");
+  RC_REQUIRE_SHARED_DATA("wean/rowild_log1.txt");
+  TraceReadOptions options;
+  options.expected_beam_count = 180;
+  TraceReadStats stats;
+  EXPECT_EQ(ReadTrace(test::SharedDataPath("wean/robotdata3.log"), options, &stats).scans.size(), 1241u);
+  EXPECT_EQ(stats.odometry_records, 1735);
+  EXPECT_EQ(ReadTrace(test::SharedDataPath("wean/rowild_log1.txt"), options).format, "rowild");
+}
+
+}  // namespace
+}  // namespace rc

@@ -1,0 +1,92 @@
+#include "traces/cmu_log_reader.h"
+
+#include <fstream>
+
+#include "common/text_fields.h"
+#include "traces/cmu_laser_geometry.h"
+#include "traces/record_fields.h"
+
+namespace rc {
+namespace {
+
+constexpr std::size_t kBeams = 180;
+// L x y theta xl yl thetal r1..r180 ts
+constexpr std::size_t kFirstRangeField = 7;
+constexpr std::size_t kLaserFields = kFirstRangeField + kBeams + 1;
+constexpr std::size_t kOdometryFields = 5;  // O x y theta ts
+const char* const kLaserLayout = "L x y theta xl yl thetal r1..r180 ts";
+const char* const kOdometryLayout = "O x y theta ts";
+
+std::string LaserFieldName(std::size_t i) {
+  static const char* const kPoseNames[] = {"record type", "x", "y", "theta", "xl", "yl", "thetal"};
+  if (i < kFirstRangeField) return kPoseNames[i];
+  if (i < kFirstRangeField + kBeams) return RangeFieldName(i - kFirstRangeField);
+  return "ts";
+}
+
+std::string OdometryFieldName(std::size_t i) {
+  static const char* const kNames[] = {"record type", "x", "y", "theta", "ts"};
+  return i < kOdometryFields ? kNames[i] : "field " + std::to_string(i + 1);
+}
+
+// Robot or laser pose from three fields in cm, cm, rad.
+Pose2 ParsePoseCm(const LineReader& reader, const std::vector<std::string_view>& fields,
+                  std::size_t first, const char* x_name, const char* y_name, const char* theta_name) {
+  Pose2 pose;
+  pose.x = CentimetresToMetres(reader.ParseDouble(fields[first], x_name));
+  pose.y = CentimetresToMetres(reader.ParseDouble(fields[first + 1], y_name));
+  pose.theta = reader.ParseDouble(fields[first + 2], theta_name);
+  return pose;
+}
+
+}  // namespace
+
+SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, TraceReadStats* stats) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open trace file");
+  LineReader reader(in, path);
+  SensorTrace trace;
+  trace.source_path = path;
+  trace.format = "cmu";
+  trace.geometry = CmuLaserGeometry();
+  trace.geometry.offset_forward_m = options.laser_offset_forward_m;
+
+  TraceReadStats local_stats;
+  LaserTimeOrder time_order;
+  std::string line;
+  while (reader.Next(line)) {
+    const auto fields = SplitFields(line);
+    if (fields.empty()) continue;  // a blank line carries no record
+    if (fields[0] == "O") {
+      RequireFieldCount(reader, fields.size(), kOdometryFields, OdometryFieldName, kOdometryLayout);
+      ParsePoseCm(reader, fields, 1, "x", "y", "theta");
+      reader.ParseDouble(fields[4], "ts");
+      ++local_stats.odometry_records;
+      continue;
+    }
+    if (fields[0] != "L")
+      reader.Fail("record type", "'" + std::string(fields[0]) + "' is neither O nor L");
+
+    RequireFieldCount(reader, fields.size(), kLaserFields, LaserFieldName, kLaserLayout);
+    LaserScan scan;
+    scan.source_line = reader.line_number();
+    scan.odometry = ParsePoseCm(reader, fields, 1, "x", "y", "theta");
+    const Pose2 laser = ParsePoseCm(reader, fields, 4, "xl", "yl", "thetal");
+    const LaserMountOffset mount = MeasureMountOffset(scan.odometry, laser);
+    CheckMountOffset(reader, mount, options.laser_offset_forward_m, options.mount_tolerance, "xl/yl",
+                     "thetal");
+    local_stats.laser_mount.Add(mount);
+    scan.ranges_m.resize(kBeams);
+    for (std::size_t b = 0; b < kBeams; ++b)
+      scan.ranges_m[b] = ParseRange(reader, fields[kFirstRangeField + b], b, 100.0);
+    scan.time_s = reader.ParseDouble(fields[kLaserFields - 1], "ts");
+    time_order.Check(reader, scan.time_s, "ts");
+    trace.scans.push_back(std::move(scan));
+  }
+  RequireLaserRecords(trace, "L records");
+  local_stats.laser_records = static_cast<long>(trace.scans.size());
+  if (stats) *stats = local_stats;
+  return trace;
+}
+
+}  // namespace rc

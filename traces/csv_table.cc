@@ -1,0 +1,197 @@
+#include "traces/csv_table.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/input_error.h"
+
+namespace rc {
+namespace {
+
+bool NeedsQuotes(std::string_view text) {
+  return text.find_first_of(",\"\r\n") != std::string_view::npos;
+}
+
+std::string Quoted(std::string_view text) {
+  if (!NeedsQuotes(text)) return std::string(text);
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string CsvCell::Format(int significant_digits) const {
+  struct Visitor {
+    int digits;
+    std::string operator()(std::monostate) const { return ""; }
+    std::string operator()(double v) const {
+      if (!std::isfinite(v))
+        throw std::invalid_argument(std::isnan(v) ? "NaN" : "infinite value");
+      char text[40];
+      std::snprintf(text, sizeof text, "%.*g", digits, v);
+      return text;
+    }
+    std::string operator()(long long v) const { return std::to_string(v); }
+    std::string operator()(unsigned long long v) const { return std::to_string(v); }
+    std::string operator()(const std::string& v) const { return Quoted(v); }
+  };
+  return std::visit(Visitor{significant_digits}, value_);
+}
+
+CsvTable::Row::Row(const CsvTable& table)
+    : table_(&table), cells_(table.columns().size(), CsvCell::Empty()), set_(table.columns().size(), false) {}
+
+CsvTable::Row& CsvTable::Row::Set(std::string_view column, CsvCell cell) {
+  const std::size_t i = table_->ColumnIndex(column);
+  cells_[i] = std::move(cell);
+  set_[i] = true;
+  return *this;
+}
+
+CsvTable::CsvTable(std::string path, std::vector<std::string> columns, CsvTableOptions options)
+    : path_(std::move(path)), columns_(std::move(columns)), options_(options) {
+  if (columns_.empty()) throw std::invalid_argument("CSV table '" + path_ + "' has no columns");
+  if (options_.significant_digits < 1 || options_.significant_digits > 17)
+    throw std::invalid_argument("CSV significant digits must be in [1, 17]");
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    const std::string& name = columns_[i];
+    if (name.empty() || NeedsQuotes(name))
+      throw std::invalid_argument("CSV table '" + path_ + "': column " + std::to_string(i + 1) +
+                                  " name '" + name + "' is empty or holds a comma, quote or newline");
+    for (std::size_t j = 0; j < i; ++j)
+      if (columns_[j] == name)
+        throw std::invalid_argument("CSV table '" + path_ + "': duplicate column '" + name + "'");
+  }
+  file_ = std::make_unique<AtomicFile>(path_);
+  std::ostream& out = file_->stream();
+  for (std::size_t i = 0; i < columns_.size(); ++i) out << (i ? "," : "") << columns_[i];
+  out << '\n';
+}
+
+std::size_t CsvTable::ColumnIndex(std::string_view name) const {
+  for (std::size_t i = 0; i < columns_.size(); ++i)
+    if (columns_[i] == name) return i;
+  throw std::invalid_argument("CSV table '" + path_ + "' has no column '" + std::string(name) + "'");
+}
+
+void CsvTable::AddRow(const Row& row) {
+  if (row.table_ != this) throw std::logic_error("CSV row built for another table");
+  for (std::size_t i = 0; i < columns_.size(); ++i)
+    if (!row.set_[i])
+      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
+                                  ": column '" + columns_[i] +
+                                  "' not set (use CsvCell::Empty() for a missing value)");
+  AddRow(row.cells_);
+}
+
+void CsvTable::AddRow(const std::vector<CsvCell>& cells) {
+  if (!file_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
+  if (cells.size() != columns_.size())
+    throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
+                                " has " + std::to_string(cells.size()) + " cells for " +
+                                std::to_string(columns_.size()) + " columns");
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (i) line += ',';
+    try {
+      line += cells[i].Format(options_.significant_digits);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
+                                  " column '" + columns_[i] + "': " + e.what() +
+                                  " (write CsvCell::Empty() for a missing value)");
+    }
+  }
+  file_->stream() << line << '\n';
+  ++row_count_;
+}
+
+void CsvTable::Commit() {
+  if (!file_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
+  file_->Commit();
+  file_.reset();
+}
+
+CsvContents ReadCsv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open CSV file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+
+  CsvContents contents;
+  std::vector<std::string> record;
+  std::string field;
+  long line = 1;
+  long record_line = 1;
+  auto field_name = [&] { return "column " + std::to_string(record.size() + 1); };
+  auto end_record = [&] {
+    record.push_back(field);
+    field.clear();
+    if (contents.header.empty()) {
+      contents.header = std::move(record);
+    } else if (record.size() != contents.header.size()) {
+      throw InputError(path, record_line, "column count",
+                       std::to_string(record.size()) + " fields, header has " +
+                           std::to_string(contents.header.size()));
+    } else {
+      contents.rows.push_back(std::move(record));
+    }
+    record.clear();
+  };
+
+  std::size_t i = 0;
+  bool at_field_start = true;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (at_field_start && c == '"') {
+      const long quote_line = line;
+      ++i;
+      while (true) {
+        if (i >= text.size()) throw InputError(path, quote_line, field_name(), "unterminated quote");
+        if (text[i] == '"') {
+          if (i + 1 < text.size() && text[i + 1] == '"') {
+            field += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        if (text[i] == '\n') ++line;
+        field += text[i++];
+      }
+      if (i < text.size() && text[i] != ',' && text[i] != '\n' && text[i] != '\r')
+        throw InputError(path, line, field_name(), "text after a closing quote");
+      at_field_start = false;
+      continue;
+    }
+    if (c == ',') {
+      record.push_back(field);
+      field.clear();
+      at_field_start = true;
+    } else if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') {
+      // CRLF: the '\n' ends the record
+    } else if (c == '\n') {
+      end_record();
+      ++line;
+      record_line = line;
+      at_field_start = true;
+    } else {
+      field += c;
+      at_field_start = false;
+    }
+    ++i;
+  }
+  if (!field.empty() || !record.empty() || !at_field_start) end_record();
+  if (contents.header.empty()) throw InputError(path, 0, "header", "empty CSV file");
+  return contents;
+}
+
+}  // namespace rc

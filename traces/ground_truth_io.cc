@@ -1,0 +1,84 @@
+#include "traces/ground_truth_io.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+#include "common/atomic_file.h"
+#include "common/text_fields.h"
+#include "traces/record_fields.h"
+
+namespace rc {
+namespace {
+
+const char* const kColumns = "t_s x_m y_m theta_rad";
+constexpr double kTimeTolerance_s = 1e-6;
+
+}  // namespace
+
+GroundTruth ReadGroundTruth(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "", "cannot open ground-truth file");
+  LineReader reader(in, path);
+  GroundTruth truth;
+  truth.source_path = path;
+  std::string line;
+  while (reader.Next(line)) {
+    const auto f = SplitFields(line);
+    if (f.empty() || f[0][0] == '#') continue;
+    static const char* const kNames[] = {"t", "x", "y", "theta"};
+    RequireFieldCount(reader, f.size(), 4, [](std::size_t i) { return std::string(kNames[i]); },
+                      kColumns);
+    GroundTruthPose p;
+    p.time_s = reader.ParseDouble(f[0], "t");
+    p.pose.x = reader.ParseDouble(f[1], "x");
+    p.pose.y = reader.ParseDouble(f[2], "y");
+    p.pose.theta = reader.ParseDouble(f[3], "theta");
+    p.source_line = reader.line_number();
+    truth.poses.push_back(p);
+  }
+  if (truth.poses.empty()) throw InputError(path, 0, "poses", "the ground-truth file has no poses");
+  return truth;
+}
+
+void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose>& poses) {
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  out << "# " << kColumns << "\n";
+  char text[128];
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const GroundTruthPose& p = poses[k];
+    if (!std::isfinite(p.time_s) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
+        !std::isfinite(p.pose.theta))
+      throw std::invalid_argument("ground-truth pose " + std::to_string(k) + " for '" + path +
+                                  "' is not finite");
+    std::snprintf(text, sizeof text, "%.17g %.17g %.17g %.17g\n", p.time_s, p.pose.x, p.pose.y,
+                  p.pose.theta);
+    out << text;
+  }
+  file.Commit();
+}
+
+void CheckGroundTruthMatches(const SensorTrace& trace, const GroundTruth& truth) {
+  if (truth.poses.size() != trace.scans.size())
+    throw InputError(truth.source_path, 0, "poses",
+                     std::to_string(truth.poses.size()) + " ground-truth poses for " +
+                         std::to_string(trace.scans.size()) + " laser records in '" + trace.source_path +
+                         "'; the files pair line by line");
+  for (std::size_t k = 0; k < trace.scans.size(); ++k) {
+    const double t_truth = truth.poses[k].time_s;
+    const double t_scan = trace.scans[k].time_s;
+    if (std::abs(t_truth - t_scan) > kTimeTolerance_s) {
+      char times[96];
+      std::snprintf(times, sizeof times, "%.6f s, but laser record %zu has %.6f s", t_truth, k + 1,
+                    t_scan);
+      const std::string text = "pose " + std::to_string(k + 1) + " has time " + times + " ('" +
+                               trace.source_path + "' line " +
+                               std::to_string(trace.scans[k].source_line) + ")";
+      throw InputError(truth.source_path, truth.poses[k].source_line, "t", text);
+    }
+  }
+}
+
+}  // namespace rc

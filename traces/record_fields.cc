@@ -1,0 +1,53 @@
+#include "traces/record_fields.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace rc {
+
+void RequireFieldCount(const LineReader& reader, std::size_t actual, std::size_t expected,
+                       const FieldNamer& name_of, const std::string& layout) {
+  if (actual < expected)
+    reader.Fail(name_of(actual), "line ends after " + std::to_string(actual) + " of " +
+                                     std::to_string(expected) + " fields (" + layout + ")");
+  if (actual > expected)
+    reader.Fail("field " + std::to_string(expected + 1),
+                std::to_string(actual) + " fields where " + std::to_string(expected) +
+                    " were expected (" + layout + ")");
+}
+
+std::string RangeFieldName(std::size_t beam_index) {
+  return "range " + std::to_string(beam_index + 1);
+}
+
+float ParseRange(const LineReader& reader, std::string_view token, std::size_t beam_index,
+                 double units_per_metre) {
+  const std::string field = RangeFieldName(beam_index);
+  const double value = reader.ParseDouble(token, field);  // rejects NaN and inf
+  if (value < 0.0) reader.Fail(field, "negative range '" + std::string(token) + "'");
+  const double metres = value / units_per_metre;
+  if (metres > std::numeric_limits<float>::max())
+    reader.Fail(field, "range '" + std::string(token) + "' is too large to store");
+  return static_cast<float>(metres);
+}
+
+void LaserTimeOrder::Check(const LineReader& reader, double time_s, const std::string& field) {
+  if (has_previous_ && time_s < previous_s_) {
+    char text[160];
+    std::snprintf(text, sizeof text, "time %.6f s is earlier than %.6f s of the laser record on line %ld",
+                  time_s, previous_s_, previous_line_);
+    reader.Fail(field, text);
+  }
+  has_previous_ = true;
+  previous_s_ = time_s;
+  previous_line_ = reader.line_number();
+}
+
+void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind) {
+  if (trace.scans.empty())
+    throw InputError(trace.source_path, 0, record_kind,
+                     "the trace has no laser records (" + record_kind + "), nothing to localize with");
+}
+
+}  // namespace rc

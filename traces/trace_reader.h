@@ -1,0 +1,38 @@
+#pragma once
+// One entry point for every supported trace format, so the command line and
+// the workloads need not know which reader a file needs.
+#include <string>
+
+#include "traces/carmen_log_reader.h"
+#include "traces/cmu_log_reader.h"
+#include "traces/sensor_trace.h"
+#include "traces/trace_read_stats.h"
+
+namespace rc {
+
+struct TraceReadOptions {
+  // "auto", "cmu", "rowild" or "carmen". "auto" decides by content, see
+  // DetectTraceFormat.
+  std::string format = "auto";
+  // 0: take the beam count from the format. Otherwise a trace with another
+  // beam count is an InputError (e.g. a 361-beam CARMEN log given to a run
+  // configured for the 180-beam CMU laser).
+  int expected_beam_count = 0;
+  CmuLogOptions cmu;
+  CarmenLogOptions carmen;
+};
+
+// Returns "cmu", "rowild" or "carmen" from the first line that is neither
+// blank nor a '#' comment (a '#' line itself means CARMEN, the only format
+// with comments): first field "O" or "L" -> cmu (robotdata*.log); a message
+// name from CARMEN's logger header (PARAM, ODOM, FLASER, ROBOTLASER1, SYNC,
+// ...) -> carmen (.clf, or .log from CARMEN's logger);
+// 183 numbers -> rowild (.txt). Extensions are ambiguous (.log is both CMU
+// and CARMEN), so content decides. Throws InputError if nothing matches.
+std::string DetectTraceFormat(const std::string& path);
+
+// Throws UsageError for an unknown format name, InputError for bad input.
+SensorTrace ReadTrace(const std::string& path, const TraceReadOptions& options,
+                      TraceReadStats* stats = nullptr);
+
+}  // namespace rc
