@@ -74,6 +74,7 @@ void BeamSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, const 
     log_likelihoods[i] = sum;
   }
   work.rays = batch.queries.size();
+  work.beams_scored = beams_per_particle;
   work.nodes = TotalNodes(work.hits);
 }
 

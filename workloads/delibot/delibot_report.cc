@@ -16,7 +16,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
-                                      "sensor_updated", "resampled", "injected", "spread_m", "consistency"};
+                                      "sensor_updated", "resampled", "injected", "spread_m", "mode_weight", "consistency"};
   if (gt) {
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
@@ -37,6 +37,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   static_cast<int>(r.resampled),
                                   r.injected,
                                   r.spread_m,
+                                  r.mode_weight,
                                   r.consistency};
     if (gt) {
       cells.emplace_back(r.err_xy_m);
@@ -92,10 +93,11 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                    {"converged_at_end", m.converged},
                    {"median_consistency_after_convergence", m.median_consistency},
                    {"fraction_consistent_after_convergence", m.fraction_consistent},
+                   {"jumps_after_convergence", m.jumps_after_convergence},
                    {"non_finite_weights", m.any_non_finite_weight},
                    {"criterion",
                     p.ground_truth_path.empty()
-                        ? "particle spread < " + std::to_string(s.converged_spread_m) + " m for 10 records"
+                        ? "mode weight >= " + std::to_string(s.converged_mode_weight) + " for 10 records"
                         : "error < " + std::to_string(s.converged_xy_m) + " m and < " +
                               std::to_string(s.converged_theta_rad) + " rad for 10 records"}};
   if (!p.ground_truth_path.empty()) {
@@ -133,6 +135,8 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     emit("converged at record     never");
   emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
        m.median_consistency, s.consistency_sigmas);
+  emit("jumps after convergence %ld (estimate moved > %.1f m between two records)", m.jumps_after_convergence,
+       s.jump_threshold_m);
   if (!result.rows.empty() && result.rows.front().has_ground_truth) {
     emit("error after convergence %.3f m median, %.3f m p95, %.4f rad median heading", m.median_err_xy_m,
          m.p95_err_xy_m, m.median_err_theta_rad);

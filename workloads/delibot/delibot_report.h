@@ -20,7 +20,7 @@ struct DelibotProvenance {
 
 // Columns: iteration, time_s, est_x_m, est_y_m, est_theta_rad, ess, rays,
 // nodes, nodes_per_ray, wall_ms, sensor_updated, resampled, injected,
-// spread_m, consistency; with ground truth also err_xy_m, err_theta_rad.
+// spread_m, mode_weight, consistency; with ground truth also err_xy_m, err_theta_rad.
 void WriteDelibotTimeline(const std::string& path, const DelibotResult& result);
 
 nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& settings,

@@ -48,7 +48,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   const bool gt = !rows.empty() && rows.front().has_ground_truth;
   auto localized = [&](const DelibotRow& r) {
     return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad)
-              : r.spread_m < s.converged_spread_m;
+              : r.mode_weight >= s.converged_mode_weight;
   };
   int run = 0;
   for (const auto& r : rows) {
@@ -61,8 +61,13 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   if (sum.convergence_iteration >= 0) {
     std::vector<double> exy, eth, cons;
     long consistent = 0;
+    const DelibotRow* previous = nullptr;
     for (const auto& r : rows) {
       if (r.iteration < sum.convergence_iteration) continue;
+      if (previous && std::hypot(r.estimate.x - previous->estimate.x, r.estimate.y - previous->estimate.y) >
+                          s.jump_threshold_m)
+        ++sum.jumps_after_convergence;
+      previous = &r;
       if (gt) {
         exy.push_back(r.err_xy_m);
         eth.push_back(r.err_theta_rad);
@@ -138,6 +143,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     }
     row.wall_s = wall;
     row.spread_m = estimate.spread_m;
+    row.mode_weight = estimate.mode_weight;
     row.consistency = MeasureScanConsistency(exact_scene, estimate.pose, scan, trace.geometry,
                                              settings.beam.max_range_m,
                                              settings.consistency_sigmas * settings.beam.sigma_hit_m)

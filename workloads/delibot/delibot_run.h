@@ -36,7 +36,12 @@ struct DelibotSettings {
   // Thresholds that define "localized" for the summary.
   double converged_xy_m = 0.2;
   double converged_theta_rad = 5.0 * 3.14159265358979323846 / 180.0;
-  double converged_spread_m = 0.5;  // ground-truth-free: particle spread
+  // Ground-truth-free: the estimate's mode holds at least this share of the
+  // weight (the rest may be recovery particles or a fading second mode).
+  double converged_mode_weight = 0.8;
+  // An estimate moving farther than this between two records is a jump:
+  // the filter switched hypotheses (a robot does not teleport).
+  double jump_threshold_m = 1.0;
 };
 
 struct DelibotRow {
@@ -51,6 +56,7 @@ struct DelibotRow {
   bool resampled = false;
   int injected = 0;
   double spread_m = 0.0;
+  double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate
   bool has_ground_truth = false;
   double err_xy_m = 0.0;
@@ -66,13 +72,14 @@ struct DelibotSummary {
   long resamples = 0;
   long injected = 0;
   // -1 when never reached. With ground truth: error below both thresholds for
-  // 10 consecutive records; without: spread below its threshold likewise.
+  // 10 consecutive records; without: mode weight above its threshold likewise.
   long convergence_iteration = -1;
   bool converged = false;        // also true at the end of the run
   double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
   double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
   double median_consistency = 0.0;       // after convergence
   double fraction_consistent = 0.0;      // records after convergence with consistency >= 0.5
+  long jumps_after_convergence = 0;      // estimate moves > jump_threshold_m between records
   bool any_non_finite_weight = false;
 };
 

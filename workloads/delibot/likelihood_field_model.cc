@@ -60,6 +60,7 @@ void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, c
   work.hits.clear();
   work.rays = static_cast<std::uint64_t>(used_beams) * particles.size();
   work.nodes = work.rays;
+  work.beams_scored = static_cast<int>(used_beams);
 }
 
 }  // namespace rc

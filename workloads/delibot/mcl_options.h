@@ -13,7 +13,7 @@ struct MclOptions {
   int particle_count = 2000;          // [1, 10^7]
   std::uint64_t seed = 1;
   OdometryMotionNoise motion;
-  BeamSelection beams;                // beam_step in [1, beam count]
+  BeamSelection beams{6};             // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
   double resample_ess_fraction = 0.5; // resample when ESS < fraction * N; (0, 1]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
   // injected when the short-term average likelihood falls below the

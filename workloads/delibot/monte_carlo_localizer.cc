@@ -1,5 +1,6 @@
 #include "workloads/delibot/monte_carlo_localizer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -94,15 +95,24 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   result.sensor_updated = true;
   result.work = &work_;
   if (options_.alpha_slow > 0.0) {
+    // The recovery averages track the per-beam geometric mean of the scan
+    // likelihood, exp(log w_avg / beams). The whole-scan likelihood is a
+    // product over beams, so it swings by e^20 and more between ordinary
+    // scans (more or fewer max readings, people in view); a linear average
+    // of it is ruled by the best scan ever seen, every later scan looks like
+    // a kidnap, and injection runs away. AMCL avoids this only because its
+    // beam "likelihood" is a sum of cubes, not a product.
+    const double beams = std::max(1, work_.beams_scored);
+    const double log_w_beam = log_w_avg / beams;
     if (!have_recovery_averages_) {
-      log_w_slow_ = log_w_fast_ = log_w_avg;
+      log_w_slow_ = log_w_fast_ = log_w_beam;
       have_recovery_averages_ = true;
     } else {
       // w += alpha * (w_avg - w), i.e. w = (1 - alpha) w + alpha w_avg.
       log_w_slow_ = LogAddExp(std::log1p(-options_.alpha_slow) + log_w_slow_,
-                              std::log(options_.alpha_slow) + log_w_avg);
+                              std::log(options_.alpha_slow) + log_w_beam);
       log_w_fast_ = LogAddExp(std::log1p(-options_.alpha_fast) + log_w_fast_,
-                              std::log(options_.alpha_fast) + log_w_avg);
+                              std::log(options_.alpha_fast) + log_w_beam);
     }
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }

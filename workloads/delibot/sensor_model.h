@@ -25,6 +25,7 @@ struct BeamSelection {
 struct SensorUpdateWork {
   std::uint64_t rays = 0;   // queries issued (rays, or endpoint lookups)
   std::uint64_t nodes = 0;  // nodes (cells or distance samples) fetched
+  int beams_scored = 0;     // beams that entered each particle's likelihood
   // The batch and hits of the last update; empty for models without rays.
   RayBatch batch;
   std::vector<RayHit> hits;
