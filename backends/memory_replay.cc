@@ -1,6 +1,7 @@
 #include "backends/memory_replay.h"
 
 #include <algorithm>
+#include <array>
 #include <sstream>
 
 #include "backends/cache_model.h"
@@ -8,93 +9,137 @@
 namespace rc {
 namespace {
 
-class Replayer {
+// The sector requests one SM issues, in issue order. Each request belongs to
+// a group (one node fetch of one thread, or one warp step), whose latency is
+// its slowest request's and is charged to the group's owner (the query, or
+// the warp). Rounds mark the SM's waves, so the shared L2 can see the SMs'
+// requests interleaved wave by wave.
+struct SmStream {
+  std::vector<std::uint32_t> sectors;    // per request
+  std::vector<std::uint32_t> owner;      // per request: its group's query or warp
+  std::vector<std::uint8_t> group_start; // per request: 1 if it starts a group
+  std::vector<std::uint8_t> level;       // per request: MemoryLevel
+  std::vector<std::uint32_t> round_end;  // per wave: one past its last request
+  std::vector<std::uint32_t> l1_misses;  // requests that missed L1, in order
+};
+
+// Builds one SM's stream: each wave step-major (step 0 of every warp, warps
+// and lanes in order, then step 1, ...). The wave's fetches are first sorted
+// by step with a counting sort that reads the record sequentially, so the
+// step-major walk reads a small buffer, not hundreds of strided streams.
+class StreamBuilder {
  public:
-  Replayer(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
-           MemoryProfile& profile)
-      : record_(record),
-        gpu_(gpu),
-        pattern_(pattern),
-        profile_(profile),
-        caches_(gpu, record.footprint_begin(), std::max(record.footprint_end(), record.footprint_begin())) {
-    profile_.l1_model = caches_.l1_model();
-    profile_.l2_model = caches_.l2_model();
+  StreamBuilder(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
+                const CacheHierarchy& caches, const std::vector<std::uint32_t>& steps)
+      : record_(record), gpu_(gpu), pattern_(pattern), caches_(caches), steps_(steps) {
+    const std::uint32_t b = record.node_bytes;
+    one_sector_nodes_ = b > 0 && (b & (b - 1)) == 0 && b <= static_cast<std::uint32_t>(gpu.sector_bytes);
+    for (const MemoryRegion& r : record.regions) one_sector_nodes_ = one_sector_nodes_ && r.base % b == 0;
   }
 
-  void Run() {
-    const std::size_t n = record_.query_count();
-    const std::size_t warps = WarpCount(record_, gpu_);
-    std::vector<std::vector<std::uint32_t>> sm_warps(gpu_.sms);
-    steps_.assign(warps, 0);
-    for (std::size_t w = 0; w < warps; ++w) {
-      sm_warps[SmOfWarp(w, gpu_)].push_back(static_cast<std::uint32_t>(w));
-      for (std::size_t q = w * gpu_.warp_size; q < std::min(n, (w + 1) * gpu_.warp_size); ++q)
-        steps_[w] = std::max(steps_[w], record_.nodes(q));
+  void Build(const std::vector<std::uint32_t>& warps, SmStream& out) {
+    // One request per node fetch, when a node fits a sector (a bound when
+    // coalesced); wider nodes grow the arrays as they go.
+    std::uint64_t fetches = 0;
+    for (std::uint32_t w : warps) {
+      const std::size_t lo = static_cast<std::size_t>(w) * gpu_.warp_size;
+      const std::size_t hi = std::min(record_.query_count(), lo + gpu_.warp_size);
+      fetches += record_.fetch_offsets[hi] - record_.fetch_offsets[lo];
     }
-    profile_.sm_sector_requests.assign(gpu_.sms, 0);
-    if (pattern_.coalesced)
-      profile_.warp_memory_cycles.assign(warps, 0);
-    else
-      profile_.query_memory_cycles.assign(n, 0);
+    out.sectors.reserve(fetches);
+    out.owner.reserve(fetches);
+    out.group_start.reserve(fetches);
     const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern_.warps_per_wave));
-    std::size_t rounds = 0;
-    for (const auto& list : sm_warps) rounds = std::max(rounds, (list.size() + wave - 1) / wave);
-    for (std::size_t r = 0; r < rounds; ++r)
-      for (int sm = 0; sm < gpu_.sms; ++sm) {
-        const auto& list = sm_warps[sm];
-        const std::size_t lo = r * wave;
-        if (lo >= list.size()) continue;
-        ReplayWave(sm, list.data() + lo, std::min(wave, list.size() - lo));
-      }
+    for (std::size_t lo = 0; lo < warps.size(); lo += wave) {
+      AddWave(warps.data() + lo, std::min(wave, warps.size() - lo), out);
+      out.round_end.push_back(static_cast<std::uint32_t>(out.sectors.size()));
+    }
   }
 
  private:
-  // One sector request; returns its latency.
-  int Request(int sm, std::uint64_t sector) {
-    const MemoryLevel level = caches_.Access(sm, sector * gpu_.sector_bytes);
-    MemoryCounters& c = profile_.totals;
-    ++c.sector_requests;
-    ++profile_.sm_sector_requests[sm];
-    switch (level) {
-      case MemoryLevel::kL1: ++c.l1_hits; break;
-      case MemoryLevel::kL2: ++c.l2_accesses; ++c.l2_hits; break;
-      case MemoryLevel::kDram: ++c.l2_accesses; ++c.dram_accesses; break;
-    }
-    return caches_.LatencyCycles(level);
-  }
-
-  void ReplayWave(int sm, const std::uint32_t* warps, std::size_t count) {
+  void AddWave(const std::uint32_t* warps, std::size_t count, SmStream& out) {
     const std::size_t n = record_.query_count();
-    const std::uint64_t sector_bytes = static_cast<std::uint64_t>(gpu_.sector_bytes);
-    const std::uint64_t node_bytes = record_.node_bytes;
+    const std::uint64_t* offsets = record_.fetch_offsets.data();
+    lane_query_.clear();
+    lane_warp_.clear();
     std::uint32_t max_steps = 0;
-    for (std::size_t i = 0; i < count; ++i) max_steps = std::max(max_steps, steps_[warps[i]]);
-    for (std::uint32_t k = 0; k < max_steps; ++k) {
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::uint32_t w = warps[i];
-        if (k >= steps_[w]) continue;
-        const std::size_t lo = static_cast<std::size_t>(w) * gpu_.warp_size;
-        const std::size_t hi = std::min(n, lo + gpu_.warp_size);
-        sectors_.clear();
-        for (std::size_t q = lo; q < hi; ++q) {
-          if (k >= record_.nodes(q)) continue;
-          const std::uint64_t address = record_.fetch_addresses[record_.fetch_offsets[q] + k];
-          const std::uint64_t first = address / sector_bytes;
-          const std::uint64_t last = (address + node_bytes - 1) / sector_bytes;
-          if (pattern_.coalesced) {
-            for (std::uint64_t s = first; s <= last; ++s)
-              if (std::find(sectors_.begin(), sectors_.end(), s) == sectors_.end())
-                sectors_.push_back(s);
-          } else {
-            int slowest = 0;
-            for (std::uint64_t s = first; s <= last; ++s) slowest = std::max(slowest, Request(sm, s));
-            profile_.query_memory_cycles[q] += static_cast<std::uint64_t>(slowest);
-          }
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t lo = static_cast<std::size_t>(warps[i]) * gpu_.warp_size;
+      for (std::size_t q = lo; q < std::min(n, lo + gpu_.warp_size); ++q) {
+        lane_query_.push_back(static_cast<std::uint32_t>(q));
+        lane_warp_.push_back(warps[i]);
+      }
+      max_steps = std::max(max_steps, steps_[warps[i]]);
+    }
+    // Fetches per step = lanes with more nodes than the step's index.
+    step_start_.assign(max_steps + 2, 0);
+    for (std::uint32_t q : lane_query_) ++step_start_[offsets[q + 1] - offsets[q]];
+    std::uint64_t active = 0;
+    for (std::uint32_t k = max_steps + 1; k-- > 0;) {
+      const std::uint64_t ending_here = step_start_[k];
+      step_start_[k] = active;  // lanes still active at step k
+      active += ending_here;
+    }
+    std::uint64_t total = 0;
+    for (std::uint32_t k = 0; k <= max_steps; ++k) {
+      const std::uint64_t c = step_start_[k];
+      step_start_[k] = total;
+      total += c;
+    }
+    cursor_.assign(step_start_.begin(), step_start_.end());
+    const std::uint64_t node_bytes = record_.node_bytes;
+    const std::size_t base = out.sectors.size();
+    if (!pattern_.coalesced && one_sector_nodes_) {
+      // Per thread, one request per fetch: the step-sorted order is the
+      // stream itself, so scatter straight into it.
+      out.sectors.resize(base + total);
+      out.owner.resize(base + total);
+      out.group_start.resize(base + total, 1);
+      for (std::uint32_t j = 0; j < lane_query_.size(); ++j) {
+        const std::uint32_t q = lane_query_[j];
+        const std::uint64_t* a = record_.fetch_addresses.data() + offsets[q];
+        const std::uint32_t nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+        for (std::uint32_t k = 0; k < nodes; ++k) {
+          const std::uint64_t at = base + cursor_[k]++;
+          out.sectors[at] = caches_.SectorNumber(a[k]);
+          out.owner[at] = q;
         }
-        if (pattern_.coalesced) {
-          int slowest = 0;
-          for (std::uint64_t s : sectors_) slowest = std::max(slowest, Request(sm, s));
-          profile_.warp_memory_cycles[w] += static_cast<std::uint64_t>(slowest);
+      }
+      return;
+    }
+    by_step_address_.resize(total);
+    by_step_lane_.resize(total);
+    for (std::uint32_t j = 0; j < lane_query_.size(); ++j) {
+      const std::uint32_t q = lane_query_[j];
+      const std::uint64_t* a = record_.fetch_addresses.data() + offsets[q];
+      const std::uint32_t nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+      for (std::uint32_t k = 0; k < nodes; ++k) {
+        const std::uint64_t at = cursor_[k]++;
+        by_step_address_[at] = a[k];
+        by_step_lane_[at] = j;
+      }
+    }
+    for (std::uint32_t k = 0; k < max_steps; ++k) {
+      const std::uint64_t step_end = step_start_[k + 1];
+      for (std::uint64_t e = step_start_[k]; e < step_end;) {
+        const std::uint32_t warp = lane_warp_[by_step_lane_[e]];
+        std::size_t group_begin = out.sectors.size();
+        for (; e < step_end && lane_warp_[by_step_lane_[e]] == warp; ++e) {
+          const std::uint64_t address = by_step_address_[e];
+          const std::uint32_t first = caches_.SectorNumber(address);
+          const std::uint32_t last = caches_.SectorNumber(address + node_bytes - 1);
+          // Coalesced: one group per warp step, charged to the warp; per
+          // thread: one group per node fetch, charged to the query.
+          const std::uint32_t owner = pattern_.coalesced ? warp : lane_query_[by_step_lane_[e]];
+          if (!pattern_.coalesced) group_begin = out.sectors.size();
+          for (std::uint32_t s = first; s <= last; ++s) {
+            if (pattern_.coalesced &&
+                std::find(out.sectors.begin() + group_begin, out.sectors.end(), s) != out.sectors.end())
+              continue;
+            out.group_start.push_back(out.sectors.size() == group_begin);
+            out.sectors.push_back(s);
+            out.owner.push_back(owner);
+          }
         }
       }
     }
@@ -103,10 +148,13 @@ class Replayer {
   const KernelRecord& record_;
   const GpuParams& gpu_;
   const AccessPattern& pattern_;
-  MemoryProfile& profile_;
-  CacheHierarchy caches_;
-  std::vector<std::uint32_t> steps_;  // per warp: its slowest lane's node count
-  std::vector<std::uint64_t> sectors_;
+  const CacheHierarchy& caches_;
+  const std::vector<std::uint32_t>& steps_;
+  // Every node lies within one sector: a power-of-two size no larger than a
+  // sector, at addresses aligned to it (the layouts guarantee it).
+  bool one_sector_nodes_ = false;
+  std::vector<std::uint32_t> lane_query_, lane_warp_, by_step_lane_;
+  std::vector<std::uint64_t> step_start_, cursor_, by_step_address_;
 };
 
 std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
@@ -130,10 +178,94 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
   return (record.query_count() + w - 1) / w;
 }
 
+// Three phases: (1) per SM, in parallel: build its request stream and run
+// it through its own L1; (2) serially: the L1 misses of all SMs through the
+// shared L2, wave round by wave round, SMs in order; (3) per SM, in
+// parallel: charge each group's slowest latency to its owner. Each SM's
+// work is independent and the L2 order is fixed, so the result does not
+// depend on the thread count.
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
                            const AccessPattern& pattern) {
   MemoryProfile profile;
-  Replayer(record, gpu, pattern, profile).Run();
+  CacheHierarchy caches(gpu, record.footprint_begin(),
+                        std::max(record.footprint_end(), record.footprint_begin()));
+  profile.l1_model = caches.l1_model();
+  profile.l2_model = caches.l2_model();
+
+  const std::size_t n = record.query_count();
+  const std::size_t warps = WarpCount(record, gpu);
+  std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
+  std::vector<std::uint32_t> steps(warps, 0);  // per warp: its slowest lane's node count
+  for (std::size_t w = 0; w < warps; ++w) {
+    sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
+    for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
+      steps[w] = std::max(steps[w], record.nodes(q));
+  }
+  if (pattern.coalesced)
+    profile.warp_memory_cycles.assign(warps, 0);
+  else
+    profile.query_memory_cycles.assign(n, 0);
+  std::vector<std::uint64_t>& owner_cycles =
+      pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
+
+  std::vector<SmStream> streams(gpu.sms);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    SmStream& s = streams[sm];
+    StreamBuilder(record, gpu, pattern, caches, steps).Build(sm_warps[sm], s);
+    s.level.resize(s.sectors.size());
+    caches.AccessL1(sm, s.sectors.data(), s.sectors.size(), s.level.data());
+    for (std::uint32_t i = 0; i < s.level.size(); ++i) {
+      s.level[i] = s.level[i] ? 0 : 1;  // hit: L1; miss: L2 or DRAM, decided below
+      if (s.level[i]) s.l1_misses.push_back(i);
+    }
+  }
+
+  std::size_t rounds = 0;
+  for (const SmStream& s : streams) rounds = std::max(rounds, s.round_end.size());
+  std::vector<std::size_t> next_miss(gpu.sms, 0);
+  for (std::size_t r = 0; r < rounds; ++r)
+    for (int sm = 0; sm < gpu.sms; ++sm) {
+      SmStream& s = streams[sm];
+      if (r >= s.round_end.size()) continue;
+      std::size_t& m = next_miss[sm];
+      for (; m < s.l1_misses.size() && s.l1_misses[m] < s.round_end[r]; ++m) {
+        const std::uint32_t i = s.l1_misses[m];
+        s.level[i] = caches.AccessL2(s.sectors[i]) ? 1 : 2;
+      }
+    }
+
+  const int latency[3] = {caches.LatencyCycles(MemoryLevel::kL1),
+                          caches.LatencyCycles(MemoryLevel::kL2),
+                          caches.LatencyCycles(MemoryLevel::kDram)};
+  std::vector<std::array<std::uint64_t, 3>> sm_levels(gpu.sms, {0, 0, 0});
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    const SmStream& s = streams[sm];
+    std::array<std::uint64_t, 3> counts = {0, 0, 0};
+    int slowest = 0;
+    for (std::size_t i = 0; i < s.sectors.size(); ++i) {
+      ++counts[s.level[i]];
+      const int l = latency[s.level[i]];
+      slowest = s.group_start[i] ? l : std::max(slowest, l);
+      // A group ends before the next group's first request: charge it then.
+      if (i + 1 == s.sectors.size() || s.group_start[i + 1])
+        owner_cycles[s.owner[i]] += static_cast<std::uint64_t>(slowest);  // owners are per SM
+    }
+    sm_levels[sm] = counts;
+  }
+
+  profile.sm_sector_requests.assign(gpu.sms, 0);
+  MemoryCounters& c = profile.totals;
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    const auto& l = sm_levels[sm];
+    profile.sm_sector_requests[sm] = l[0] + l[1] + l[2];
+    c.sector_requests += l[0] + l[1] + l[2];
+    c.l1_hits += l[0];
+    c.l2_accesses += l[1] + l[2];
+    c.l2_hits += l[1];
+    c.dram_accesses += l[2];
+  }
   return profile;
 }
 
@@ -146,6 +278,47 @@ std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu
     it = profiles_.emplace(key, std::make_shared<const MemoryProfile>(ReplayMemory(record_, gpu, pattern)))
              .first;
   return it->second;
+}
+
+ExitProfile ProfileExits(const KernelRecord& record) {
+  const std::size_t n = record.query_count();
+  const std::uint64_t* offsets = record.fetch_offsets.data();
+  const std::uint8_t* exits = record.node_exits.data();
+  // Distinct exits of query q, in first-seen order (nodes is small per query).
+  auto tally = [&](std::size_t q, std::uint8_t* variant, std::uint32_t* passes) {
+    std::uint32_t distinct = 0;
+    for (std::uint64_t f = offsets[q]; f < offsets[q + 1]; ++f) {
+      const std::uint8_t v = exits[f] == kNoExit ? 0 : static_cast<std::uint8_t>(1 + exits[f]);
+      std::uint32_t i = 0;
+      while (i < distinct && variant[i] != v) ++i;
+      if (i == distinct) {
+        variant[i] = v;
+        passes[i] = 0;
+        ++distinct;
+      }
+      ++passes[i];
+    }
+    return distinct;
+  };
+  ExitProfile profile;
+  profile.offsets.assign(n + 1, 0);
+  std::uint8_t scratch_variant[256];
+  std::uint32_t scratch_passes[256];
+  for (std::size_t q = 0; q < n; ++q)
+    profile.offsets[q + 1] = profile.offsets[q] + tally(q, scratch_variant, scratch_passes);
+  profile.variant.resize(profile.offsets[n]);
+  profile.passes.resize(profile.offsets[n]);
+#pragma omp parallel for schedule(static)
+  for (long q = 0; q < static_cast<long>(n); ++q)
+    tally(static_cast<std::size_t>(q), profile.variant.data() + profile.offsets[q],
+          profile.passes.data() + profile.offsets[q]);
+  return profile;
+}
+
+std::shared_ptr<const ExitProfile> PricingContext::Exits() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!exits_) exits_ = std::make_shared<const ExitProfile>(ProfileExits(record_));
+  return exits_;
 }
 
 }  // namespace rc
