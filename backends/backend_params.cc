@@ -145,7 +145,7 @@ int SimtParams::ResidentWarps(const GpuParams& gpu) const {
 
 bool SimtParams::IsValid(std::string* error) const {
   if (schedulers_per_sm < 1 || issue_per_scheduler_per_cycle < 1 || l1_sectors_per_cycle < 1 ||
-      registers_per_thread < 1)
+      registers_per_thread < 1 || alu_initiation_cycles < 1)
     return Fail(error, "simt: schedulers, issue rate, L1 sectors per cycle, registers must be >= 1");
   if (dependent_instruction_latency_cycles < 0 || loop_branch_instructions < 0 ||
       instructions_per_load < 1)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <sstream>
 
 #include "backends/cache_model.h"
@@ -107,42 +108,53 @@ class StreamBuilder {
       }
       return;
     }
+    // General case (coalesced, or nodes wider than a sector): sort by step,
+    // then walk the steps, writing at most `span` requests per fetch.
     by_step_address_.resize(total);
-    by_step_lane_.resize(total);
+    by_step_owner_.resize(total);
     for (std::uint32_t j = 0; j < lane_query_.size(); ++j) {
       const std::uint32_t q = lane_query_[j];
+      const std::uint32_t owner = pattern_.coalesced ? lane_warp_[j] : q;
       const std::uint64_t* a = record_.fetch_addresses.data() + offsets[q];
       const std::uint32_t nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
       for (std::uint32_t k = 0; k < nodes; ++k) {
         const std::uint64_t at = cursor_[k]++;
         by_step_address_[at] = a[k];
-        by_step_lane_[at] = j;
+        by_step_owner_[at] = owner;
       }
     }
+    const std::uint64_t span = (node_bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1;
+    out.sectors.resize(base + total * span);
+    out.owner.resize(base + total * span);
+    out.group_start.resize(base + total * span);
+    std::uint32_t* sector_out = out.sectors.data();
+    std::uint32_t* owner_out = out.owner.data();
+    std::uint8_t* start_out = out.group_start.data();
+    std::size_t at = base, group_begin = base;
     for (std::uint32_t k = 0; k < max_steps; ++k) {
-      const std::uint64_t step_end = step_start_[k + 1];
-      for (std::uint64_t e = step_start_[k]; e < step_end;) {
-        const std::uint32_t warp = lane_warp_[by_step_lane_[e]];
-        std::size_t group_begin = out.sectors.size();
-        for (; e < step_end && lane_warp_[by_step_lane_[e]] == warp; ++e) {
-          const std::uint64_t address = by_step_address_[e];
-          const std::uint32_t first = caches_.SectorNumber(address);
-          const std::uint32_t last = caches_.SectorNumber(address + node_bytes - 1);
-          // Coalesced: one group per warp step, charged to the warp; per
-          // thread: one group per node fetch, charged to the query.
-          const std::uint32_t owner = pattern_.coalesced ? warp : lane_query_[by_step_lane_[e]];
-          if (!pattern_.coalesced) group_begin = out.sectors.size();
-          for (std::uint32_t s = first; s <= last; ++s) {
-            if (pattern_.coalesced &&
-                std::find(out.sectors.begin() + group_begin, out.sectors.end(), s) != out.sectors.end())
-              continue;
-            out.group_start.push_back(out.sectors.size() == group_begin);
-            out.sectors.push_back(s);
-            out.owner.push_back(owner);
-          }
+      for (std::uint64_t e = step_start_[k]; e < step_start_[k + 1]; ++e) {
+        const std::uint32_t owner = by_step_owner_[e];
+        // Coalesced: one group per warp step (the warp's lanes are adjacent
+        // within a step); per thread: one group per node fetch.
+        if (!pattern_.coalesced || e == step_start_[k] || owner != by_step_owner_[e - 1])
+          group_begin = at;
+        const std::uint64_t address = by_step_address_[e];
+        const std::uint32_t last = caches_.SectorNumber(address + node_bytes - 1);
+        for (std::uint32_t sector = caches_.SectorNumber(address); sector <= last; ++sector) {
+          if (pattern_.coalesced && at > group_begin &&
+              (sector_out[at - 1] == sector ||
+               std::find(sector_out + group_begin, sector_out + at, sector) != sector_out + at))
+            continue;
+          sector_out[at] = sector;
+          owner_out[at] = owner;
+          start_out[at] = at == group_begin;
+          ++at;
         }
       }
     }
+    out.sectors.resize(at);
+    out.owner.resize(at);
+    out.group_start.resize(at);
   }
 
   const KernelRecord& record_;
@@ -153,7 +165,7 @@ class StreamBuilder {
   // Every node lies within one sector: a power-of-two size no larger than a
   // sector, at addresses aligned to it (the layouts guarantee it).
   bool one_sector_nodes_ = false;
-  std::vector<std::uint32_t> lane_query_, lane_warp_, by_step_lane_;
+  std::vector<std::uint32_t> lane_query_, lane_warp_, by_step_owner_;
   std::vector<std::uint64_t> step_start_, cursor_, by_step_address_;
 };
 
@@ -284,11 +296,26 @@ ExitProfile ProfileExits(const KernelRecord& record) {
   const std::size_t n = record.query_count();
   const std::uint64_t* offsets = record.fetch_offsets.data();
   const std::uint8_t* exits = record.node_exits.data();
-  // Distinct exits of query q, in first-seen order (nodes is small per query).
+  // Distinct exits of query q: "no exit" first (counted in one vectorized
+  // pass: most passes have none), then the rare exits in first-seen order.
   auto tally = [&](std::size_t q, std::uint8_t* variant, std::uint32_t* passes) {
+    const std::uint8_t* begin = exits + offsets[q];
+    const std::uint8_t* end = exits + offsets[q + 1];
+    const auto none = static_cast<std::uint32_t>(std::count(begin, end, kNoExit));
     std::uint32_t distinct = 0;
-    for (std::uint64_t f = offsets[q]; f < offsets[q + 1]; ++f) {
-      const std::uint8_t v = exits[f] == kNoExit ? 0 : static_cast<std::uint8_t>(1 + exits[f]);
+    if (none > 0) {
+      variant[0] = 0;
+      passes[0] = none;
+      distinct = 1;
+    }
+    if (none == static_cast<std::uint32_t>(end - begin)) return distinct;
+    for (const std::uint8_t* p = begin; p < end; ++p) {
+      // Skip whole words of "no exit" (all bits set) at a time.
+      std::uint64_t word;
+      while (end - p >= 8 && (std::memcpy(&word, p, 8), word == ~std::uint64_t{0})) p += 8;
+      if (p == end) break;
+      if (*p == kNoExit) continue;
+      const auto v = static_cast<std::uint8_t>(1 + *p);
       std::uint32_t i = 0;
       while (i < distinct && variant[i] != v) ++i;
       if (i == distinct) {
@@ -302,10 +329,13 @@ ExitProfile ProfileExits(const KernelRecord& record) {
   };
   ExitProfile profile;
   profile.offsets.assign(n + 1, 0);
-  std::uint8_t scratch_variant[256];
-  std::uint32_t scratch_passes[256];
-  for (std::size_t q = 0; q < n; ++q)
-    profile.offsets[q + 1] = profile.offsets[q] + tally(q, scratch_variant, scratch_passes);
+#pragma omp parallel for schedule(static)
+  for (long q = 0; q < static_cast<long>(n); ++q) {
+    std::uint8_t variant[256];
+    std::uint32_t passes[256];
+    profile.offsets[q + 1] = tally(static_cast<std::size_t>(q), variant, passes);
+  }
+  for (std::size_t q = 0; q < n; ++q) profile.offsets[q + 1] += profile.offsets[q];
   profile.variant.resize(profile.offsets[n]);
   profile.passes.resize(profile.offsets[n]);
 #pragma omp parallel for schedule(static)
