@@ -62,7 +62,16 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
                           const RecordOptions& options) {
   const long n = static_cast<long>(batch.queries.size());
   hits.resize(batch.queries.size());
-  record = KernelRecord{};
+  // Size the per-thread buffers from the previous batch recorded into this
+  // record (MCL batches of one run are alike), and keep the record's own
+  // capacity: reallocating tens of megabytes per batch costs more than the
+  // recording itself.
+  const double nodes_per_query_hint =
+      record.query_count() > 0 ? static_cast<double>(record.total_nodes()) / record.query_count() : 16.0;
+  record.fetch_offsets.clear();
+  record.fetch_addresses.clear();
+  record.node_exits.clear();
+  record.regions.clear();
   record.step_kind = StepProgramFor(scene.method());
   record.program = options.program ? options.program : ShippedStepProgram(record.step_kind);
   if (record.program->ReturnIfCount(ProgramSection::kLoop) <= kRayEndReturn)
@@ -94,6 +103,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
     chunk_begin[t] = lo;
     RecordingVisitor visitor = prototype;
     visitor.addresses = &addresses[t];
+    addresses[t].reserve(static_cast<std::size_t>(1.25 * nodes_per_query_hint * (hi - lo)) + 64);
+    exits[t].reserve(addresses[t].capacity());
     for (long i = lo; i < hi; ++i) {
       const RayQuery& q = batch.queries[i];
       const std::size_t before = addresses[t].size();
