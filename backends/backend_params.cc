@@ -98,7 +98,6 @@ double GpuParams::DramBytesPerCoreCycle() const {
 bool GpuParams::IsValid(std::string* error) const {
   if (sms < 1 || max_warps_per_sm < 1 || warp_size < 1 || warps_per_block < 1)
     return Fail(error, "gpu: sms, max_warps_per_sm, warp_size and warps_per_block must be >= 1");
-  if (warp_size > 64) return Fail(error, "gpu.warp_size: at most 64 lanes are modelled");
   if (!(core_clock_hz > 0 && dram_clock_hz > 0)) return Fail(error, "gpu: clocks must be > 0 Hz");
   auto power_of_two = [](int v) { return v > 0 && (v & (v - 1)) == 0; };
   if (!power_of_two(sector_bytes) || !power_of_two(line_bytes) || line_bytes < sector_bytes ||
