@@ -41,11 +41,57 @@ class CacheHierarchy::Level {
   }
 
   bool cold() const { return mode_ == Mode::kCold; }
-  void Reserve(std::size_t accesses) {
-    if (mode_ != Mode::kFullyAssociative) return;
-    if (history_.size() + accesses >= (std::uint64_t{1} << 32))
+
+  // A whole stream at once (the replay's L1 phase): level[i] = 0 on a hit,
+  // 1 on a miss, and misses lists the missing indices. Same results as
+  // calling Access in order; the fully associative case keeps its state in
+  // registers for the loop.
+  void AccessStream(const std::uint32_t* sectors, std::size_t n, int per_line_shift,
+                    std::uint8_t* level, std::vector<std::uint32_t>& misses) {
+    const std::uint32_t sector_mask = (1u << per_line_shift) - 1;
+    if (mode_ != Mode::kFullyAssociative) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool hit = Access(sectors[i] >> per_line_shift, static_cast<int>(sectors[i] & sector_mask));
+        level[i] = hit ? 0 : 1;
+        if (!hit) misses.push_back(static_cast<std::uint32_t>(i));
+      }
+      return;
+    }
+    if (history_.size() + n >= (std::uint64_t{1} << 32))
       throw std::length_error("cache model: more than 2^32 accesses to one L1");
-    history_.reserve(history_.size() + accesses);
+    const std::size_t first = history_.size();
+    history_.resize(first + n);
+    std::uint32_t* history = history_.data();
+    std::uint8_t* mask = mask_.data();
+    std::uint32_t* last = last_.data();
+    std::uint32_t tail = tail_;
+    std::uint64_t resident = resident_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t line = sectors[i] >> per_line_shift;
+      const auto bit = static_cast<std::uint8_t>(1u << (sectors[i] & sector_mask));
+      const auto now = static_cast<std::uint32_t>(first + i);
+      history[now] = line;
+      last[line] = now;
+      if (mask[line] != 0) {
+        const bool hit = mask[line] & bit;
+        mask[line] |= bit;
+        level[i] = hit ? 0 : 1;
+        if (!hit) misses.push_back(static_cast<std::uint32_t>(i));
+        continue;
+      }
+      if (resident == capacity_) {  // evict the least recently used line
+        while (mask[history[tail]] == 0 || last[history[tail]] != tail) ++tail;
+        mask[history[tail]] = 0;
+        ++tail;
+        --resident;
+      }
+      mask[line] = bit;
+      ++resident;
+      level[i] = 1;
+      misses.push_back(static_cast<std::uint32_t>(i));
+    }
+    tail_ = tail;
+    resident_ = resident;
   }
 
   // True on a hit; on a miss the sector is filled (its line allocated).
@@ -160,13 +206,9 @@ CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_beg
 
 CacheHierarchy::~CacheHierarchy() = default;
 
-void CacheHierarchy::AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* hit) {
-  Level& l1 = *l1_[sm];
-  l1.Reserve(n);
-  const int per_line_shift = line_shift_ - sector_shift_;
-  const std::uint32_t sector_mask = (1u << per_line_shift) - 1;
-  for (std::size_t i = 0; i < n; ++i)
-    hit[i] = l1.Access(sectors[i] >> per_line_shift, static_cast<int>(sectors[i] & sector_mask));
+void CacheHierarchy::AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* level,
+                              std::vector<std::uint32_t>& misses) {
+  l1_[sm]->AccessStream(sectors, n, line_shift_ - sector_shift_, level, misses);
 }
 
 bool CacheHierarchy::AccessL2(std::uint32_t sector) {

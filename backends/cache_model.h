@@ -54,9 +54,11 @@ class CacheHierarchy {
   std::uint32_t SectorNumber(std::uint64_t address) const {
     return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
   }
-  // For each of n sectors in order: hit[i] = 1 if SM `sm`'s L1 held it
-  // (a miss fills it). Each SM's L1 may be driven from its own thread.
-  void AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* hit);
+  // For each of n sectors in order: level[i] = 0 if SM `sm`'s L1 held it,
+  // else 1 (a miss fills it), and the missing indices are appended to
+  // `misses`. Each SM's L1 may be driven from its own thread.
+  void AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* level,
+                std::vector<std::uint32_t>& misses);
   bool AccessL2(std::uint32_t sector);
   // Core cycles from request to data: L1 hit; L1 miss + L2 hit; + DRAM.
   int LatencyCycles(MemoryLevel level) const { return latency_[static_cast<int>(level)]; }

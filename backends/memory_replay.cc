@@ -136,15 +136,14 @@ class StreamBuilder {
         const std::uint32_t owner = by_step_owner_[e];
         // Coalesced: one group per warp step (the warp's lanes are adjacent
         // within a step); per thread: one group per node fetch.
-        if (!pattern_.coalesced || e == step_start_[k] || owner != by_step_owner_[e - 1])
+        if (!pattern_.coalesced || e == step_start_[k] || owner != by_step_owner_[e - 1]) {
           group_begin = at;
+          ++group_id_;
+        }
         const std::uint64_t address = by_step_address_[e];
         const std::uint32_t last = caches_.SectorNumber(address + node_bytes - 1);
         for (std::uint32_t sector = caches_.SectorNumber(address); sector <= last; ++sector) {
-          if (pattern_.coalesced && at > group_begin &&
-              (sector_out[at - 1] == sector ||
-               std::find(sector_out + group_begin, sector_out + at, sector) != sector_out + at))
-            continue;
+          if (pattern_.coalesced && IsRepeat(sector, sector_out + group_begin, sector_out + at)) continue;
           sector_out[at] = sector;
           owner_out[at] = owner;
           start_out[at] = at == group_begin;
@@ -156,6 +155,30 @@ class StreamBuilder {
     out.owner.resize(at);
     out.group_start.resize(at);
   }
+
+  // Whether `sector` is already among the current group's requests
+  // [begin, end), and remember it. A small table indexed by the sector's
+  // hash answers most lookups; a slot taken by another sector of the
+  // same group falls back to a scan.
+  bool IsRepeat(std::uint32_t sector, const std::uint32_t* begin, const std::uint32_t* end) {
+    // Fibonacci hashing: grid rows are a fixed number of sectors apart, so
+    // low bits alone would collide.
+    Seen& slot = seen_[(sector * 2654435769u) >> (32 - kSeenBits)];
+    if (slot.group == group_id_) {
+      if (slot.sector == sector) return true;
+      if (std::find(begin, end, sector) != end) return true;
+    }
+    slot = {sector, group_id_};
+    return false;
+  }
+
+  struct Seen {
+    std::uint32_t sector = 0;
+    std::uint64_t group = 0;  // 0: never; groups count from 1
+  };
+  static constexpr int kSeenBits = 6;  // 64 slots for at most 32 lanes per group
+  std::array<Seen, 1 << kSeenBits> seen_{};
+  std::uint64_t group_id_ = 0;
 
   const KernelRecord& record_;
   const GpuParams& gpu_;
@@ -226,11 +249,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
     SmStream& s = streams[sm];
     StreamBuilder(record, gpu, pattern, caches, steps).Build(sm_warps[sm], s);
     s.level.resize(s.sectors.size());
-    caches.AccessL1(sm, s.sectors.data(), s.sectors.size(), s.level.data());
-    for (std::uint32_t i = 0; i < s.level.size(); ++i) {
-      s.level[i] = s.level[i] ? 0 : 1;  // hit: L1; miss: L2 or DRAM, decided below
-      if (s.level[i]) s.l1_misses.push_back(i);
-    }
+    // Level 0 = L1 hit; 1 = missed, L2 or DRAM decided below.
+    caches.AccessL1(sm, s.sectors.data(), s.sectors.size(), s.level.data(), s.l1_misses);
   }
 
   std::size_t rounds = 0;

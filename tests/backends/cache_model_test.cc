@@ -104,9 +104,13 @@ TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
     expected.push_back(hit);
   }
   CacheHierarchy batch(gpu, kBase, kBase + lines * 128);
+  std::vector<std::uint8_t> level(stream.size());
+  std::vector<std::uint32_t> misses;
+  batch.AccessL1(0, stream.data(), stream.size(), level.data(), misses);
   std::vector<std::uint8_t> got(stream.size());
-  batch.AccessL1(0, stream.data(), stream.size(), got.data());
+  for (std::size_t i = 0; i < level.size(); ++i) got[i] = level[i] == 0;
   EXPECT_EQ(got, expected);
+  EXPECT_EQ(misses.size(), static_cast<std::size_t>(std::count(expected.begin(), expected.end(), 0)));
   CacheHierarchy single(gpu, kBase, kBase + lines * 128);
   int mismatches = 0;
   for (std::size_t i = 0; i < stream.size(); ++i)
