@@ -4,6 +4,8 @@
 //   the SACT test exiting at axis k on RoboCore and TTA+-cr;
 //   predication vs conditional return vs none over a batch;
 //   the SACT latency and warp-buffer sweeps.
+#include <omp.h>
+
 #include <gtest/gtest.h>
 
 #include "backends/backend.h"
@@ -176,6 +178,29 @@ TEST(Pricing, ASharedContextGivesTheSameCosts) {
     EXPECT_EQ(shared[i].cycles, alone.cycles) << alone.backend;
     EXPECT_EQ(shared[i].energy_joules, alone.energy_joules) << alone.backend;
   }
+}
+
+TEST(Pricing, DoesNotDependOnTheThreadCount) {
+  const OccupancyGrid grid = test::RoomGrid(150, 120, 0.1, 0.03, 51);  // 17.6 KiB: L1 cold path
+  const RayCastScene scene(grid, RayCastMethod::kDda);
+  const RayBatch batch = test::FanBatch(grid, 40, 64, 8.0, 52);
+  std::vector<RayHit> hits;
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record);
+  BackendParameters small_l1;  // forces the LRU path
+  small_l1.gpu.l1_bytes = 4096;
+  const int threads = omp_get_max_threads();
+  for (const BackendParameters& params : {BackendParameters{}, small_l1})
+    for (const char* name : {"simt", "ttaplus-cr"}) {
+      omp_set_num_threads(1);
+      const BatchCost one = PriceOn(name, record, params);
+      omp_set_num_threads(3);
+      const BatchCost three = PriceOn(name, record, params);
+      EXPECT_EQ(one.cycles, three.cycles) << name;
+      EXPECT_EQ(one.memory.l1_hits, three.memory.l1_hits) << name;
+      EXPECT_EQ(one.memory.dram_accesses, three.memory.dram_accesses) << name;
+    }
+  omp_set_num_threads(threads);
 }
 
 }  // namespace
