@@ -180,6 +180,24 @@ TEST(Pricing, ASharedContextGivesTheSameCosts) {
   }
 }
 
+// Nodes wider than a sector (the octree's will be 432 bytes): each fetch
+// requests every sector it spans, and waits for the slowest.
+TEST(Pricing, WideNodesRequestEverySectorTheySpan) {
+  MemoryRegion region = test::ByteRegion(kBase, 64);
+  region.element_bytes = 64;  // two 32-byte sectors per node
+  KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n  ADD.1 x, x, y\n"), StepProgramKind::kSactTest,
+                        region);
+  for (int lane = 0; lane < 32; ++lane) b.AddQuery({kBase + 64 * static_cast<std::uint64_t>(lane % 4)});
+  const KernelRecord r = b.Build();
+  const BatchCost rt = PriceOn("ttaplus-cr", r), simt = PriceOn("simt", r);
+  EXPECT_EQ(rt.memory.sector_requests, 64u);   // 32 fetches x 2 sectors
+  EXPECT_EQ(rt.memory.dram_accesses, 8u);      // 4 distinct nodes x 2 sectors
+  EXPECT_EQ(simt.memory.sector_requests, 8u);  // one warp step, 8 unique sectors
+  // The thread that first touches a node waits for DRAM once (its two
+  // sectors in parallel): intake 4 + ADD 3 + 227.
+  EXPECT_EQ(rt.cycles - rt.launch_cycles, 4u + 3u + kDramLatency);
+}
+
 TEST(Pricing, DoesNotDependOnTheThreadCount) {
   const OccupancyGrid grid = test::RoomGrid(150, 120, 0.1, 0.03, 51);  // 17.6 KiB: L1 cold path
   const RayCastScene scene(grid, RayCastMethod::kDda);
