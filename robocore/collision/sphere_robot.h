@@ -1,0 +1,58 @@
+#pragma once
+// The sphere robot model (as CuRobo's collision spheres, one per link
+// here): each OBB replaced by its bounding sphere, and the query becomes
+// "does the sphere overlap the union of the boxes". Cheaper per node than a
+// SACT, and never misses a collision the OBB has (the sphere contains the
+// OBB), but it reports collisions the OBB does not have. The RoboGPU paper
+// reports 10% false collisions from spheres; CompareSphereRobot measures the
+// rate for a given robot and scene.
+#include <cstdint>
+#include <vector>
+
+#include "robocore/collision/box_tree_traversal.h"
+#include "robocore/collision/tree_collision.h"
+
+namespace rc {
+
+template <typename Scalar>
+struct Sphere {
+  Eigen::Matrix<Scalar, 3, 1> centre = Eigen::Matrix<Scalar, 3, 1>::Zero();  // m
+  Scalar radius = 0;                                                        // m
+};
+
+// Centre = the OBB's; radius = distance to its farthest corner (|half
+// extents| for orthonormal axes), rounded up so the sphere contains the OBB.
+template <typename Scalar>
+Sphere<Scalar> BoundingSphere(const Obb<Scalar>& obb);
+
+// Closest point of the box to the centre within the radius (touching counts).
+template <typename Scalar>
+bool SphereOverlapsAabb(const Sphere<Scalar>& sphere, const Aabb<Scalar>& box);
+
+// A visit's exit is kSactOverlap or kSactSphereSeparated; decided_by names
+// the sphere outcome (accept / reject), and no SACT stage ran.
+template <typename Scalar>
+TraversalOutcome CollideSphere(const FlatBoxTree<Scalar>& tree, const Sphere<Scalar>& sphere, TraversalOrder order,
+                               std::vector<NodeVisit>* visits = nullptr);
+
+struct SphereRobotReport {
+  std::size_t queries = 0;
+  std::size_t obb_collisions = 0;
+  std::size_t sphere_collisions = 0;
+  std::size_t false_collisions = 0;   // sphere collides, OBB does not
+  std::size_t missed_collisions = 0;  // OBB collides, sphere does not (0 unless within the SACT's epsilon band)
+  std::uint64_t obb_nodes = 0;        // nodes visited by the OBB queries
+  std::uint64_t sphere_nodes = 0;     // nodes visited by the sphere queries
+  // False collisions over all queries, and over the OBB-collision-free ones.
+  double false_collision_rate() const { return queries ? double(false_collisions) / queries : 0.0; }
+  double false_rate_among_free() const {
+    const std::size_t free = queries - obb_collisions;
+    return free ? double(false_collisions) / free : 0.0;
+  }
+};
+
+template <typename Scalar>
+SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                     const CollisionOptions<Scalar>& options);
+
+}  // namespace rc

@@ -1,0 +1,69 @@
+#include "robocore/collision/tree_collision.h"
+
+#include <stdexcept>
+
+namespace rc {
+
+const char* ToString(TraversalOrder order) {
+  return order == TraversalOrder::kDepthFirst ? "dfs" : "bfs";
+}
+
+TraversalOrder ParseTraversalOrder(const std::string& name) {
+  if (name == "dfs") return TraversalOrder::kDepthFirst;
+  if (name == "bfs") return TraversalOrder::kBreadthFirst;
+  throw std::invalid_argument("traversal order '" + name + "': expected dfs or bfs");
+}
+
+template <typename Scalar>
+TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits) {
+  auto sact = [&](const FlatNode<Scalar>& node) {
+    const SactResult r = TestObbAabb(obb, node.box(), options.sact);
+    NodeVisit v;
+    v.exit = r.separating_axis;
+    v.axes_tested = r.axes_tested;
+    v.decided_by = r.decided_by;
+    return v;
+  };
+  return TraverseBoxTree(tree, options.order, sact, visits);
+}
+
+template <typename Scalar>
+bool CollidesBruteForce(const std::vector<Aabb<Scalar>>& boxes, const Obb<Scalar>& obb,
+                        const SactOptions<Scalar>& options) {
+  for (const Aabb<Scalar>& box : boxes)
+    if (TestObbAabb(obb, box, options).overlaps()) return true;
+  return false;
+}
+
+template <typename Scalar>
+CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                            const CollisionOptions<Scalar>& options, std::uint64_t base_address) {
+  std::string error;
+  if (!options.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
+  CollisionBatch batch;
+  batch.base_address = base_address;
+  batch.node_bytes = tree.node_bytes();
+  batch.node_count = tree.nodes().size();
+  batch.sphere_pretests = options.sact.sphere_pretests;
+  batch.outcomes.reserve(obbs.size());
+  batch.visit_offsets.reserve(obbs.size() + 1);
+  for (const Obb<Scalar>& obb : obbs) {
+    batch.outcomes.push_back(CollideObb(tree, obb, options, &batch.visits));
+    batch.visit_offsets.push_back(batch.visits.size());
+  }
+  return batch;
+}
+
+#define RC_INSTANTIATE(Scalar)                                                                           \
+  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                   \
+                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*);        \
+  template bool CollidesBruteForce(const std::vector<Aabb<Scalar>>&, const Obb<Scalar>&,                 \
+                                   const SactOptions<Scalar>&);                                          \
+  template CollisionBatch CollideBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,      \
+                                       const CollisionOptions<Scalar>&, std::uint64_t);
+RC_INSTANTIATE(float)
+RC_INSTANTIATE(double)
+#undef RC_INSTANTIATE
+
+}  // namespace rc

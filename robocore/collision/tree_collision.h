@@ -1,0 +1,61 @@
+#pragma once
+// OBB queries against a flattened box tree: "does this OBB overlap the
+// union of the scene's boxes" (touching counts), one SACT per visited
+// node, with every fetch and test recorded for the backends.
+//
+// Pricing a batch on the backends (DESIGN.md, "run once, price many
+// times"): a CollisionBatch maps one-to-one onto a KernelRecord for the
+// shipped program programs/sact_obb_aabb.asm (StepProgramKind::kSactTest):
+//   region   {base_address, node_bytes, tree node count}
+//   query i  its visits in order: address = Address(visit), node exit =
+//            visit.exit (0..14: RETURN_IF #k, the axis that separated) or
+//            kNoExit (0xFF) for an overlap (the program's PUSH path).
+// Visits decided by a sphere pre-test (decided_by != kAxes) ran no SACT
+// stage; the shipped program has no sphere section, so they cannot be
+// priced by it (the CLI keeps pre-tests off unless asked).
+#include <cstdint>
+#include <vector>
+
+#include "robocore/collision/box_tree_traversal.h"
+#include "robocore/collision/obb.h"
+
+namespace rc {
+
+// Where the node array sits in the modelled device memory (as robocore's
+// DeviceLayout: away from 0 so a bad address stands out).
+inline constexpr std::uint64_t kDefaultTreeBase = std::uint64_t{1} << 32;  // bytes
+
+template <typename Scalar>
+struct CollisionOptions {
+  SactOptions<Scalar> sact;
+  TraversalOrder order = TraversalOrder::kDepthFirst;
+};
+
+template <typename Scalar>
+TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits = nullptr);
+
+// Tests every box in order until one overlaps: what the tree must equal.
+template <typename Scalar>
+bool CollidesBruteForce(const std::vector<Aabb<Scalar>>& boxes, const Obb<Scalar>& obb,
+                        const SactOptions<Scalar>& options);
+
+// A recorded batch. Memory: 8 bytes per visit + 16 per query.
+struct CollisionBatch {
+  std::vector<TraversalOutcome> outcomes;        // one per query, in input order
+  std::vector<std::uint64_t> visit_offsets{0};   // CSR: query i's visits are [offsets[i], offsets[i+1])
+  std::vector<NodeVisit> visits;
+  std::uint64_t base_address = kDefaultTreeBase;  // bytes
+  std::uint32_t node_bytes = 0;                   // bytes per node fetch
+  std::uint64_t node_count = 0;                   // nodes in the array
+  bool sphere_pretests = false;
+
+  std::size_t query_count() const { return outcomes.size(); }
+  std::uint64_t Address(const NodeVisit& v) const { return base_address + std::uint64_t{v.node} * node_bytes; }
+};
+
+template <typename Scalar>
+CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                            const CollisionOptions<Scalar>& options, std::uint64_t base_address = kDefaultTreeBase);
+
+}  // namespace rc

@@ -1,0 +1,169 @@
+// The median-split tree and its flat node array: structure, conservative
+// bounds, the node layout, and traversal = brute force over all boxes
+// (double and float, depth- and breadth-first), with queries placed at and
+// near contact with the scene's boxes. Also the sphere robot.
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "common/random_stream.h"
+#include "pair_generator.h"
+#include "robocore/collision/exact_overlap_reference.h"
+#include "robocore/collision/sphere_robot.h"
+#include "robocore/collision/tree_collision.h"
+#include "scene_test_util.h"
+
+namespace rc {
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+TEST(MedianSplitTree, StructureHoldsEveryBoxOnceUnderConservativeBounds) {
+  const std::vector<Aabbd> boxes = test::RandomScene(300, 5);
+  const BoxTree tree = BuildMedianSplitTree(boxes);
+  ASSERT_EQ(tree.nodes.size(), 2 * boxes.size() - 1);
+  EXPECT_EQ(tree.height(), 10u);  // ceil(log2 300) + 1
+  test::ExpectWellFormed(tree);
+}
+
+TEST(MedianSplitTree, EmptyAndSingleBoxScenes) {
+  const BoxTree empty = BuildMedianSplitTree({});
+  EXPECT_TRUE(empty.nodes.empty());
+  const FlatBoxTree<double> flat_empty(empty);
+  EXPECT_FALSE(CollideObb(flat_empty, Obbd{}, CollisionOptions<double>{}).collides);
+  EXPECT_EQ(CollideObb(flat_empty, Obbd{}, CollisionOptions<double>{}).last_exit, kNoNodeTested);
+  const BoxTree one = BuildMedianSplitTree({Aabbd{Vec3(1, 0, 0), Vec3(0.5, 0.5, 0.5)}});
+  ASSERT_EQ(one.nodes.size(), 1u);
+  EXPECT_TRUE(one.nodes[0].is_leaf());
+  const FlatBoxTree<double> flat(one);
+  Obbd touching{Vec3(0, 0, 0), Eigen::Matrix3d::Identity(), Vec3(0.5, 0.1, 0.1)};
+  const TraversalOutcome hit = CollideObb(flat, touching, CollisionOptions<double>{});
+  EXPECT_TRUE(hit.collides);
+  EXPECT_EQ(hit.colliding_box, 0u);
+  EXPECT_EQ(hit.nodes_visited, 1u);
+  EXPECT_THROW(BuildMedianSplitTree({Aabbd{Vec3::Zero(), Vec3(1, -1, 1)}}), std::invalid_argument);
+}
+
+TEST(FlatBoxTree, NodeLayoutAndConservativeInternalBoxes) {
+  EXPECT_EQ(FlatBoxTree<float>::node_bytes(), 32u);
+  EXPECT_EQ(FlatBoxTree<double>::node_bytes(), 64u);
+  const BoxTree tree = BuildMedianSplitTree(test::RandomScene(200, 6));
+  const FlatBoxTree<double> d(tree);
+  const FlatBoxTree<float> f(tree);
+  EXPECT_EQ(d.bytes(), 64u * tree.nodes.size());
+  test::ExpectInternalBoxesContainTheirLeaves(d);
+  test::ExpectInternalBoxesContainTheirLeaves(f);
+  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {
+    if (!tree.nodes[i].is_leaf()) continue;
+    const Aabbd& box = tree.boxes[tree.nodes[i].box];
+    EXPECT_EQ(d.nodes()[i].first_child, tree.nodes[i].box);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_EQ(d.nodes()[i].centre[j], box.centre[j]);  // leaves are exact
+      EXPECT_EQ(f.nodes()[i].half[j], static_cast<float>(box.half[j]));
+    }
+  }
+}
+
+template <typename Scalar>
+void ExpectTreeEqualsBruteForce(const std::vector<Aabbd>& scene, std::uint64_t queries, std::uint64_t seed) {
+  const FlatBoxTree<Scalar> flat(BuildMedianSplitTree(scene));
+  CollisionOptions<Scalar> dfs, bfs;
+  bfs.order = TraversalOrder::kBreadthFirst;
+  std::uint64_t collisions = 0;
+  for (std::uint64_t q = 0; q < queries; ++q) {
+    const Obbd obb = test::SceneQuery(scene, seed, q);
+    const Obb<Scalar> query = obb.template Cast<Scalar>();
+    const bool brute = CollidesBruteForce(flat.boxes(), query, dfs.sact);
+    const TraversalOutcome a = CollideObb(flat, query, dfs);
+    const TraversalOutcome b = CollideObb(flat, query, bfs);
+    ASSERT_EQ(a.collides, brute) << "query " << q;
+    ASSERT_EQ(b.collides, brute) << "query " << q;
+    if (brute) {
+      EXPECT_TRUE(TestObbAabb(query, flat.boxes()[a.colliding_box], dfs.sact).overlaps());
+    } else {
+      EXPECT_EQ(a.nodes_visited, b.nodes_visited);  // the same nodes in another order
+    }
+    collisions += brute;
+  }
+  // Both answers must be well represented for the comparison to mean anything.
+  EXPECT_GT(collisions, queries / 5);
+  EXPECT_LT(collisions, queries * 4 / 5);
+}
+
+TEST(TreeTraversal, DoubleEqualsBruteForceIncludingContact) {
+  ExpectTreeEqualsBruteForce<double>(test::RandomScene(300, 7), 20000, 8);
+}
+
+TEST(TreeTraversal, FloatEqualsFloatBruteForceIncludingContact) {
+  ExpectTreeEqualsBruteForce<float>(test::RandomScene(300, 9), 20000, 10);
+}
+
+TEST(TreeTraversal, FarFromTheOrigin) {
+  std::vector<Aabbd> scene = test::RandomScene(100, 11);
+  for (Aabbd& b : scene) b.centre += Vec3(3e5, -7e5, 1e5);
+  ExpectTreeEqualsBruteForce<double>(scene, 5000, 12);
+  ExpectTreeEqualsBruteForce<float>(scene, 5000, 13);
+}
+
+TEST(TreeTraversal, BatchRecordsEveryFetch) {
+  const std::vector<Aabbd> scene = test::RandomScene(50, 14);
+  const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
+  std::vector<Obbd> obbs;
+  for (std::uint64_t q = 0; q < 200; ++q) obbs.push_back(test::SceneQuery(scene, 15, q));
+  const CollisionBatch batch = CollideBatch(flat, obbs, CollisionOptions<double>{}, 0x1000);
+  ASSERT_EQ(batch.query_count(), obbs.size());
+  ASSERT_EQ(batch.visit_offsets.size(), obbs.size() + 1);
+  EXPECT_EQ(batch.node_bytes, 64u);
+  for (std::size_t q = 0; q < obbs.size(); ++q) {
+    std::vector<NodeVisit> visits;
+    const TraversalOutcome single = CollideObb(flat, obbs[q], CollisionOptions<double>{}, &visits);
+    EXPECT_EQ(batch.outcomes[q].collides, single.collides);
+    ASSERT_EQ(batch.visit_offsets[q + 1] - batch.visit_offsets[q], visits.size());
+    EXPECT_EQ(batch.outcomes[q].nodes_visited, visits.size());
+    EXPECT_EQ(visits.front().node, 0u);  // every query starts at the root
+    for (std::size_t k = 0; k < visits.size(); ++k) {
+      const NodeVisit& v = batch.visits[batch.visit_offsets[q] + k];
+      EXPECT_EQ(v.node, visits[k].node);
+      EXPECT_EQ(batch.Address(v), 0x1000u + 64u * v.node);
+      // The recorded test is the SACT of that node's box.
+      const SactResult r = TestObbAabb(obbs[q], flat.nodes()[v.node].box());
+      EXPECT_EQ(v.exit, r.separating_axis);
+      EXPECT_EQ(v.axes_tested, r.axes_tested);
+    }
+    EXPECT_EQ(batch.outcomes[q].last_exit, visits.back().exit);
+  }
+}
+
+TEST(SphereRobot, SphereContainsTheObbAndTreeEqualsBruteForce) {
+  const std::vector<Aabbd> scene = test::RandomScene(200, 16);
+  const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
+  std::vector<Obbd> obbs;
+  RandomStream r(17, StreamPurpose::kTest, 0, 0);
+  for (int q = 0; q < 3000; ++q) {  // generic placements: no contact within the epsilon band
+    Obbd o;
+    o.axes = Eigen::Quaterniond(r.Gaussian(), r.Gaussian(), r.Gaussian(), r.Gaussian()).normalized().toRotationMatrix();
+    o.half = Vec3(r.Uniform(0.05, 0.6), r.Uniform(0.05, 0.3), r.Uniform(0.01, 0.2));
+    o.centre = Vec3(r.Uniform(-1, 11), r.Uniform(-1, 11), r.Uniform(-1, 11));
+    obbs.push_back(o);
+    const Sphere<double> s = BoundingSphere(o);
+    for (int corner = 0; corner < 8; ++corner) {  // in long double: the true corners
+      Vec3ld offset = Vec3ld::Zero();
+      for (int i = 0; i < 3; ++i)
+        offset += ((corner >> i) & 1 ? 1.0L : -1.0L) * static_cast<long double>(o.half[i]) *
+                  o.axes.col(i).cast<long double>();
+      EXPECT_LE(offset.norm(), static_cast<long double>(s.radius));
+    }
+    bool brute = false;
+    for (const Aabbd& b : scene) brute = brute || SphereOverlapsAabb(s, b);
+    EXPECT_EQ(CollideSphere(flat, s, TraversalOrder::kDepthFirst).collides, brute);
+  }
+  const SphereRobotReport report = CompareSphereRobot(flat, obbs, CollisionOptions<double>{});
+  std::printf("[ sphere robot ] %zu queries: %zu OBB collisions, %zu sphere collisions, %zu false (%.1f%%), %zu missed\n",
+              report.queries, report.obb_collisions, report.sphere_collisions, report.false_collisions,
+              100 * report.false_collision_rate(), report.missed_collisions);
+  EXPECT_EQ(report.missed_collisions, 0u);
+  EXPECT_GT(report.false_collisions, 0u);
+  EXPECT_EQ(report.sphere_collisions, report.obb_collisions + report.false_collisions);
+}
+
+}  // namespace
+}  // namespace rc
