@@ -79,8 +79,8 @@ def main():
                     cmd += ["--initial-pose", first_pose(gt)]
                 run(cmd)
                 with open(summary) as f:
-                    a = json.load(f)["accuracy"]
-                    t = json.load(open(summary))["totals"]
+                    report = json.load(f)
+                a, t = report["accuracy"], report["totals"]
                 result[f"{mode}_converged"] = int(a["convergence_iteration"] >= 0 and a["converged_at_end"])
                 result[f"{mode}_convergence_iteration"] = a["convergence_iteration"]
                 result[f"{mode}_median_err_xy_m"] = a["median_err_xy_m"]
