@@ -77,6 +77,8 @@ void Run(DelibotCli& cli) {
               << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
               << loaded.value_convention << ")\n";
     grid = std::move(loaded.grid);
+    if (grid.CountCells(CellState::kFree) == 0)
+      throw InputError(cli.map_path, 0, "", "the map has no free cell: there is nowhere to localize");
     TraceReadOptions trace_options;
     trace_options.format = cli.trace_format;
     trace = ReadTrace(cli.trace_path, trace_options);
