@@ -1,0 +1,92 @@
+#include "backends/backend.h"
+
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+#include <stdexcept>
+
+#include "backends/cpu_backend.h"
+#include "backends/robocore_backend.h"
+#include "backends/simt_backend.h"
+#include "backends/ttaplus_backend.h"
+#include "robocore/ray_batch_recorded.h"
+
+namespace rc {
+
+std::unique_ptr<Backend> Backend::Create(const std::string& name, const BackendParameters& params) {
+  std::string error;
+  if (!params.IsValid(&error)) throw std::invalid_argument("backend parameters: " + error);
+  if (name == "cpu") return std::make_unique<CpuBackend>();
+  if (name == "simt") return std::make_unique<SimtBackend>(params);
+  if (name == "ttaplus") return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kNone);
+  if (name == "ttaplus-p") return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kPredication);
+  if (name == "ttaplus-cr")
+    return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kConditionalReturn);
+  if (name == "robocore") return std::make_unique<RoboCoreBackend>(params);
+  throw std::invalid_argument("unknown backend '" + name +
+                              "' (expected cpu, simt, ttaplus, ttaplus-p, ttaplus-cr or robocore)");
+}
+
+std::vector<std::string> Backend::Names() {
+  return {"cpu", "simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"};
+}
+
+std::vector<std::string> Backend::ModelledNames() {
+  return {"simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"};
+}
+
+BatchCost Backend::Price(const KernelRecord& record) const {
+  PricingContext context(record);
+  return Price(record, context);
+}
+
+BatchCost Backend::Price(const KernelRecord& record, PricingContext& context) const {
+  if (&context.record() != &record)
+    throw std::invalid_argument("Backend::Price: the pricing context belongs to another record");
+  return DoPrice(record, context);
+}
+
+BatchCost Backend::Run(const RayCastScene& scene, const RayBatch& batch,
+                       std::vector<RayHit>& hits) const {
+  const auto start = std::chrono::steady_clock::now();
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record);
+  const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BatchCost cost = Price(record);
+  cost.host_seconds = host;
+  return cost;
+}
+
+std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends,
+                                const KernelRecord& record) {
+  PricingContext context(record);
+  std::vector<BatchCost> costs;
+  for (const Backend* b : backends) costs.push_back(b->Price(record, context));
+  return costs;
+}
+
+void PrintBatchCost(std::ostream& out, const BatchCost& c) {
+  out << c.backend << ": " << c.queries << " queries, " << c.nodes << " nodes";
+  if (!c.modelled) {
+    out << ", host " << c.host_seconds << " s (no cost model)\n";
+    return;
+  }
+  out << "\n  cycles " << c.cycles << " (launch " << c.launch_cycles << ") = " << c.seconds
+      << " s at " << c.clock_hz / 1e6 << " MHz, bound: " << c.bound << "\n  energy "
+      << c.energy_joules << " J";
+  if (c.simt_efficiency == c.simt_efficiency) out << ", SIMT efficiency " << c.simt_efficiency;
+  out << "\n  sectors " << c.memory.sector_requests << ", L1 hits " << c.memory.l1_hits << ", L2 "
+      << c.memory.l2_accesses << " (hits " << c.memory.l2_hits << "), DRAM "
+      << c.memory.dram_accesses << "\n  L1 model " << c.l1_model << "; L2 model " << c.l2_model
+      << "\n  micro-ops:";
+  for (int i = 0; i < kOpcodeCount; ++i)
+    if (c.micro_ops[i]) out << ' ' << MnemonicOf(static_cast<Opcode>(i)) << '=' << c.micro_ops[i];
+  out << "\n  hops " << c.interconnect_hops << ", predicated off " << c.predicated_off_micro_ops
+      << ", CTRL exits " << c.ctrl_exits << ", nodes counted " << c.nodes_counted;
+  if (c.warp_instructions)
+    out << ", warp instructions " << c.warp_instructions << ", thread instructions "
+        << c.thread_instructions;
+  out << "\n";
+}
+
+}  // namespace rc

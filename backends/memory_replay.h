@@ -1,0 +1,83 @@
+#pragma once
+// Replays a kernel record's node fetches through the cache hierarchy in the
+// order a backend issues them, and keeps what its cost model needs.
+//
+// Placement and order (shared by every backend): warps are 32 consecutive
+// queries; blocks of gpu.warps_per_block warps are dealt to SMs
+// round-robin. Each SM runs its warps in waves of `warps_per_wave` (SIMT:
+// the resident warps; RT unit: the warp buffer) whose fetches interleave
+// step by step, oldest warp first. That is the order a greedy-then-oldest
+// scheduler produces when every warp stalls at every node fetch, which the
+// ray-cast kernels do (each step's address depends on the previous step).
+// SMs advance wave by wave in lockstep, so the shared L2 sees their
+// requests interleaved.
+//
+// Two access patterns:
+//   coalesced (SIMT)  per warp step, the active lanes' nodes are merged into
+//                     unique 32-byte sectors, one request each; the step
+//                     waits for its slowest sector.
+//   per thread (TTA+, RoboCore)  every thread's node fetch is its own
+//                     request (artifact: -gpgpu_rt_coalesce_warps 0); a
+//                     second request to a sector hits in L1.
+// A node wider than a sector requests each of its sectors; its latency is
+// its slowest sector's.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "backends/gpu_params.h"
+#include "robocore/kernel_record.h"
+
+namespace rc {
+
+struct AccessPattern {
+  int warps_per_wave = 1;
+  bool coalesced = false;
+};
+
+struct MemoryCounters {
+  std::uint64_t sector_requests = 0;  // requests to L1, 32 bytes each
+  std::uint64_t l1_hits = 0;
+  std::uint64_t l2_accesses = 0;      // L1 misses
+  std::uint64_t l2_hits = 0;
+  std::uint64_t dram_accesses = 0;    // L2 misses, one sector each
+};
+
+struct MemoryProfile {
+  // Coalesced: per warp, the sum over its steps of the slowest sector.
+  std::vector<std::uint64_t> warp_memory_cycles;
+  // Per thread: per query, the sum of its fetches' latencies.
+  std::vector<std::uint64_t> query_memory_cycles;
+  std::vector<std::uint64_t> sm_sector_requests;  // per SM
+  MemoryCounters totals;
+  std::string l1_model;
+  std::string l2_model;
+};
+
+// The SM a warp runs on.
+int SmOfWarp(std::size_t warp, const GpuParams& gpu);
+std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu);
+
+MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
+                           const AccessPattern& pattern);
+
+// Shared work of several backends pricing one record: the memory replay
+// depends only on the GPU's memory system and the access pattern, so TTA+,
+// TTA+-p, TTA+-cr and RoboCore (same pattern) replay it once. Thread-safe.
+// The record must outlive the context and stay unchanged.
+class PricingContext {
+ public:
+  explicit PricingContext(const KernelRecord& record) : record_(record) {}
+  const KernelRecord& record() const { return record_; }
+  std::shared_ptr<const MemoryProfile> Memory(const GpuParams& gpu, const AccessPattern& pattern);
+
+ private:
+  const KernelRecord& record_;
+  std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<const MemoryProfile>> profiles_;
+};
+
+}  // namespace rc

@@ -1,0 +1,37 @@
+#include "backends/robocore_backend.h"
+
+#include "backends/rt_unit_model.h"
+
+namespace rc {
+
+RoboCoreBackend::RoboCoreBackend(const BackendParameters& params)
+    : gpu_(params.gpu), robocore_(params.robocore), energy_(params.energy) {
+  specs_.name = "robocore";
+  specs_.description = "RoboCore units: TTA+ with chained SACT units, CTRL early exit";
+  specs_.has_cost_model = true;
+  specs_.has_rt_unit = true;
+  specs_.has_sact_units = true;
+  specs_.early_exit = EarlyExitMode::kConditionalReturn;
+  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
+                          StepProgramKind::kRmStep, StepProgramKind::kSactTest};
+  specs_.clock_hz = gpu_.core_clock_hz;
+  specs_.sms = gpu_.sms;
+}
+
+BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+  RtUnitPricing pricing;
+  pricing.unit = &robocore_.unit;
+  pricing.gpu = &gpu_;
+  pricing.energy = &energy_;
+  pricing.datapath = robocore_.Datapath();
+  // Launch: the kernel launch, ConfigRoboCore (the program into every
+  // unit's store) and ConfigDecode (one layout per node kind).
+  pricing.launch_cycles =
+      static_cast<std::uint64_t>(robocore_.unit.program_config_cycles_per_micro_op) *
+          ProgramStoreMicroOps(record, pricing.datapath) +
+      static_cast<std::uint64_t>(robocore_.decode_config_cycles_per_layout) * record.regions.size() +
+      static_cast<std::uint64_t>(gpu_.kernel_launch_cycles);
+  return PriceOnRtUnit(record, context, pricing, specs_.name);
+}
+
+}  // namespace rc

@@ -1,0 +1,163 @@
+#include "backends/rt_unit_model.h"
+
+#include <algorithm>
+
+#include "backends/energy_model.h"
+#include "backends/warp_schedule.h"
+
+namespace rc {
+namespace {
+
+std::uint64_t CeilDiv(std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; }
+
+// Everything a set of executions of one section cost, scaled by a count.
+struct Tally {
+  std::array<std::uint64_t, kOpcodeCount> executed{};
+  std::array<std::uint64_t, kOpUnitCount> unit_slots{};
+  std::uint64_t hops = 0, predicated = 0, ctrl = 0, pushes = 0, micro_ops = 0;
+  double arithmetic_joules = 0;
+
+  void Add(const SectionCost& c, std::uint64_t times, const EnergyParams& e) {
+    if (times == 0) return;
+    for (int i = 0; i < kOpcodeCount; ++i) {
+      executed[i] += times * c.executed[i];
+      if (static_cast<Opcode>(i) != Opcode::kLoad) micro_ops += times * c.executed[i];
+    }
+    for (int i = 0; i < kOpUnitCount; ++i) unit_slots[i] += times * c.unit_slots[i];
+    hops += times * c.hops;
+    predicated += times * c.predicated_off;
+    ctrl += times * c.ctrl_exits;
+    pushes += times * c.pushes;
+    arithmetic_joules += static_cast<double>(times) * ArithmeticEnergyJoules(c.arithmetic, e);
+  }
+};
+
+}  // namespace
+
+AccessPattern RtUnitAccessPattern(const RtUnitParams& unit) {
+  AccessPattern p;
+  p.warps_per_wave = unit.warp_buffer_warps;
+  p.coalesced = false;
+  return p;
+}
+
+std::uint64_t ProgramStoreMicroOps(const KernelRecord& record, const DatapathConfig& datapath) {
+  const ProgramTiming timing(*record.program, record.leaf.get(), datapath);
+  std::uint64_t n = 0;
+  for (const SectionTiming* s : {&timing.prologue, &timing.loop, &timing.epilogue, &timing.leaf})
+    for (const LoweredOp& op : s->ops()) n += !op.dropped;
+  return n;
+}
+
+BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
+                        const RtUnitPricing& pricing, const std::string& backend_name) {
+  const GpuParams& gpu = *pricing.gpu;
+  const RtUnitParams& unit = *pricing.unit;
+  const EnergyParams& energy = *pricing.energy;
+  const ProgramTiming timing(*record.program, record.leaf.get(), pricing.datapath);
+  const auto memory = context.Memory(gpu, RtUnitAccessPattern(unit));
+
+  // Loop-pass cost per exit variant: index 0 = no exit, 1 + j = RETURN_IF j.
+  const int variants = timing.loop.return_count() + 1;
+  std::vector<std::uint64_t> pass_cycles(variants);
+  for (int v = 0; v < variants; ++v)
+    pass_cycles[v] = timing.loop.Cost(v == 0 ? kNoExit : static_cast<std::uint8_t>(v - 1)).cycles;
+  const std::uint64_t once_cycles = timing.once().cycles;
+
+  const std::size_t n = record.query_count();
+  const std::size_t warps = WarpCount(record, gpu);
+  const std::uint64_t intake_per_cycle =
+      static_cast<std::uint64_t>(unit.intersection_unit_sets) * unit.threads_accepted_per_cycle_per_set;
+  std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
+  std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
+  std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
+  for (std::size_t w = 0; w < warps; ++w) {
+    const int sm = SmOfWarp(w, gpu);
+    std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
+    const std::size_t lo = w * gpu.warp_size, hi = std::min(n, lo + gpu.warp_size);
+    std::uint64_t slowest = 0;
+    for (std::size_t q = lo; q < hi; ++q) {
+      std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
+      for (std::uint64_t f = record.fetch_offsets[q]; f < record.fetch_offsets[q + 1]; ++f) {
+        const std::uint8_t e = record.node_exits[f];
+        const int v = e == kNoExit ? 0 : 1 + e;
+        cycles += pass_cycles[v];
+        ++passes[v];
+      }
+      slowest = std::max(slowest, cycles);
+    }
+    sm_threads[sm] += hi - lo;
+    sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
+  }
+
+  BatchCost cost;
+  cost.backend = backend_name;
+  cost.modelled = true;
+  cost.queries = n;
+  cost.nodes = record.total_nodes();
+  cost.clock_hz = gpu.core_clock_hz;
+  cost.memory = memory->totals;
+  cost.l1_model = memory->l1_model;
+  cost.l2_model = memory->l2_model;
+
+  Tally total;
+  std::uint64_t busiest = 0;
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    Tally t;
+    t.Add(timing.once(), sm_threads[sm], energy);
+    for (int v = 0; v < variants; ++v)
+      t.Add(timing.loop.Cost(v == 0 ? kNoExit : static_cast<std::uint8_t>(v - 1)),
+            sm_variant_passes[sm][v], energy);
+    // The bounds of this unit; the largest sets its time.
+    std::uint64_t cycles = Makespan(sm_warp_cycles[sm], unit.warp_buffer_warps);
+    std::string bound = "latency (warp buffer)";
+    auto consider = [&](std::uint64_t c, const std::string& what) {
+      if (c > cycles) {
+        cycles = c;
+        bound = what;
+      }
+    };
+    for (int u = 0; u < kOpUnitCount; ++u)
+      consider(CeilDiv(t.unit_slots[u], static_cast<std::uint64_t>(unit.intersection_unit_sets)),
+               std::string("op unit ") + OpUnitName(static_cast<OpUnit>(u)));
+    consider(CeilDiv(memory->sm_sector_requests[sm], static_cast<std::uint64_t>(unit.sector_requests_per_cycle)),
+             "L1 requests");
+    consider(CeilDiv(sm_threads[sm], intake_per_cycle), "thread intake");
+    if (cycles >= busiest) {
+      busiest = cycles;
+      cost.bound = bound;
+    }
+    for (int i = 0; i < kOpcodeCount; ++i) total.executed[i] += t.executed[i];
+    total.hops += t.hops;
+    total.predicated += t.predicated;
+    total.ctrl += t.ctrl;
+    total.pushes += t.pushes;
+    total.micro_ops += t.micro_ops;
+    total.arithmetic_joules += t.arithmetic_joules;
+  }
+  const std::uint64_t dram_cycles = static_cast<std::uint64_t>(
+      static_cast<double>(memory->totals.dram_accesses) * gpu.sector_bytes / gpu.DramBytesPerCoreCycle());
+  if (dram_cycles > busiest) {
+    busiest = dram_cycles;
+    cost.bound = "DRAM bandwidth";
+  }
+  cost.launch_cycles = pricing.launch_cycles;
+  cost.cycles = pricing.launch_cycles + busiest;
+  cost.seconds = static_cast<double>(cost.cycles) / gpu.core_clock_hz;
+  for (int i = 0; i < kOpcodeCount; ++i) cost.micro_ops[i] = total.executed[i];
+  cost.predicated_off_micro_ops = total.predicated;
+  cost.interconnect_hops = total.hops;
+  cost.ctrl_exits = total.ctrl;
+  cost.nodes_counted = total.pushes;
+  cost.energy_joules =
+      total.arithmetic_joules +
+      Sram8kbJoules(total.micro_ops * energy.rt_packet_accesses_per_micro_op +
+                        total.hops * energy.rt_packet_accesses_per_hop +
+                        total.predicated * energy.rt_packet_accesses_per_predicated_op +
+                        static_cast<double>(n) * energy.rt_warp_buffer_accesses_per_thread,
+                    energy) +
+      MemoryEnergyJoules(memory->totals, gpu, energy);
+  return cost;
+}
+
+}  // namespace rc

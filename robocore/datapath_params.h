@@ -1,0 +1,67 @@
+#pragma once
+// Parameters of the RoboCore / TTA+ intersection datapath: OP-unit
+// latencies, the interconnect, the early-exit mode and the SACT pipelines.
+// The backends' parameter structs (backends/backend_params.h) hold these,
+// print them with units and sources, and override them from a file.
+#include <cstdint>
+
+#include "robocore/micro_op.h"
+
+namespace rc {
+
+// Latency of one micro-op in its OP unit, cycles at the core clock (1365 MHz).
+struct OpUnitLatencies {
+  int addsub_cycles = 3;        // paper, RoboCore micro-op table (ADDSUB)
+  int minmax_cycles = 2;        // paper (MINMAX)
+  int maxmin_cycles = 2;        // paper (MAXMIN)
+  int cmp_cycles = 1;           // paper (CMP)
+  int mul_cycles = 5;           // paper (MUL)
+  int rcp_cycles = 4;           // artifact gpgpusim.config, -gpgpu_rt_intersection_latency (rcp)
+  int pre_process_cycles = 14;  // paper (Pre-Process: PRE, XFORM)
+  int box_normal_cycles = 12;   // paper (Box-Normal: BOX, DOT)
+  int edge_edge_cycles = 12;    // paper (Edge x Edge: EDGE, CROSS)
+  int logic_cycles = 1;         // paper (LOGIC)
+  int push_cycles = 1;          // paper (PUSH)
+  int return_cycles = 1;        // paper (RETURN)
+  // Cycles before the RCP unit takes its next micro-op (all other non-SACT
+  // units take one per cycle): artifact, -gpgpu_rt_init_cycles (rcp = 3).
+  int rcp_initiation_cycles = 3;
+};
+
+// Latency of `unit` (kFetch has none here: the caches decide it).
+int LatencyOf(OpUnit unit, const OpUnitLatencies& latencies);
+
+enum class DatapathKind : std::uint8_t {
+  kTtaPlus,   // OP units only; SACT micro-ops run as their TTA+ expansion
+  kRoboCore,  // + chained SACT units with CTRL early exit
+};
+
+enum class EarlyExitMode : std::uint8_t {
+  kNone,               // plain TTA+: RETURN_IF markers are dropped, every micro-op runs
+  kPredication,        // TTA+-p: after a fired RETURN_IF, micro-ops travel predicated off
+  kConditionalReturn,  // TTA+-cr and RoboCore: a fired RETURN_IF ends the program
+};
+
+const char* ToString(EarlyExitMode mode);
+
+struct DatapathConfig {
+  DatapathKind kind = DatapathKind::kTtaPlus;
+  EarlyExitMode exit_mode = EarlyExitMode::kNone;
+  OpUnitLatencies latencies;
+  // Paid whenever consecutive micro-ops of a thread run on different units
+  // (a micro-op that stays on its unit skips the interconnect): artifact,
+  // -gpgpu_rt_interconnect 1,1 and rt_func_unit::cycle.
+  int interconnect_hop_cycles = 1;
+  // Cycles a predicated-off micro-op occupies its unit: artifact,
+  // rt_op_unit::cycle ("Predicated off threads take 1 cycle").
+  int predicated_op_cycles = 1;
+  // RoboCore only. SACT units are 4-stage pipelines (paper), so a SACT unit
+  // takes a new micro-op every ceil(latency / stages) cycles.
+  int sact_pipeline_stages = 4;
+  // RoboCore only. Cycles CTRL adds to decide "separating axis: exit" after
+  // a SACT unit. Assumption: 0, the check overlaps the unit's last stage (the
+  // artifact's 194-cycle full test is exactly 14 + 6*12 + 9*12).
+  int ctrl_exit_cycles = 0;
+};
+
+}  // namespace rc

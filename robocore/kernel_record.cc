@@ -1,0 +1,96 @@
+#include "robocore/kernel_record.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace rc {
+
+const char* ToString(StepProgramKind kind) {
+  switch (kind) {
+    case StepProgramKind::kGridMarch: return "grid_march";
+    case StepProgramKind::kDdaStep: return "dda_step";
+    case StepProgramKind::kRmStep: return "rm_step";
+    case StepProgramKind::kSactTest: return "sact_obb_aabb";
+  }
+  return "?";
+}
+
+StepProgramKind StepProgramFor(RayCastMethod method) {
+  switch (method) {
+    case RayCastMethod::kMarch: return StepProgramKind::kGridMarch;
+    case RayCastMethod::kDda: return StepProgramKind::kDdaStep;
+    case RayCastMethod::kRayMarching: return StepProgramKind::kRmStep;
+  }
+  throw std::logic_error("unhandled ray-cast method");
+}
+
+std::uint64_t KernelRecord::footprint_begin() const {
+  std::uint64_t begin = std::numeric_limits<std::uint64_t>::max();
+  for (const MemoryRegion& r : regions) begin = std::min(begin, r.base);
+  return regions.empty() ? 0 : begin;
+}
+
+std::uint64_t KernelRecord::footprint_end() const {
+  std::uint64_t end = 0;
+  for (const MemoryRegion& r : regions) end = std::max(end, r.base + r.bytes());
+  return end;
+}
+
+void KernelRecord::Validate() const {
+  auto fail = [](const std::string& what) { throw std::logic_error("kernel record: " + what); };
+  if (!program || !program->has_loop()) fail("no step program with a loop");
+  if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone))
+    fail("leaf program and leaf kind disagree");
+  if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
+  if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
+  if (node_exits.size() != fetch_addresses.size()) fail("one exit per fetch expected");
+  for (std::size_t i = 1; i < fetch_offsets.size(); ++i)
+    if (fetch_offsets[i] < fetch_offsets[i - 1]) fail("offsets decrease");
+  const int returns = program->ReturnIfCount(ProgramSection::kLoop);
+  for (std::uint8_t e : node_exits)
+    if (e != kNoExit && e >= returns)
+      fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" +
+           program->name() + "' has " + std::to_string(returns));
+  for (std::uint64_t a : fetch_addresses) {
+    bool inside = false;
+    for (const MemoryRegion& r : regions)
+      inside = inside || (a >= r.base && a + node_bytes <= r.base + r.bytes());
+    if (!inside) fail("address " + std::to_string(a) + " lies outside every region");
+  }
+}
+
+KernelRecordBuilder::KernelRecordBuilder(std::shared_ptr<const MicroProgram> program,
+                                         StepProgramKind kind, MemoryRegion region) {
+  record_.program = std::move(program);
+  record_.step_kind = kind;
+  record_.node_bytes = region.element_bytes;
+  record_.regions.push_back(std::move(region));
+}
+
+KernelRecordBuilder& KernelRecordBuilder::SetLeaf(std::shared_ptr<const MicroProgram> leaf,
+                                                  LeafProgramKind kind) {
+  record_.leaf = std::move(leaf);
+  record_.leaf_kind = kind;
+  return *this;
+}
+
+KernelRecordBuilder& KernelRecordBuilder::AddQuery(const std::vector<std::uint64_t>& addresses,
+                                                   const std::vector<std::uint8_t>& exits) {
+  if (!exits.empty() && exits.size() != addresses.size())
+    throw std::invalid_argument("KernelRecordBuilder: one exit per address expected");
+  record_.fetch_addresses.insert(record_.fetch_addresses.end(), addresses.begin(), addresses.end());
+  if (exits.empty())
+    record_.node_exits.insert(record_.node_exits.end(), addresses.size(), kNoExit);
+  else
+    record_.node_exits.insert(record_.node_exits.end(), exits.begin(), exits.end());
+  record_.fetch_offsets.push_back(record_.fetch_addresses.size());
+  return *this;
+}
+
+KernelRecord KernelRecordBuilder::Build() const {
+  record_.Validate();
+  return record_;
+}
+
+}  // namespace rc

@@ -1,0 +1,114 @@
+// Backend parameters: the printed table, the JSON override file (valid,
+// unknown key, wrong type, invalid value), and the sweep knobs.
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "backends/backend.h"
+#include "backends/backend_params.h"
+#include "common/input_error.h"
+
+namespace rc {
+namespace {
+
+InputError ParseError(const std::string& json) {
+  try {
+    ParseBackendParameters(json, "sweep.json");
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError for " << json;
+  return InputError("", 0, "", "");
+}
+
+TEST(BackendParameters, EveryFieldIsPrintedWithValueUnitAndSource) {
+  const BackendParameters p;
+  const auto rows = DescribeBackendParameters(p);
+  std::set<std::string> keys;
+  for (const auto& r : rows) {
+    EXPECT_FALSE(r.value.empty()) << r.key;
+    EXPECT_FALSE(r.unit.empty()) << r.key;
+    EXPECT_FALSE(r.source.empty()) << r.key;
+    EXPECT_TRUE(keys.insert(r.key).second) << "duplicate " << r.key;
+  }
+  for (const char* key : {"gpu.sms", "gpu.l1_bytes", "gpu.l2_latency_cycles", "energy.dram_pj",
+                          "simt.instructions_per_element.DOT", "ttaplus.warp_buffer_warps",
+                          "ttaplus.interconnect_hop_cycles", "robocore.sact_latency_scale",
+                          "robocore.box_normal_cycles"})
+    EXPECT_TRUE(keys.count(key)) << key;
+  std::ostringstream out;
+  PrintBackendParameters(out, p);
+  EXPECT_NE(out.str().find("gpu.l2_bytes"), std::string::npos);
+  EXPECT_NE(out.str().find("3145728"), std::string::npos);
+  EXPECT_NE(out.str().find("Horowitz"), std::string::npos);
+}
+
+TEST(BackendParameters, ValidOverrideFileNestedAndDotted) {
+  const std::string path = ::testing::TempDir() + "/rc_backend_params.json";
+  {
+    std::ofstream out(path);
+    out << R"({"gpu": {"sms": 16, "l1_bytes": 131072},
+               "robocore.sact_latency_scale": 2.0,
+               "ttaplus": {"warp_buffer_warps": 8},
+               "simt": {"instructions_per_element": {"DOT": 2}}})";
+  }
+  const BackendParameters p = LoadBackendParameters(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(p.gpu.sms, 16);
+  EXPECT_EQ(p.gpu.l1_bytes, 131072);
+  EXPECT_EQ(p.gpu.l2_ways, 16);  // untouched
+  EXPECT_DOUBLE_EQ(p.robocore.sact_latency_scale, 2.0);
+  EXPECT_EQ(p.ttaplus.unit.warp_buffer_warps, 8);
+  EXPECT_EQ(p.robocore.unit.warp_buffer_warps, 4);
+  EXPECT_EQ(p.simt.instructions_per_element[static_cast<int>(Opcode::kDot)], 2);
+}
+
+TEST(BackendParameters, UnknownKeyNamesFileAndKey) {
+  const InputError e = ParseError(R"({"gpu": {"smz": 4}})");
+  EXPECT_EQ(e.file(), "sweep.json");
+  EXPECT_EQ(e.field(), "gpu.smz");
+  EXPECT_EQ(ParseError(R"({"tpu": {"sms": 4}})").field(), "tpu.sms");
+  EXPECT_EQ(ParseError(R"({"simt": {"instructions_per_element": {"BOX": 3}}})").field(),
+            "simt.instructions_per_element.BOX");  // SACT ops are counted via their expansion
+}
+
+TEST(BackendParameters, WrongTypeNamesTheKey) {
+  EXPECT_EQ(ParseError(R"({"gpu": {"sms": "eight"}})").field(), "gpu.sms");
+  EXPECT_EQ(ParseError(R"({"gpu": {"sms": 8.5}})").field(), "gpu.sms");
+  EXPECT_EQ(ParseError(R"({"robocore": {"sact_latency_scale": [2]}})").field(),
+            "robocore.sact_latency_scale");
+}
+
+TEST(BackendParameters, InvalidValuesAndBadJson) {
+  EXPECT_NE(std::string(ParseError(R"({"gpu": {"sms": 0}})").what()).find("sms"), std::string::npos);
+  ParseError(R"({"robocore": {"sact_latency_scale": -1}})");
+  ParseError(R"({"gpu": {"l1_bytes": 100}})");  // not a multiple of the line
+  ParseError(R"({"gpu": )");
+  ParseError(R"([1, 2])");
+  EXPECT_THROW(LoadBackendParameters("/nonexistent/params.json"), InputError);
+}
+
+TEST(BackendParameters, SactLatencyScaleScalesOnlyTheSactUnits) {
+  RoboCoreParams r;
+  r.sact_latency_scale = 0.5;
+  EXPECT_EQ(r.Datapath().latencies.pre_process_cycles, 7);
+  EXPECT_EQ(r.Datapath().latencies.box_normal_cycles, 6);
+  EXPECT_EQ(r.Datapath().latencies.edge_edge_cycles, 6);
+  EXPECT_EQ(r.Datapath().latencies.mul_cycles, 5);
+  r.sact_latency_scale = 2.0;
+  EXPECT_EQ(r.Datapath().latencies.pre_process_cycles, 28);
+  EXPECT_EQ(r.Datapath().exit_mode, EarlyExitMode::kConditionalReturn);
+}
+
+TEST(BackendParameters, CreateRejectsUnknownNamesAndInvalidParameters) {
+  BackendParameters p;
+  EXPECT_THROW(Backend::Create("gpu", p), std::invalid_argument);
+  p.gpu.sms = 0;
+  EXPECT_THROW(Backend::Create("simt", p), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rc

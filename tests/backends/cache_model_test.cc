@@ -1,0 +1,72 @@
+// The cache hierarchy: the footprint picks the detail (cold vs LRU), LRU
+// order in the fully associative L1 and the set-associative L2, sector
+// granularity, and latencies.
+#include <gtest/gtest.h>
+
+#include "backends/cache_model.h"
+
+namespace rc {
+namespace {
+
+constexpr std::uint64_t kBase = std::uint64_t{1} << 32;
+
+TEST(CacheHierarchy, FootprintDecidesTheModel) {
+  const GpuParams gpu;
+  // 400 x 300 one-byte cells = 117 KiB: more than the 64 KiB L1.
+  CacheHierarchy office(gpu, kBase, kBase + 400 * 300);
+  EXPECT_EQ(office.l1_model().rfind("lru", 0), 0u);
+  EXPECT_EQ(office.l2_model().rfind("cold", 0), 0u);
+  CacheHierarchy small(gpu, kBase, kBase + 256 * 256);
+  EXPECT_EQ(small.l1_model().rfind("cold", 0), 0u);
+  CacheHierarchy wean_field(gpu, kBase, kBase + 800 * 800 * 4);  // 2.4 MiB distance field
+  EXPECT_EQ(wean_field.l2_model().rfind("cold", 0), 0u);
+  CacheHierarchy huge(gpu, kBase, kBase + 4 * 1024 * 1024);
+  EXPECT_EQ(huge.l2_model().rfind("lru", 0), 0u);
+}
+
+TEST(CacheHierarchy, LatenciesAddUpLevelByLevel) {
+  const GpuParams gpu;
+  CacheHierarchy c(gpu, kBase, kBase + 1024);
+  EXPECT_EQ(c.LatencyCycles(MemoryLevel::kL1), 20);
+  EXPECT_EQ(c.LatencyCycles(MemoryLevel::kL2), 180);
+  // DRAM: (100 + 20) DRAM cycles at 3500 MHz = 47 core cycles at 1365 MHz.
+  EXPECT_EQ(gpu.DramExtraCycles(), 47);
+  EXPECT_EQ(c.LatencyCycles(MemoryLevel::kDram), 227);
+  EXPECT_EQ(c.Access(0, kBase), MemoryLevel::kDram);
+  EXPECT_EQ(c.Access(0, kBase + 31), MemoryLevel::kL1);  // same sector
+  EXPECT_EQ(c.Access(1, kBase), MemoryLevel::kL2);       // another SM's L1
+  EXPECT_EQ(c.Access(0, kBase + 32), MemoryLevel::kDram);  // next sector: sectors fill one by one
+}
+
+TEST(CacheHierarchy, FullyAssociativeL1EvictsTheLeastRecentlyUsedLine) {
+  GpuParams gpu;
+  gpu.l1_bytes = 2 * gpu.line_bytes;  // two lines
+  CacheHierarchy c(gpu, kBase, kBase + 10 * 128);
+  auto line = [](int i) { return kBase + 128 * static_cast<std::uint64_t>(i); };
+  c.Access(0, line(0));
+  c.Access(0, line(1));
+  EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL1);  // order now 0, 1
+  c.Access(0, line(2));                                // evicts 1
+  EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL1);
+  EXPECT_EQ(c.Access(0, line(1)), MemoryLevel::kL2);  // was evicted; evicts 2
+  EXPECT_EQ(c.Access(0, line(2)), MemoryLevel::kL2);
+}
+
+TEST(CacheHierarchy, SetAssociativeL2EvictsWithinASet) {
+  GpuParams gpu;
+  gpu.l1_bytes = gpu.line_bytes;        // one line: almost everything misses L1
+  gpu.l2_ways = 2;
+  gpu.l2_bytes = 2 * 2 * gpu.line_bytes;  // 2 sets x 2 ways
+  CacheHierarchy c(gpu, kBase, kBase + 16 * 128);
+  auto line = [](int i) { return kBase + 128 * static_cast<std::uint64_t>(i); };
+  EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kDram);
+  EXPECT_EQ(c.Access(0, line(2)), MemoryLevel::kDram);  // set 0
+  EXPECT_EQ(c.Access(0, line(1)), MemoryLevel::kDram);  // set 1: no eviction in set 0
+  EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL2);
+  EXPECT_EQ(c.Access(0, line(4)), MemoryLevel::kDram);  // set 0 full: evicts line 2
+  EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL2);
+  EXPECT_EQ(c.Access(0, line(2)), MemoryLevel::kDram);
+}
+
+}  // namespace
+}  // namespace rc

@@ -1,0 +1,144 @@
+// Kernel records: the recorded batch gives the CPU reference's hits, its
+// addresses are the structures' bases plus index * element size, the exits
+// follow the ray programs' contract, it does not depend on the thread
+// count, and Validate catches inconsistent records. Also the RoboCore API
+// facade.
+#include <omp.h>
+
+#include <gtest/gtest.h>
+
+#include "robocore/ray_batch_recorded.h"
+#include "robocore/robocore_api.h"
+#include "robocore/shipped_programs.h"
+#include "test_scenes.h"
+
+namespace rc {
+namespace {
+
+class RecordTest : public ::testing::TestWithParam<RayCastMethod> {};
+
+TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
+  const OccupancyGrid grid = test::RoomGrid(90, 70, 0.1, 0.04, 5);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 30, 37, 6.0, 6);
+  std::vector<RayHit> reference, hits;
+  CastRayBatch(scene, batch, reference);
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record);
+  ASSERT_NO_THROW(record.Validate());
+  ASSERT_EQ(record.query_count(), batch.queries.size());
+  ASSERT_EQ(record.regions.size(), 1u);
+  const MemoryRegion& region = record.regions[0];
+  EXPECT_EQ(region.element_bytes, GetParam() == RayCastMethod::kRayMarching ? 4u : 1u);
+  EXPECT_EQ(region.base % DeviceLayout{}.alignment, 0u);
+  int hit_exits = 0;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    ASSERT_EQ(hits[i].range_m, reference[i].range_m) << i;
+    ASSERT_EQ(hits[i].nodes, reference[i].nodes) << i;
+    ASSERT_EQ(record.nodes(i), hits[i].nodes) << i;
+    const std::uint64_t lo = record.fetch_offsets[i], hi = record.fetch_offsets[i + 1];
+    for (std::uint64_t f = lo; f < hi; ++f) {
+      const std::uint64_t index = (record.fetch_addresses[f] - region.base) / region.element_bytes;
+      ASSERT_EQ((record.fetch_addresses[f] - region.base) % region.element_bytes, 0u);
+      ASSERT_LT(index, grid.cell_count());
+      if (f + 1 < hi) {
+        ASSERT_EQ(record.node_exits[f], kNoExit);
+      } else {
+        const bool stops = grid.cells()[index] != CellState::kFree;
+        ASSERT_EQ(record.node_exits[f], stops ? kRayHitReturn : kRayEndReturn) << i;
+        hit_exits += stops;
+      }
+    }
+  }
+  EXPECT_GT(hit_exits, 0);
+  EXPECT_EQ(record.program->name(), ToString(StepProgramFor(GetParam())));
+  EXPECT_EQ(record.leaf_kind, LeafProgramKind::kBeamModel);
+}
+
+TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
+  const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 21, 13, 5.0, 9);
+  const int threads = omp_get_max_threads();
+  std::vector<RayHit> hits_one, hits_two;
+  KernelRecord one, two;
+  omp_set_num_threads(1);
+  CastRayBatchRecorded(scene, batch, hits_one, one);
+  omp_set_num_threads(3);
+  CastRayBatchRecorded(scene, batch, hits_two, two);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.fetch_offsets, two.fetch_offsets);
+  EXPECT_EQ(one.fetch_addresses, two.fetch_addresses);
+  EXPECT_EQ(one.node_exits, two.node_exits);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllRayCasters, RecordTest,
+                         ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda,
+                                           RayCastMethod::kRayMarching),
+                         [](const auto& info) { return ToString(info.param); });
+
+TEST(KernelRecord, AddressIsBasePlusIndexTimesElementSize) {
+  OccupancyGrid grid(20, 10, 0.5);  // all free: the ray runs to the border
+  for (RayCastMethod m : {RayCastMethod::kDda, RayCastMethod::kRayMarching}) {
+    const RayCastScene scene(grid, m);
+    RayBatch batch;
+    batch.max_range_m = 100;
+    batch.queries.push_back({5.25, 2.25, 0.0});  // cell (10, 4), heading +x
+    std::vector<RayHit> hits;
+    KernelRecord record;
+    CastRayBatchRecorded(scene, batch, hits, record);
+    const MemoryRegion& r = record.regions[0];
+    EXPECT_EQ(record.fetch_addresses[0], r.base + grid.Index(10, 4) * r.element_bytes);
+    EXPECT_EQ(record.node_exits.back(), kRayEndReturn);  // left the map
+    if (m == RayCastMethod::kRayMarching) {
+      // The distance field is placed after the grid: distinct bases.
+      EXPECT_GE(r.base, DeviceLayout{}.first_base + grid.cell_count());
+    } else {
+      EXPECT_EQ(r.base, DeviceLayout{}.first_base);
+      EXPECT_EQ(record.nodes(0), 10u);  // cells 10..19
+    }
+  }
+}
+
+TEST(KernelRecord, ValidateCatchesInconsistentRecords) {
+  const auto program = ShippedStepProgram(StepProgramKind::kDdaStep);
+  KernelRecordBuilder builder(program, StepProgramKind::kDdaStep, test::ByteRegion(4096, 64));
+  builder.AddQuery({4096, 4097}, {kNoExit, 1});
+  KernelRecord ok = builder.Build();
+  KernelRecord bad_exit = ok;
+  bad_exit.node_exits[1] = 2;  // the dda loop has RETURN_IF #0 and #1 only
+  EXPECT_THROW(bad_exit.Validate(), std::logic_error);
+  KernelRecord bad_address = ok;
+  bad_address.fetch_addresses[0] = 4096 + 64;
+  EXPECT_THROW(bad_address.Validate(), std::logic_error);
+  KernelRecord bad_offsets = ok;
+  bad_offsets.fetch_offsets.back() = 1;
+  EXPECT_THROW(bad_offsets.Validate(), std::logic_error);
+}
+
+TEST(RoboCoreApi, ExecuteRecordsTheConfiguredProgramAndChecksTheDecode) {
+  const OccupancyGrid grid = test::RoomGrid(40, 40, 0.1, 0.05, 3);
+  const RayCastScene scene(grid, RayCastMethod::kMarch);
+  const RayBatch batch = test::FanBatch(grid, 4, 8, 3.0, 4);
+  RoboCoreContext robocore;
+  robocore.ConfigRoboCore(ShippedStepProgram(StepProgramKind::kGridMarch), nullptr);
+  robocore.ConfigDecode({{FetchKind::kGridCell, 1}});
+  std::vector<RayHit> hits, reference;
+  KernelRecord record;
+  robocore.ExecuteRoboCore(batch, scene, hits, record);
+  CastRayBatch(scene, batch, reference);
+  for (std::size_t i = 0; i < hits.size(); ++i) EXPECT_EQ(hits[i].range_m, reference[i].range_m);
+  EXPECT_EQ(record.leaf, nullptr);
+  EXPECT_EQ(record.program->name(), "grid_march");
+
+  robocore.ConfigDecode({{FetchKind::kGridCell, 8}});  // the artifact's doubles
+  EXPECT_THROW(robocore.ExecuteRoboCore(batch, scene, hits, record), std::invalid_argument);
+  robocore.ConfigDecode({{FetchKind::kDistanceCell, 4}});
+  EXPECT_THROW(robocore.ExecuteRoboCore(batch, scene, hits, record), std::invalid_argument);
+  // A ray program needs the hit and end exits (RETURN_IF #0 and #1).
+  EXPECT_THROW(robocore.ConfigRoboCore(test::Program("loop:\n LOAD a, b\n RETURN_IF a\n")),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rc
