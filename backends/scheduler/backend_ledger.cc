@@ -41,6 +41,17 @@ std::size_t BackendLedger::IndexOf(const std::string& name) const {
   return static_cast<std::size_t>(it - names_.begin());
 }
 
+void BackendLedger::PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch) {
+  if (threshold_known_) return;
+  const CrossoverResult crossing =
+      DeriveCrossoverThreshold(*backends_[IndexOf(options_.policy.high_backend)],
+                               *backends_[IndexOf(options_.policy.low_backend)], template_record, queries_per_batch);
+  options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
+  threshold_has_crossing_ = crossing.has_crossing;
+  threshold_known_ = true;
+  online_ = MakeOnline(options_.policy);
+}
+
 const std::string& BackendLedger::BeginIteration() {
   pending_backend_ = online_.Choose(last_nodes_per_query_);
   return pending_backend_;

@@ -58,6 +58,11 @@ class BackendLedger {
   BackendLedger(const BackendParameters& params, LedgerOptions options);
   const std::vector<std::string>& backend_names() const { return names_; }
   std::size_t IndexOf(const std::string& name) const;
+  // Derives the adaptive threshold before the first iteration from a record
+  // with the workload's program and memory layout (its fetches do not
+  // matter) and the workload's batch size. Without this call, the threshold
+  // is derived at the first priced iteration instead.
+  void PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch);
   // The backend for the coming iteration, from the previous iteration's
   // counter.
   const std::string& BeginIteration();

@@ -1,6 +1,7 @@
 #include "backends/scheduler/backend_scheduler.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -46,8 +47,13 @@ OnlineScheduler::OnlineScheduler(SchedulerOptions options) : options_(std::move(
     throw std::invalid_argument("hysteresis must be >= 0 nodes per query");
   // Before anything was measured the adaptive policy starts on the
   // traversal unit: the first iterations of a global localization cast the
-  // longest rays (the paper's narrative).
-  current_ = options_.kind == SchedulerKind::kStatic ? options_.static_backend : options_.high_backend;
+  // longest rays (the paper's narrative). If the cost models have no
+  // crossover because the CUDA cores win at every length (threshold +inf),
+  // it starts, and stays, on them.
+  if (options_.kind == SchedulerKind::kStatic)
+    current_ = options_.static_backend;
+  else
+    current_ = std::isinf(options_.threshold_nodes_per_query) ? options_.low_backend : options_.high_backend;
 }
 
 const std::string& OnlineScheduler::Choose(double previous_nodes_per_query) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "robocore/ray_batch_recorded.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
 #include "workloads/delibot/scan_consistency.h"
 
@@ -116,7 +117,25 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
   mcl_options.record_kernel = price;
   MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
   std::unique_ptr<BackendLedger> ledger;
-  if (price) ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
+  if (price) {
+    ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
+    // The threshold depends on the kernel's program, its memory layout and
+    // the batch size (launch overhead is amortized over the batch), all
+    // known before the first update: record one ray for the layout.
+    const RayCastScene scene(grid, settings.ray_caster);
+    RayBatch one;
+    one.max_range_m = settings.beam.max_range_m;
+    const std::vector<std::uint32_t> free_cells = grid.FreeCellIndices();
+    if (!free_cells.empty()) {
+      const double r = grid.resolution_m();
+      one.queries.push_back({(free_cells[0] / grid.size_y() + 0.5) * r, (free_cells[0] % grid.size_y() + 0.5) * r, 0.0});
+      std::vector<RayHit> hits;
+      KernelRecord layout;
+      CastRayBatchRecorded(scene, one, hits, layout);
+      ledger->PrepareThreshold(layout, static_cast<std::size_t>(settings.mcl.particle_count) *
+                                           settings.mcl.beams.Count(trace.geometry.beam_count));
+    }
+  }
   if (settings.initial_pose)
     mcl.InitializeAround(*settings.initial_pose, settings.initial_sigma_xy_m, settings.initial_sigma_theta_rad);
   else
