@@ -98,10 +98,11 @@ double GpuParams::DramBytesPerCoreCycle() const {
 bool GpuParams::IsValid(std::string* error) const {
   if (sms < 1 || max_warps_per_sm < 1 || warp_size < 1 || warps_per_block < 1)
     return Fail(error, "gpu: sms, max_warps_per_sm, warp_size and warps_per_block must be >= 1");
-  if (warp_size > 64) return Fail(error, "gpu.warp_size: at most 64 lanes are modelled");
   if (!(core_clock_hz > 0 && dram_clock_hz > 0)) return Fail(error, "gpu: clocks must be > 0 Hz");
-  if (sector_bytes < 1 || line_bytes % sector_bytes != 0 || line_bytes / sector_bytes > 8)
-    return Fail(error, "gpu: line_bytes must be 1 to 8 sectors of sector_bytes");
+  auto power_of_two = [](int v) { return v > 0 && (v & (v - 1)) == 0; };
+  if (!power_of_two(sector_bytes) || !power_of_two(line_bytes) || line_bytes < sector_bytes ||
+      line_bytes / sector_bytes > 8)
+    return Fail(error, "gpu: sector_bytes and line_bytes must be powers of two, a line 1 to 8 sectors");
   if (l1_bytes < line_bytes || l1_bytes % line_bytes != 0)
     return Fail(error, "gpu.l1_bytes must be a positive multiple of line_bytes");
   if (l2_ways < 1 || l2_bytes % (line_bytes * l2_ways) != 0)
@@ -143,7 +144,7 @@ int SimtParams::ResidentWarps(const GpuParams& gpu) const {
 
 bool SimtParams::IsValid(std::string* error) const {
   if (schedulers_per_sm < 1 || issue_per_scheduler_per_cycle < 1 || l1_sectors_per_cycle < 1 ||
-      registers_per_thread < 1)
+      registers_per_thread < 1 || alu_initiation_cycles < 1)
     return Fail(error, "simt: schedulers, issue rate, L1 sectors per cycle, registers must be >= 1");
   if (dependent_instruction_latency_cycles < 0 || loop_branch_instructions < 0 ||
       instructions_per_load < 1)

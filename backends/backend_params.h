@@ -25,6 +25,7 @@ namespace rc {
 struct SimtParams {
   int schedulers_per_sm = 4;                 // count; artifact -gpgpu_num_sched_per_core
   int issue_per_scheduler_per_cycle = 1;     // warp instructions; artifact -gpgpu_max_insn_issue_per_warp
+  int alu_initiation_cycles = 2;             // core cycles per warp instruction on a scheduler's ALU; artifact -ptx_opcode_initiation_fp/_int
   int dependent_instruction_latency_cycles = 4;  // core cycles; artifact -ptx_opcode_latency_fp (ADD)
   int l1_sectors_per_cycle = 4;              // sectors per SM; assumption: one per L1 bank (artifact -gpgpu_l1_banks 4)
   int registers_per_thread = 32;             // registers; assumption: a small traversal kernel
@@ -46,6 +47,7 @@ struct SimtParams {
   static void Fields(Self& s, Visitor& v) {
     v("schedulers_per_sm", s.schedulers_per_sm, "count", "artifact: -gpgpu_num_sched_per_core");
     v("issue_per_scheduler_per_cycle", s.issue_per_scheduler_per_cycle, "warp instructions", "artifact: -gpgpu_max_insn_issue_per_warp");
+    v("alu_initiation_cycles", s.alu_initiation_cycles, "core cycles", "artifact: -ptx_opcode_initiation_fp and _int (ADD, MUL, MAD: 2)");
     v("dependent_instruction_latency_cycles", s.dependent_instruction_latency_cycles, "core cycles", "artifact: -ptx_opcode_latency_fp (ADD)");
     v("l1_sectors_per_cycle", s.l1_sectors_per_cycle, "sectors per SM", "assumption: one per L1 bank (artifact -gpgpu_l1_banks 4)");
     v("registers_per_thread", s.registers_per_thread, "registers", "assumption: a small traversal kernel");

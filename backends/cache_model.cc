@@ -3,10 +3,20 @@
 #include <stdexcept>
 
 namespace rc {
+namespace {
+
+int Log2(int power_of_two) {
+  int shift = 0;
+  while ((1 << shift) < power_of_two) ++shift;
+  if ((1 << shift) != power_of_two) throw std::invalid_argument("cache sizes must be powers of two");
+  return shift;
+}
+
+}  // namespace
 
 // One cache level: "cold" (the footprint fits: a valid bit per sector) or
-// "lru" (sets x ways of lines with a sector mask, least recently used
-// evicted; a single set is kept as an O(1) doubly linked list).
+// "lru" (sets x ways of lines with a sector mask, the least recently used
+// line evicted; a single set, the fully associative L1, by timestamps).
 class CacheHierarchy::Level {
  public:
   Level(std::uint64_t footprint_lines, int sectors_per_line, std::uint64_t capacity_lines,
@@ -19,8 +29,7 @@ class CacheHierarchy::Level {
       mode_ = Mode::kFullyAssociative;
       capacity_ = capacity_lines;
       mask_.assign(footprint_lines, 0);
-      prev_.assign(footprint_lines, -1);
-      next_.assign(footprint_lines, -1);
+      last_.assign(footprint_lines, 0);
     } else {
       mode_ = Mode::kSetAssociative;
       ways_ = ways;
@@ -33,6 +42,58 @@ class CacheHierarchy::Level {
 
   bool cold() const { return mode_ == Mode::kCold; }
 
+  // A whole stream at once (the replay's L1 phase): level[i] = 0 on a hit,
+  // 1 on a miss, and misses lists the missing indices. Same results as
+  // calling Access in order; the fully associative case keeps its state in
+  // registers for the loop.
+  void AccessStream(const std::uint32_t* sectors, std::size_t n, int per_line_shift,
+                    std::uint8_t* level, std::vector<std::uint32_t>& misses) {
+    const std::uint32_t sector_mask = (1u << per_line_shift) - 1;
+    if (mode_ != Mode::kFullyAssociative) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool hit = Access(sectors[i] >> per_line_shift, static_cast<int>(sectors[i] & sector_mask));
+        level[i] = hit ? 0 : 1;
+        if (!hit) misses.push_back(static_cast<std::uint32_t>(i));
+      }
+      return;
+    }
+    if (history_.size() + n >= (std::uint64_t{1} << 32))
+      throw std::length_error("cache model: more than 2^32 accesses to one L1");
+    const std::size_t first = history_.size();
+    history_.resize(first + n);
+    std::uint32_t* history = history_.data();
+    std::uint8_t* mask = mask_.data();
+    std::uint32_t* last = last_.data();
+    std::uint32_t tail = tail_;
+    std::uint64_t resident = resident_;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t line = sectors[i] >> per_line_shift;
+      const auto bit = static_cast<std::uint8_t>(1u << (sectors[i] & sector_mask));
+      const auto now = static_cast<std::uint32_t>(first + i);
+      history[now] = line;
+      last[line] = now;
+      if (mask[line] != 0) {
+        const bool hit = mask[line] & bit;
+        mask[line] |= bit;
+        level[i] = hit ? 0 : 1;
+        if (!hit) misses.push_back(static_cast<std::uint32_t>(i));
+        continue;
+      }
+      if (resident == capacity_) {  // evict the least recently used line
+        while (mask[history[tail]] == 0 || last[history[tail]] != tail) ++tail;
+        mask[history[tail]] = 0;
+        ++tail;
+        --resident;
+      }
+      mask[line] = bit;
+      ++resident;
+      level[i] = 1;
+      misses.push_back(static_cast<std::uint32_t>(i));
+    }
+    tail_ = tail;
+    resident_ = resident;
+  }
+
   // True on a hit; on a miss the sector is filled (its line allocated).
   bool Access(std::uint64_t line, int sector) {
     switch (mode_) {
@@ -44,7 +105,7 @@ class CacheHierarchy::Level {
         word |= m;
         return hit;
       }
-      case Mode::kFullyAssociative: return AccessList(static_cast<std::int64_t>(line), sector);
+      case Mode::kFullyAssociative: return AccessList(static_cast<std::uint32_t>(line), sector);
       case Mode::kSetAssociative: return AccessSet(static_cast<std::int64_t>(line), sector);
     }
     return false;
@@ -53,41 +114,32 @@ class CacheHierarchy::Level {
  private:
   enum class Mode { kCold, kFullyAssociative, kSetAssociative };
 
-  bool AccessList(std::int64_t line, int sector) {
+  // Fully associative LRU by timestamps: a line is resident while its mask
+  // is non-zero; history_ names the line of every access in order, so the
+  // least recently used resident line is the first history entry that is
+  // still its line's last access. Each entry is passed over at most once, so
+  // an access costs O(1) amortized and touches two per-line words, instead
+  // of relinking a list.
+  bool AccessList(std::uint32_t line, int sector) {
     const std::uint8_t bit = static_cast<std::uint8_t>(1u << sector);
-    if (mask_[line] != 0) {  // resident: move to the front
+    const std::uint32_t now = static_cast<std::uint32_t>(history_.size());
+    history_.push_back(line);
+    if (mask_[line] != 0) {
       const bool hit = mask_[line] & bit;
       mask_[line] |= bit;
-      if (head_ != line) {
-        Unlink(line);
-        PushFront(line);
-      }
+      last_[line] = now;
       return hit;
     }
     if (resident_ == capacity_) {  // evict the least recently used line
-      const std::int64_t victim = tail_;
-      Unlink(victim);
-      mask_[victim] = 0;
+      while (mask_[history_[tail_]] == 0 || last_[history_[tail_]] != tail_) ++tail_;
+      mask_[history_[tail_]] = 0;
+      ++tail_;
       --resident_;
     }
     mask_[line] = bit;
-    PushFront(line);
+    last_[line] = now;
     ++resident_;
     return false;
-  }
-
-  void Unlink(std::int64_t line) {
-    const std::int64_t p = prev_[line], n = next_[line];
-    if (p >= 0) next_[p] = n; else head_ = n;
-    if (n >= 0) prev_[n] = p; else tail_ = p;
-  }
-
-  void PushFront(std::int64_t line) {
-    prev_[line] = -1;
-    next_[line] = head_;
-    if (head_ >= 0) prev_[head_] = line;
-    head_ = line;
-    if (tail_ < 0) tail_ = line;
   }
 
   bool AccessSet(std::int64_t line, int sector) {
@@ -116,9 +168,10 @@ class CacheHierarchy::Level {
   std::vector<std::uint64_t> valid_;
   // fully associative
   std::uint64_t capacity_ = 0, resident_ = 0;
-  std::int64_t head_ = -1, tail_ = -1;
+  std::uint32_t tail_ = 0;
   std::vector<std::uint8_t> mask_;
-  std::vector<std::int64_t> prev_, next_;
+  std::vector<std::uint32_t> last_;     // per line: time of its last access
+  std::vector<std::uint32_t> history_;  // per access: its line
   // set associative
   std::uint64_t ways_ = 0, sets_ = 0, clock_ = 0;
   std::vector<std::int64_t> tags_;
@@ -128,18 +181,21 @@ class CacheHierarchy::Level {
 
 CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_begin,
                                std::uint64_t footprint_end)
-    : begin_(footprint_begin), sector_bytes_(gpu.sector_bytes), line_bytes_(gpu.line_bytes) {
+    : begin_(footprint_begin), sector_shift_(Log2(gpu.sector_bytes)), line_shift_(Log2(gpu.line_bytes)) {
   if (footprint_end < footprint_begin) throw std::invalid_argument("CacheHierarchy: empty footprint");
+  if (((footprint_end - footprint_begin) >> sector_shift_) >= (std::uint64_t{1} << 31))
+    throw std::invalid_argument("CacheHierarchy: footprint beyond 2^31 sectors");
   // Lines are numbered from the footprint's first line, so every structure
   // is sized by the footprint, not by the address space.
-  begin_ = footprint_begin / line_bytes_ * line_bytes_;
-  const std::uint64_t lines = (footprint_end - begin_ + line_bytes_ - 1) / line_bytes_;
-  const int sectors_per_line = line_bytes_ / sector_bytes_;
+  begin_ = footprint_begin >> line_shift_ << line_shift_;
+  const std::uint64_t line_bytes = std::uint64_t{1} << line_shift_;
+  const std::uint64_t lines = (footprint_end - begin_ + line_bytes - 1) >> line_shift_;
+  const int sectors_per_line = 1 << (line_shift_ - sector_shift_);
   for (int s = 0; s < gpu.sms; ++s)
     l1_.push_back(std::make_unique<Level>(lines, sectors_per_line,
-                                          static_cast<std::uint64_t>(gpu.l1_bytes / line_bytes_), 0));
+                                          static_cast<std::uint64_t>(gpu.l1_bytes) >> line_shift_, 0));
   l2_ = std::make_unique<Level>(lines, sectors_per_line,
-                                static_cast<std::uint64_t>(gpu.l2_bytes / line_bytes_), gpu.l2_ways);
+                                static_cast<std::uint64_t>(gpu.l2_bytes) >> line_shift_, gpu.l2_ways);
   const char* kFits = "cold (footprint fits: compulsory misses only)";
   l1_model_ = l1_.front()->cold() ? kFits : "lru (fully associative)";
   l2_model_ = l2_->cold() ? kFits : "lru (set associative)";
@@ -150,10 +206,20 @@ CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_beg
 
 CacheHierarchy::~CacheHierarchy() = default;
 
+void CacheHierarchy::AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* level,
+                              std::vector<std::uint32_t>& misses) {
+  l1_[sm]->AccessStream(sectors, n, line_shift_ - sector_shift_, level, misses);
+}
+
+bool CacheHierarchy::AccessL2(std::uint32_t sector) {
+  const int per_line_shift = line_shift_ - sector_shift_;
+  return l2_->Access(sector >> per_line_shift, static_cast<int>(sector & ((1u << per_line_shift) - 1)));
+}
+
 MemoryLevel CacheHierarchy::Access(int sm, std::uint64_t address) {
   const std::uint64_t offset = address - begin_;
-  const std::uint64_t line = offset / line_bytes_;
-  const int sector = static_cast<int>(offset % line_bytes_) / sector_bytes_;
+  const std::uint64_t line = offset >> line_shift_;
+  const int sector = static_cast<int>((offset >> sector_shift_) & ((1u << (line_shift_ - sector_shift_)) - 1));
   if (l1_[sm]->Access(line, sector)) return MemoryLevel::kL1;
   if (l2_->Access(line, sector)) return MemoryLevel::kL2;
   return MemoryLevel::kDram;

@@ -47,6 +47,19 @@ class CacheHierarchy {
 
   // One 32-byte sector request from SM `sm`: where it was served from.
   MemoryLevel Access(int sm, std::uint64_t address);
+
+  // The same in two phases, for a replay that runs each SM's L1 on its own
+  // (in parallel) and then the shared L2 on the L1 misses in a fixed order.
+  // Sectors are numbered from the footprint's first line.
+  std::uint32_t SectorNumber(std::uint64_t address) const {
+    return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
+  }
+  // For each of n sectors in order: level[i] = 0 if SM `sm`'s L1 held it,
+  // else 1 (a miss fills it), and the missing indices are appended to
+  // `misses`. Each SM's L1 may be driven from its own thread.
+  void AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* level,
+                std::vector<std::uint32_t>& misses);
+  bool AccessL2(std::uint32_t sector);
   // Core cycles from request to data: L1 hit; L1 miss + L2 hit; + DRAM.
   int LatencyCycles(MemoryLevel level) const { return latency_[static_cast<int>(level)]; }
 
@@ -56,8 +69,8 @@ class CacheHierarchy {
  private:
   class Level;
   std::uint64_t begin_;
-  int sector_bytes_;
-  int line_bytes_;
+  int sector_shift_;  // log2(sector_bytes): sizes are powers of two (GpuParams::IsValid)
+  int line_shift_;
   int latency_[3];
   std::vector<std::unique_ptr<Level>> l1_;  // one per SM
   std::unique_ptr<Level> l2_;

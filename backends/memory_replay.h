@@ -64,20 +64,34 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu);
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
                            const AccessPattern& pattern);
 
+// Per query, how many of its loop passes ended at each exit: pairs of
+// (variant, passes) in CSR form, variant 0 = no exit, 1 + j = RETURN_IF j.
+// A ray has at most two variants (every pass but the last has none), so a
+// backend prices a query's passes in O(1) instead of O(nodes).
+struct ExitProfile {
+  std::vector<std::uint32_t> offsets{0};  // per query + 1
+  std::vector<std::uint8_t> variant;
+  std::vector<std::uint32_t> passes;
+};
+ExitProfile ProfileExits(const KernelRecord& record);
+
 // Shared work of several backends pricing one record: the memory replay
 // depends only on the GPU's memory system and the access pattern, so TTA+,
-// TTA+-p, TTA+-cr and RoboCore (same pattern) replay it once. Thread-safe.
-// The record must outlive the context and stay unchanged.
+// TTA+-p, TTA+-cr and RoboCore (same pattern) replay it once; the exit
+// profile depends on the record alone. Thread-safe. The record must outlive
+// the context and stay unchanged.
 class PricingContext {
  public:
   explicit PricingContext(const KernelRecord& record) : record_(record) {}
   const KernelRecord& record() const { return record_; }
   std::shared_ptr<const MemoryProfile> Memory(const GpuParams& gpu, const AccessPattern& pattern);
+  std::shared_ptr<const ExitProfile> Exits();
 
  private:
   const KernelRecord& record_;
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<const MemoryProfile>> profiles_;
+  std::shared_ptr<const ExitProfile> exits_;
 };
 
 }  // namespace rc

@@ -68,26 +68,30 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
   const std::size_t warps = WarpCount(record, gpu);
   const std::uint64_t intake_per_cycle =
       static_cast<std::uint64_t>(unit.intersection_unit_sets) * unit.threads_accepted_per_cycle_per_set;
+  std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
+  for (std::size_t w = 0; w < warps; ++w) sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
   std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
-  for (std::size_t w = 0; w < warps; ++w) {
-    const int sm = SmOfWarp(w, gpu);
+  const auto exits = context.Exits();
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int sm = 0; sm < gpu.sms; ++sm) {
     std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
-    const std::size_t lo = w * gpu.warp_size, hi = std::min(n, lo + gpu.warp_size);
-    std::uint64_t slowest = 0;
-    for (std::size_t q = lo; q < hi; ++q) {
-      std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
-      for (std::uint64_t f = record.fetch_offsets[q]; f < record.fetch_offsets[q + 1]; ++f) {
-        const std::uint8_t e = record.node_exits[f];
-        const int v = e == kNoExit ? 0 : 1 + e;
-        cycles += pass_cycles[v];
-        ++passes[v];
+    for (std::uint32_t w : sm_warps[sm]) {
+      const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+      const std::size_t hi = std::min(n, lo + gpu.warp_size);
+      std::uint64_t slowest = 0;
+      for (std::size_t q = lo; q < hi; ++q) {
+        std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
+        for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
+          cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
+          passes[exits->variant[i]] += exits->passes[i];
+        }
+        slowest = std::max(slowest, cycles);
       }
-      slowest = std::max(slowest, cycles);
+      sm_threads[sm] += hi - lo;
+      sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
     }
-    sm_threads[sm] += hi - lo;
-    sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
   }
 
   BatchCost cost;

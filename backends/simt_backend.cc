@@ -112,7 +112,14 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
         bound = what;
       }
     };
-    consider(CeilDiv(sm_instructions[sm], issue_rate), "issue");
+    // Every instruction takes an issue slot; the ALU of each scheduler takes
+    // a new warp instruction every alu_initiation_cycles. Loads and branches
+    // use other units, but they are a minority of these loop bodies, so all
+    // instructions are charged to the ALU (slightly pessimistic).
+    consider(std::max(CeilDiv(sm_instructions[sm], issue_rate),
+                      CeilDiv(sm_instructions[sm] * static_cast<std::uint64_t>(simt_.alu_initiation_cycles),
+                              static_cast<std::uint64_t>(simt_.schedulers_per_sm))),
+             "issue");
     consider(CeilDiv(memory->sm_sector_requests[sm], static_cast<std::uint64_t>(simt_.l1_sectors_per_cycle)),
              "L1 bandwidth");
     if (cycles >= busiest) {

@@ -19,7 +19,9 @@
 // warps); the step waits for its slowest sector.
 //
 // Time, per SM (first-order latency hiding): the largest of
-//   issue     warp instructions / (4 schedulers x 1 per cycle)
+//   issue     warp instructions / (4 schedulers x 1 per cycle), and x 2
+//             cycles each on the schedulers' ALUs (artifact initiation
+//             interval of FP/INT add, mul, mad)
 //   L1        sector requests / l1_sectors_per_cycle
 //   latency   list-schedule makespan of the warps' latencies over the
 //             resident slots; a warp's latency = its instructions x the

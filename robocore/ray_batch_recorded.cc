@@ -1,9 +1,6 @@
 #include "robocore/ray_batch_recorded.h"
 
-#include <omp.h>
-
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 #include "robocore/shipped_programs.h"
@@ -15,10 +12,11 @@ std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
 
-// Appends the device address of every fetch and remembers the last index,
-// so the caller can tell whether the last node stopped the ray.
+// Writes the device address of every fetch into the query's slot and
+// remembers the last index, so the caller can tell whether the last node
+// stopped the ray.
 struct RecordingVisitor {
-  std::vector<std::uint64_t>* addresses;
+  std::uint64_t* next = nullptr;
   std::uint64_t base[2];
   std::uint32_t element_bytes[2];
   std::uint32_t last_index = 0;
@@ -26,7 +24,7 @@ struct RecordingVisitor {
 
   void Fetch(FetchKind kind, std::uint32_t index) {
     const int k = static_cast<int>(kind);
-    addresses->push_back(base[k] + std::uint64_t{index} * element_bytes[k]);
+    *next++ = base[k] + std::uint64_t{index} * element_bytes[k];
     last_index = index;
     last_kind = kind;
   }
@@ -60,9 +58,6 @@ std::vector<MemoryRegion> RayCastRegions(const RayCastScene& scene, const Device
 void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
                           std::vector<RayHit>& hits, KernelRecord& record,
                           const RecordOptions& options) {
-  const long n = static_cast<long>(batch.queries.size());
-  hits.resize(batch.queries.size());
-  record = KernelRecord{};
   record.step_kind = StepProgramFor(scene.method());
   record.program = options.program ? options.program : ShippedStepProgram(record.step_kind);
   if (record.program->ReturnIfCount(ProgramSection::kLoop) <= kRayEndReturn)
@@ -73,51 +68,37 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
   record.regions = RayCastRegions(scene, options.layout);
   record.node_bytes = record.regions.front().element_bytes;
 
+  // Pass 1, the functional kernel itself: the hits, and each query's node
+  // count, which sizes its slot. A prefix sum places the slots.
+  CastRayBatch(scene, batch, hits);
+  const long n = static_cast<long>(batch.queries.size());
+  record.fetch_offsets.assign(batch.queries.size() + 1, 0);
+  for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
+  // resize keeps the capacity of a record reused across batches.
+  record.fetch_addresses.resize(record.fetch_offsets.back());
+  record.node_exits.resize(record.fetch_offsets.back());
+
+  // Pass 2: every query writes its fetches into its own slot, so the record
+  // does not depend on the thread count or the schedule.
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
     prototype.base[static_cast<int>(r.kind)] = r.base;
     prototype.element_bytes[static_cast<int>(r.kind)] = r.element_bytes;
   }
-
-  // One contiguous chunk of queries per thread, each thread appending its
-  // queries' fetches in query order; per-query counts are the slots.
-  const int max_threads = std::max(1, omp_get_max_threads());
-  std::vector<std::vector<std::uint64_t>> addresses(max_threads);
-  std::vector<std::vector<std::uint8_t>> exits(max_threads);
-  std::vector<long> chunk_begin(max_threads + 1, n);
-  std::vector<std::uint64_t> counts(batch.queries.size());
-#pragma omp parallel num_threads(max_threads)
-  {
-    const int t = omp_get_thread_num();
-    const int threads = omp_get_num_threads();
-    const long lo = n * t / threads, hi = n * (t + 1) / threads;
-    chunk_begin[t] = lo;
+  bool mismatch = false;
+#pragma omp parallel for schedule(dynamic, 256) reduction(|| : mismatch)
+  for (long i = 0; i < n; ++i) {
+    const RayQuery& q = batch.queries[i];
     RecordingVisitor visitor = prototype;
-    visitor.addresses = &addresses[t];
-    for (long i = lo; i < hi; ++i) {
-      const RayQuery& q = batch.queries[i];
-      const std::size_t before = addresses[t].size();
-      hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, visitor);
-      counts[i] = addresses[t].size() - before;
-      if (counts[i] > 0) {
-        exits[t].insert(exits[t].end(), counts[i] - 1, kNoExit);
-        exits[t].push_back(LastPassExit(scene, visitor));
-      }
-    }
+    visitor.next = record.fetch_addresses.data() + record.fetch_offsets[i];
+    CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, visitor);
+    const std::uint64_t begin = record.fetch_offsets[i], end = record.fetch_offsets[i + 1];
+    mismatch = mismatch || visitor.next != record.fetch_addresses.data() + end;
+    if (end == begin) continue;
+    std::fill(record.node_exits.begin() + begin, record.node_exits.begin() + end - 1, kNoExit);
+    record.node_exits[end - 1] = LastPassExit(scene, visitor);
   }
-
-  record.fetch_offsets.assign(batch.queries.size() + 1, 0);
-  for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + counts[i];
-  record.fetch_addresses.resize(record.fetch_offsets.back());
-  record.node_exits.resize(record.fetch_offsets.back());
-#pragma omp parallel for schedule(static, 1) num_threads(max_threads)
-  for (int t = 0; t < max_threads; ++t) {
-    if (addresses[t].empty()) continue;
-    const std::uint64_t at = record.fetch_offsets[chunk_begin[t]];
-    std::memcpy(record.fetch_addresses.data() + at, addresses[t].data(),
-                addresses[t].size() * sizeof(std::uint64_t));
-    std::memcpy(record.node_exits.data() + at, exits[t].data(), exits[t].size());
-  }
+  if (mismatch) throw std::logic_error("CastRayBatchRecorded: the kernel fetched differently twice");
 }
 
 }  // namespace rc

@@ -2,11 +2,13 @@
 // CastRayBatch with a recording visitor: the same hits, plus the kernel
 // record every backend prices (robocore/kernel_record.h).
 //
-// Parallel over queries with OpenMP and deterministic: every query writes
-// its fetches into its own slot, the slots' sizes are prefix-summed into
-// the CSR offsets, and the slots are copied into place, so the record does
-// not depend on the thread count. The cost over CastRayBatch is one 9-byte
-// store per node fetch.
+// Two passes, parallel over queries with OpenMP and deterministic: the
+// functional kernel (CastRayBatch, which also gives each query's node
+// count), a prefix sum of the counts into per-query slots (the CSR
+// offsets), then the kernel again with a visitor that writes each query's
+// fetches into its own slot. The record does not depend on the thread
+// count. Cost: about twice CastRayBatch plus one 9-byte store per fetch;
+// a record reused across batches keeps its capacity.
 #include <vector>
 
 #include "robocore/kernel_record.h"

@@ -1,9 +1,13 @@
 // The cache hierarchy: the footprint picks the detail (cold vs LRU), LRU
 // order in the fully associative L1 and the set-associative L2, sector
 // granularity, and latencies.
+#include <algorithm>
+#include <list>
+
 #include <gtest/gtest.h>
 
 #include "backends/cache_model.h"
+#include "common/random_stream.h"
 
 namespace rc {
 namespace {
@@ -66,6 +70,53 @@ TEST(CacheHierarchy, SetAssociativeL2EvictsWithinASet) {
   EXPECT_EQ(c.Access(0, line(4)), MemoryLevel::kDram);  // set 0 full: evicts line 2
   EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL2);
   EXPECT_EQ(c.Access(0, line(2)), MemoryLevel::kDram);
+}
+
+// Property: the L1 (timestamp LRU, one- or two-phase API) agrees with a
+// plain list LRU of lines with sector masks on random streams with reuse.
+TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
+  GpuParams gpu;
+  gpu.l1_bytes = 16 * gpu.line_bytes;
+  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
+  RandomStream s(17, StreamPurpose::kTest, 0, 0);
+  std::vector<std::uint32_t> stream;
+  for (int i = 0; i < 20000; ++i) {
+    // Mostly near recent lines, sometimes anywhere: hits and evictions.
+    const int line = s.Uniform() < 0.8 ? static_cast<int>(s.Uniform() * 20) : static_cast<int>(s.Uniform() * lines);
+    stream.push_back(static_cast<std::uint32_t>(line * sectors_per_line + static_cast<int>(s.Uniform() * sectors_per_line)));
+  }
+  std::list<std::pair<int, unsigned>> lru;  // (line, sector mask), most recent first
+  std::vector<std::uint8_t> expected;
+  for (std::uint32_t sector : stream) {
+    const int line = static_cast<int>(sector) / sectors_per_line;
+    const unsigned bit = 1u << (sector % sectors_per_line);
+    auto it = std::find_if(lru.begin(), lru.end(), [&](const auto& e) { return e.first == line; });
+    bool hit = false;
+    unsigned mask = bit;
+    if (it != lru.end()) {
+      hit = it->second & bit;
+      mask |= it->second;
+      lru.erase(it);
+    } else if (static_cast<int>(lru.size()) == 16) {
+      lru.pop_back();
+    }
+    lru.emplace_front(line, mask);
+    expected.push_back(hit);
+  }
+  CacheHierarchy batch(gpu, kBase, kBase + lines * 128);
+  std::vector<std::uint8_t> level(stream.size());
+  std::vector<std::uint32_t> misses;
+  batch.AccessL1(0, stream.data(), stream.size(), level.data(), misses);
+  std::vector<std::uint8_t> got(stream.size());
+  for (std::size_t i = 0; i < level.size(); ++i) got[i] = level[i] == 0;
+  EXPECT_EQ(got, expected);
+  EXPECT_EQ(misses.size(), static_cast<std::size_t>(std::count(expected.begin(), expected.end(), 0)));
+  CacheHierarchy single(gpu, kBase, kBase + lines * 128);
+  int mismatches = 0;
+  for (std::size_t i = 0; i < stream.size(); ++i)
+    mismatches += (single.Access(0, kBase + std::uint64_t{stream[i]} * 32) == MemoryLevel::kL1) != (expected[i] != 0);
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(std::count(expected.begin(), expected.end(), 0), 1000);  // evictions happened
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 //   the SACT test exiting at axis k on RoboCore and TTA+-cr;
 //   predication vs conditional return vs none over a batch;
 //   the SACT latency and warp-buffer sweeps.
+#include <omp.h>
+
 #include <gtest/gtest.h>
 
 #include "backends/backend.h"
@@ -176,6 +178,47 @@ TEST(Pricing, ASharedContextGivesTheSameCosts) {
     EXPECT_EQ(shared[i].cycles, alone.cycles) << alone.backend;
     EXPECT_EQ(shared[i].energy_joules, alone.energy_joules) << alone.backend;
   }
+}
+
+// Nodes wider than a sector (the octree's will be 432 bytes): each fetch
+// requests every sector it spans, and waits for the slowest.
+TEST(Pricing, WideNodesRequestEverySectorTheySpan) {
+  MemoryRegion region = test::ByteRegion(kBase, 64);
+  region.element_bytes = 64;  // two 32-byte sectors per node
+  KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n  ADD.1 x, x, y\n"), StepProgramKind::kSactTest,
+                        region);
+  for (int lane = 0; lane < 32; ++lane) b.AddQuery({kBase + 64 * static_cast<std::uint64_t>(lane % 4)});
+  const KernelRecord r = b.Build();
+  const BatchCost rt = PriceOn("ttaplus-cr", r), simt = PriceOn("simt", r);
+  EXPECT_EQ(rt.memory.sector_requests, 64u);   // 32 fetches x 2 sectors
+  EXPECT_EQ(rt.memory.dram_accesses, 8u);      // 4 distinct nodes x 2 sectors
+  EXPECT_EQ(simt.memory.sector_requests, 8u);  // one warp step, 8 unique sectors
+  // The thread that first touches a node waits for DRAM once (its two
+  // sectors in parallel): intake 4 + ADD 3 + 227.
+  EXPECT_EQ(rt.cycles - rt.launch_cycles, 4u + 3u + kDramLatency);
+}
+
+TEST(Pricing, DoesNotDependOnTheThreadCount) {
+  const OccupancyGrid grid = test::RoomGrid(150, 120, 0.1, 0.03, 51);  // 17.6 KiB: L1 cold path
+  const RayCastScene scene(grid, RayCastMethod::kDda);
+  const RayBatch batch = test::FanBatch(grid, 40, 64, 8.0, 52);
+  std::vector<RayHit> hits;
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record);
+  BackendParameters small_l1;  // forces the LRU path
+  small_l1.gpu.l1_bytes = 4096;
+  const int threads = omp_get_max_threads();
+  for (const BackendParameters& params : {BackendParameters{}, small_l1})
+    for (const char* name : {"simt", "ttaplus-cr"}) {
+      omp_set_num_threads(1);
+      const BatchCost one = PriceOn(name, record, params);
+      omp_set_num_threads(3);
+      const BatchCost three = PriceOn(name, record, params);
+      EXPECT_EQ(one.cycles, three.cycles) << name;
+      EXPECT_EQ(one.memory.l1_hits, three.memory.l1_hits) << name;
+      EXPECT_EQ(one.memory.dram_accesses, three.memory.dram_accesses) << name;
+    }
+  omp_set_num_threads(threads);
 }
 
 }  // namespace
