@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "robocore/ray_batch_recorded.h"
+
 namespace rc {
 namespace {
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
@@ -61,7 +63,10 @@ void BeamSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, const 
       q.angle_rad = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
     }
   }
-  CastRayBatch(*scene_, batch, work.hits);
+  if (work.record_kernel)
+    CastRayBatchRecorded(*scene_, batch, work.hits, work.record);
+  else
+    CastRayBatch(*scene_, batch, work.hits);
   log_likelihoods.resize(particles.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {

@@ -1,5 +1,7 @@
 #include "workloads/delibot/delibot_report.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "common/atomic_file.h"
@@ -9,6 +11,12 @@ namespace rc {
 namespace {
 
 CsvCell MaybeNumber(bool present, double value) { return present ? CsvCell(value) : CsvCell::Empty(); }
+
+// "ttaplus-p" -> "ttaplus_p": column names stay identifiers.
+std::string ColumnSafe(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
 
 }  // namespace
 
@@ -21,7 +29,19 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
   }
+  const LedgerSummary& ledger = result.pricing;
+  if (result.priced) {
+    for (const char* c : {"backend", "nodes_per_ray_prev", "threshold", "switched"}) columns.push_back(c);
+    for (const auto& b : ledger.backends) columns.push_back("cycles_" + ColumnSafe(b));
+    for (const char* c : {"simt_efficiency", "energy_j", "cum_cycles_policy"}) columns.push_back(c);
+    for (const auto& b : ledger.backends) columns.push_back("cum_cycles_" + ColumnSafe(b));
+    columns.push_back("cum_cycles_oracle");
+    columns.push_back("oracle_backend");
+  }
   CsvTable table(path, columns);
+  std::vector<double> cumulative(ledger.backends.size(), 0.0);
+  double cumulative_policy = 0.0;
+  std::size_t row_index = 0;
   for (const DelibotRow& r : result.rows) {
     std::vector<CsvCell> cells = {r.iteration,
                                   r.time_s,
@@ -43,6 +63,33 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
       cells.emplace_back(r.err_xy_m);
       cells.emplace_back(r.err_theta_rad);
     }
+    if (result.priced) {
+      const LedgerIteration& p = r.pricing;
+      cells.emplace_back(p.backend);
+      cells.push_back(MaybeNumber(p.nodes_per_query_prev >= 0, p.nodes_per_query_prev));
+      cells.push_back(MaybeNumber(std::isfinite(p.threshold), p.threshold));
+      cells.emplace_back(static_cast<int>(p.switched));
+      for (std::size_t b = 0; b < ledger.backends.size(); ++b)
+        cells.emplace_back(p.priced ? static_cast<double>(p.costs[b].cycles) : 0.0);
+      double efficiency = 0.0;
+      bool has_efficiency = false;
+      for (const BatchCost& c : p.costs)
+        if (std::isfinite(c.simt_efficiency)) {
+          efficiency = c.simt_efficiency;
+          has_efficiency = true;
+        }
+      cells.push_back(MaybeNumber(has_efficiency, efficiency));
+      cells.emplace_back(p.chosen_energy_j);
+      cumulative_policy += p.chosen_cycles;
+      cells.emplace_back(cumulative_policy);
+      for (std::size_t b = 0; b < ledger.backends.size(); ++b) {
+        if (p.priced) cumulative[b] += static_cast<double>(p.costs[b].cycles);
+        cells.emplace_back(cumulative[b]);
+      }
+      cells.emplace_back(ledger.oracle_cumulative_cycles.at(row_index));
+      cells.emplace_back(ledger.oracle_choice.at(row_index));
+    }
+    ++row_index;
     table.AddRow(cells);
   }
   table.Commit();
@@ -107,7 +154,28 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
     accuracy["final_err_xy_m"] = m.final_err_xy_m;
     accuracy["final_err_theta_rad"] = m.final_err_theta_rad;
   }
-  return {{"workload", "delibot"}, {"config", config}, {"totals", totals}, {"accuracy", accuracy}};
+  json out = {{"workload", "delibot"}, {"config", config}, {"totals", totals}, {"accuracy", accuracy}};
+  if (result.priced) out["backends"] = LedgerSummaryJson(result.pricing, s.ledger.policy, result.pricing_wall_s, m.wall_s);
+  return out;
+}
+
+nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const SchedulerOptions& policy, double pricing_wall_s,
+                                 double kernel_wall_s) {
+  nlohmann::json statics = nlohmann::json::object();
+  for (std::size_t b = 0; b < l.backends.size(); ++b) statics[l.backends[b]] = l.static_total_cycles[b];
+  return {{"policy", ToString(policy)},
+          {"static_total_cycles", statics},
+          {"policy_total_cycles", l.policy_total_cycles},
+          {"oracle_total_cycles", l.oracle_total_cycles},
+          {"oracle_candidates", l.oracle_candidates},
+          {"best_static", l.best_static},
+          {"switches", l.switches},
+          {"switch_cost_cycles", l.switch_cost_cycles},
+          {"threshold_nodes_per_query", std::isfinite(l.threshold) ? nlohmann::json(l.threshold) : nlohmann::json(nullptr)},
+          {"threshold_has_crossing", l.threshold_has_crossing},
+          {"gap_to_oracle_percent", l.gap_to_oracle_percent},
+          {"pricing_host_s", pricing_wall_s},
+          {"filter_host_s", kernel_wall_s}};
 }
 
 void WriteJsonFile(const std::string& path, const nlohmann::json& json) {
@@ -143,6 +211,25 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     emit("final error             %.3f m, %.4f rad", m.final_err_xy_m, m.final_err_theta_rad);
   }
   if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");
+  if (!result.priced) return;
+  const LedgerSummary& l = result.pricing;
+  emit("modelled time (every update priced on every backend; %s policy):", ToString(s.ledger.policy).c_str());
+  const double clock_hz = s.backend_params.gpu.core_clock_hz;
+  for (std::size_t b = 0; b < l.backends.size(); ++b)
+    emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
+         l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
+  emit("  %-19s %14.0f cycles  %9.4f s  (%ld switches, %.0f cycles each)", ToString(s.ledger.policy).c_str(),
+       l.policy_total_cycles, l.policy_total_cycles / clock_hz, l.switches, l.switch_cost_cycles);
+  emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,
+       l.oracle_total_cycles / clock_hz, (l.oracle_candidates.size() == l.backends.size() ? "all backends" : "{" + l.oracle_candidates[0] + ", " + l.oracle_candidates[1] + "}").c_str());
+  if (s.ledger.policy.kind != SchedulerKind::kStatic)
+    emit("  threshold %.1f nodes per ray (%s), gap to oracle %.2f%%", l.threshold,
+         s.ledger.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"),
+         l.gap_to_oracle_percent);
+  else
+    emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
+  emit("pricing host time       %.3f s (%.2fx the filter's own)", result.pricing_wall_s,
+       m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
 }
 
 }  // namespace rc

@@ -20,11 +20,17 @@ struct DelibotProvenance {
 
 // Columns: iteration, time_s, est_x_m, est_y_m, est_theta_rad, ess, rays,
 // nodes, nodes_per_ray, wall_ms, sensor_updated, resampled, injected,
-// spread_m, mode_weight, consistency; with ground truth also err_xy_m, err_theta_rad.
+// spread_m, mode_weight, consistency; with ground truth also err_xy_m,
+// err_theta_rad; with backend pricing also backend, nodes_per_ray_prev,
+// threshold, switched, cycles_<backend> for every backend, simt_efficiency,
+// energy_j (the chosen backend's), cum_cycles_policy, cum_cycles_<backend>,
+// cum_cycles_oracle and oracle_backend.
 void WriteDelibotTimeline(const std::string& path, const DelibotResult& result);
 
 nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& settings,
                                   const DelibotProvenance& provenance);
+nlohmann::json LedgerSummaryJson(const LedgerSummary& ledger, const SchedulerOptions& policy, double pricing_wall_s,
+                                 double kernel_wall_s);
 void WriteJsonFile(const std::string& path, const nlohmann::json& json);
 
 void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const DelibotSettings& settings);

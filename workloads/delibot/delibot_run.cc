@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "robocore/ray_batch_recorded.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
 #include "workloads/delibot/scan_consistency.h"
 
@@ -111,7 +112,30 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) +
                                 " poses for " + std::to_string(trace.scans.size()) + " laser records");
 
-  MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), settings.mcl);
+  const bool price = settings.price_backends && settings.sensor_model == SensorModelKind::kBeam;
+  MclOptions mcl_options = settings.mcl;
+  mcl_options.record_kernel = price;
+  MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
+  std::unique_ptr<BackendLedger> ledger;
+  if (price) {
+    ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
+    // The threshold depends on the kernel's program, its memory layout and
+    // the batch size (launch overhead is amortized over the batch), all
+    // known before the first update: record one ray for the layout.
+    const RayCastScene scene(grid, settings.ray_caster);
+    RayBatch one;
+    one.max_range_m = settings.beam.max_range_m;
+    const std::vector<std::uint32_t> free_cells = grid.FreeCellIndices();
+    if (!free_cells.empty()) {
+      const double r = grid.resolution_m();
+      one.queries.push_back({(free_cells[0] / grid.size_y() + 0.5) * r, (free_cells[0] % grid.size_y() + 0.5) * r, 0.0});
+      std::vector<RayHit> hits;
+      KernelRecord layout;
+      CastRayBatchRecorded(scene, one, hits, layout);
+      ledger->PrepareThreshold(layout, static_cast<std::size_t>(settings.mcl.particle_count) *
+                                           settings.mcl.beams.Count(trace.geometry.beam_count));
+    }
+  }
   if (settings.initial_pose)
     mcl.InitializeAround(*settings.initial_pose, settings.initial_sigma_xy_m, settings.initial_sigma_theta_rad);
   else
@@ -124,6 +148,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
   result.rows.reserve(count);
   for (std::size_t k = 0; k < count; ++k) {
     const LaserScan& scan = trace.scans[k];
+    if (ledger) ledger->BeginIteration();
     const auto start = std::chrono::steady_clock::now();
     const MclStepResult step = mcl.Update(scan, trace.geometry, k);
     const PoseEstimate estimate = mcl.Estimate();
@@ -142,6 +167,14 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
       row.nodes = step.work->nodes;
     }
     row.wall_s = wall;
+    if (ledger) {
+      const auto pricing_start = std::chrono::steady_clock::now();
+      const bool ran = step.sensor_updated && step.work && step.work->rays > 0;
+      row.pricing = ledger->EndIteration(ran ? &step.work->record : nullptr);
+      row.priced = true;
+      row.pricing_wall_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - pricing_start).count();
+    }
     row.spread_m = estimate.spread_m;
     row.mode_weight = estimate.mode_weight;
     row.consistency = MeasureScanConsistency(exact_scene, estimate.pose, scan, trace.geometry,
@@ -162,6 +195,11 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
   const bool non_finite = result.summary.any_non_finite_weight;
   result.summary = Summarize(result.rows, settings);
   result.summary.any_non_finite_weight = non_finite;
+  if (ledger) {
+    result.priced = true;
+    result.pricing = ledger->Finish();
+    for (const auto& row : result.rows) result.pricing_wall_s += row.pricing_wall_s;
+  }
   return result;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "backends/backend_params.h"
+#include "backends/scheduler/backend_ledger.h"
 #include "maps/occupancy_grid.h"
 #include "robocore/ray_cast.h"
 #include "traces/sensor_trace.h"
@@ -42,6 +44,12 @@ struct DelibotSettings {
   // An estimate moving farther than this between two records is a jump:
   // the filter switched hypotheses (a robot does not teleport).
   double jump_threshold_m = 1.0;
+  // Shadow costing: every modelled backend prices every update's ray batch
+  // (beam model only; the likelihood field casts no rays), and the policy
+  // picks the backend that "ran".
+  bool price_backends = true;
+  BackendParameters backend_params;
+  LedgerOptions ledger;
 };
 
 struct DelibotRow {
@@ -62,6 +70,9 @@ struct DelibotRow {
   double err_xy_m = 0.0;
   double err_theta_rad = 0.0;
   double NodesPerRay() const { return rays > 0 ? static_cast<double>(nodes) / rays : 0.0; }
+  bool priced = false;
+  LedgerIteration pricing;       // valid when priced
+  double pricing_wall_s = 0.0;   // host time spent pricing (not in wall_s)
 };
 
 struct DelibotSummary {
@@ -86,6 +97,9 @@ struct DelibotSummary {
 struct DelibotResult {
   std::vector<DelibotRow> rows;
   DelibotSummary summary;
+  bool priced = false;
+  LedgerSummary pricing;   // valid when priced
+  double pricing_wall_s = 0.0;
 };
 
 using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;

@@ -27,6 +27,9 @@ struct MclOptions {
   double update_min_d_m = 0.05;
   double update_min_a_rad = 0.05;
   double estimate_kernel_radius_m = 1.0;  // mean-shift radius of the point estimate
+  // Record every ray's node fetches (robocore/kernel_record.h) so that the
+  // backends can price the update; off, the kernel runs without the hook.
+  bool record_kernel = false;
 
   bool IsValid(std::string* error) const;
 };

@@ -18,6 +18,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
   std::string error;
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
   free_cells_ = grid_.FreeCellIndices();
+  work_.record_kernel = options_.record_kernel;
   if (free_cells_.empty())
     throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/angles.h"
+#include "robocore/kernel_record.h"
 #include "robocore/ray_batch.h"
 #include "traces/sensor_trace.h"
 
@@ -29,6 +30,10 @@ struct SensorUpdateWork {
   // The batch and hits of the last update; empty for models without rays.
   RayBatch batch;
   std::vector<RayHit> hits;
+  // When record_kernel is set, ray-casting models also fill `record` with
+  // every query's node fetches (run once), for the backends to price.
+  bool record_kernel = false;
+  KernelRecord record;
 };
 
 class SensorModel {

@@ -5,6 +5,9 @@
 #include <iostream>
 #include <omp.h>
 
+#include "backends/backend.h"
+#include "backends/backend_params.h"
+#include "backends/scheduler/backend_scheduler.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "maps/office_map_generator.h"
@@ -31,6 +34,9 @@ struct DelibotCli {
   std::string timeline_path, summary_path;
   int threads = 0;
   bool quiet = false;
+  std::string backend_policy = "adaptive", backend_params_path;
+  double threshold = -1.0;
+  bool no_pricing = false;
   DelibotSettings settings;
 };
 
@@ -40,6 +46,19 @@ void Run(DelibotCli& cli) {
   s.ray_caster = ParseRayCastMethod(cli.ray_caster);
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
+  s.price_backends = !cli.no_pricing;
+  if (!cli.backend_params_path.empty()) s.backend_params = LoadBackendParameters(cli.backend_params_path);
+  {
+    const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend_policy, Backend::ModelledNames());
+    s.ledger.policy.kind = parsed.kind;
+    s.ledger.policy.static_backend = parsed.static_backend;
+  }
+  if (cli.threshold >= 0.0) {
+    s.ledger.policy.threshold_nodes_per_query = cli.threshold;
+    s.ledger.threshold_overridden = true;
+  }
+  if (s.price_backends && s.sensor_model != SensorModelKind::kBeam)
+    std::cout << "note: the likelihood-field model casts no rays; backend pricing is off for this run\n";
   std::string error;
   if (!s.mcl.IsValid(&error)) throw UsageError(error);
   if (!s.beam.IsValid(&error)) throw UsageError("beam model: " + error);
@@ -77,6 +96,8 @@ void Run(DelibotCli& cli) {
               << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
               << loaded.value_convention << ")\n";
     grid = std::move(loaded.grid);
+    if (grid.CountCells(CellState::kFree) == 0)
+      throw InputError(cli.map_path, 0, "", "the map has no free cell: there is nowhere to localize");
     TraceReadOptions trace_options;
     trace_options.format = cli.trace_format;
     trace = ReadTrace(cli.trace_path, trace_options);
@@ -178,6 +199,21 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--timeline", cli->timeline_path, "Write the per-record timeline CSV here");
   cmd->add_option("--summary", cli->summary_path, "Write the run summary JSON here");
   cmd->add_flag("--quiet", cli->quiet, "No progress bar");
+  cmd->add_option("--backend", cli->backend_policy,
+                  "Backend that runs each update: adaptive | oracle | static:<simt|ttaplus|ttaplus-p|ttaplus-cr|robocore>"
+                  " (every backend is priced every update regardless)")
+      ->capture_default_str();
+  cmd->add_option("--threshold", cli->threshold,
+                  "Adaptive switch threshold (nodes per ray); default: the cost models' crossover");
+  cmd->add_option("--hysteresis", s.ledger.policy.hysteresis_nodes_per_query,
+                  "Adaptive margin around the threshold (nodes per ray)")
+      ->capture_default_str();
+  cmd->add_option("--switch-cost", s.ledger.switch_cost_cycles,
+                  "Cost of one backend switch (core cycles); negative: one kernel launch")
+      ->capture_default_str();
+  cmd->add_option("--backend-params", cli->backend_params_path,
+                  "JSON file overriding backend cost parameters (see rcbench backends)");
+  cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price updates on the modelled backends");
   cmd->callback([cli] { Run(*cli); });
 }
 

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   rc::AddDelibotCommand(app);
   rc::AddSimulateCommand(app);
   rc::AddMakeMapCommand(app);
+  rc::AddBackendsCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

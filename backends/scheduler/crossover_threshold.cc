@@ -1,0 +1,63 @@
+#include "backends/scheduler/crossover_threshold.h"
+
+#include <limits>
+
+namespace rc {
+
+KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::uint32_t nodes) {
+  KernelRecord probe;
+  probe.step_kind = t.step_kind;
+  probe.leaf_kind = t.leaf_kind;
+  probe.program = t.program;
+  probe.leaf = t.leaf;
+  probe.regions = t.regions;
+  probe.node_bytes = t.node_bytes;
+  const MemoryRegion& region = t.regions.at(0);
+  const std::uint64_t elements = region.elements > 0 ? region.elements : 1;
+  probe.fetch_offsets.assign(1, 0);
+  probe.fetch_addresses.reserve(queries * nodes);
+  probe.node_exits.reserve(queries * nodes);
+  // Queries start spread over the structure (a large odd stride) and walk
+  // consecutive elements, like rays crossing cells of one row.
+  constexpr std::uint64_t kStartStride = 7919;
+  for (std::size_t q = 0; q < queries; ++q) {
+    for (std::uint32_t j = 0; j < nodes; ++j) {
+      const std::uint64_t element = (q * kStartStride + j) % elements;
+      probe.fetch_addresses.push_back(region.base + element * region.element_bytes);
+      probe.node_exits.push_back(j + 1 == nodes ? kRayHitReturn : kNoExit);
+    }
+    probe.fetch_offsets.push_back(probe.fetch_addresses.size());
+  }
+  return probe;
+}
+
+CrossoverResult DeriveCrossoverThreshold(const Backend& high, const Backend& low, const KernelRecord& t,
+                                         std::size_t queries, std::uint32_t max_nodes) {
+  CrossoverResult result;
+  // advantage(n) > 0 when the high backend is cheaper at n nodes per query.
+  auto advantage = [&](std::uint32_t n) {
+    const KernelRecord probe = MakeUniformProbe(t, queries, n);
+    ++result.probes_priced;
+    return static_cast<double>(low.Price(probe).cycles) - static_cast<double>(high.Price(probe).cycles);
+  };
+  if (advantage(1) > 0.0) {
+    result.threshold_nodes_per_query = 0.0;
+    return result;
+  }
+  if (!(advantage(max_nodes) > 0.0)) {
+    result.threshold_nodes_per_query = std::numeric_limits<double>::infinity();
+    return result;
+  }
+  std::uint32_t lo = 1, hi = max_nodes;  // advantage(lo) <= 0 < advantage(hi)
+  while (hi - lo > 1) {
+    const std::uint32_t mid = lo + (hi - lo) / 2;
+    (advantage(mid) > 0.0 ? hi : lo) = mid;
+  }
+  // The adaptive policy picks high when nodes per query > threshold, so the
+  // threshold is the largest n at which low is still at least as cheap.
+  result.threshold_nodes_per_query = lo;
+  result.has_crossing = true;
+  return result;
+}
+
+}  // namespace rc

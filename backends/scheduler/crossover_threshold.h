@@ -1,0 +1,37 @@
+#pragma once
+// The adaptive scheduler's threshold, derived from the backends' own cost
+// models rather than tuned: the nodes per query at which the traversal unit
+// (high) becomes cheaper than the CUDA cores (low) for a batch like the
+// workload's.
+//
+// Probe: a synthetic batch with the template record's program, leaf, memory
+// regions and query count, in which every query fetches n nodes at
+// consecutive addresses (a ray crossing n cells of one row) and stops at the
+// last. Both backends price the probe for a given n; the threshold is the
+// smallest n at which high is cheaper than low. The probe's cost difference
+// is searched by bisection, which assumes one crossing in [1, max_nodes]
+// (checked at both ends). Without a crossing the threshold is 0 (high always
+// cheaper) or +inf (low always cheaper), and the adaptive policy degenerates
+// to a static one, which the summary then says.
+#include <cstdint>
+
+#include "backends/backend.h"
+#include "robocore/kernel_record.h"
+#include "robocore/section_timing.h"
+
+namespace rc {
+
+// A probe record: `queries` queries of `nodes` fetches each, with the
+// template's program, leaf, regions and node size.
+KernelRecord MakeUniformProbe(const KernelRecord& template_record, std::size_t queries, std::uint32_t nodes);
+
+struct CrossoverResult {
+  double threshold_nodes_per_query = 0.0;  // 0 or +inf when there is no crossing
+  bool has_crossing = false;
+  int probes_priced = 0;
+};
+
+CrossoverResult DeriveCrossoverThreshold(const Backend& high, const Backend& low, const KernelRecord& template_record,
+                                         std::size_t queries, std::uint32_t max_nodes = 1024);
+
+}  // namespace rc

@@ -1,0 +1,93 @@
+// Ray-casting throughput of the three kernels, single-threaded, in RangeLibc's
+// setting (REFERENCE.md section 4): Wean Hall at 10 cm, 1M queries starting in
+// free cells with random headings, max range 10 m, in random order and in
+// grid (spatially sorted) order. Falls back to the generated office map when
+// ../shared/data is absent, and says so in the benchmark label.
+//
+// Run: build/benchmarks/ray_cast_benchmark --benchmark_counters_tabular=true
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "common/random_stream.h"
+#include "maps/cmu_map_loader.h"
+#include "maps/office_map_generator.h"
+#include "robocore/ray_cast.h"
+
+namespace rc {
+namespace {
+
+constexpr double kMaxRangeM = 10.0;
+constexpr std::size_t kQueries = 1000000;
+
+struct Fixture {
+  OccupancyGrid grid;
+  std::string map_name;
+  std::vector<std::array<double, 3>> random_order, grid_order;
+};
+
+const Fixture& GetFixture() {
+  static const Fixture fixture = [] {
+    Fixture f;
+    const std::string wean = std::string(RC_SHARED_DATA_DIR) + "/wean/wean.dat";
+    if (std::filesystem::exists(wean)) {
+      f.grid = LoadCmuMap(wean);
+      f.map_name = "wean";
+    } else {
+      f.grid = GenerateOfficeMap(OfficeMapOptions{});
+      f.map_name = "office (shared data absent)";
+    }
+    const std::vector<std::uint32_t> free_cells = f.grid.FreeCellIndices();
+    RandomStream s(1, StreamPurpose::kTest, 0, 0);
+    const double r = f.grid.resolution_m();
+    for (std::size_t i = 0; i < kQueries; ++i) {
+      const std::uint32_t c = free_cells[s.Below(free_cells.size())];
+      const int ix = static_cast<int>(c / f.grid.size_y()), iy = static_cast<int>(c % f.grid.size_y());
+      f.random_order.push_back({(ix + s.Uniform()) * r, (iy + s.Uniform()) * r, s.Uniform(-3.14159265, 3.14159265)});
+    }
+    f.grid_order = f.random_order;
+    std::sort(f.grid_order.begin(), f.grid_order.end(), [&](const auto& a, const auto& b) {
+      const int ax = static_cast<int>(a[0] / r), bx = static_cast<int>(b[0] / r);
+      return ax != bx ? ax < bx : a[1] < b[1];
+    });
+    return f;
+  }();
+  return fixture;
+}
+
+void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) {
+  const Fixture& f = GetFixture();
+  const RayCastScene scene(f.grid, method);
+  const auto& queries = grid_order ? f.grid_order : f.random_order;
+  std::uint64_t nodes = 0;
+  for (auto _ : state) {
+    for (const auto& q : queries) {
+      const RayHit hit = CastRay(scene, q[0], q[1], q[2], kMaxRangeM);
+      nodes += hit.nodes;
+      benchmark::DoNotOptimize(hit);
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * queries.size()));
+  state.counters["queries_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * queries.size()),
+                                                       benchmark::Counter::kIsRate);
+  state.counters["nodes_per_query"] =
+      static_cast<double>(nodes) / static_cast<double>(state.iterations() * queries.size());
+  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  state.SetLabel(f.map_name + (grid_order ? ", grid order" : ", random order"));
+}
+
+BENCHMARK_CAPTURE(BM_RayCast, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCast, march_grid, RayCastMethod::kMarch, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCast, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCast, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCast, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCast, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace rc
+
+BENCHMARK_MAIN();

@@ -1,0 +1,113 @@
+#!/usr/bin/python3
+"""The full DeliBot accuracy study (the CI runs a reduced version:
+tests/delibot/accuracy_regression_test.cc).
+
+For each map (the generated office map, and Wean Hall when ../shared/data is
+present) and each of N seeds: simulate a trace with ground truth
+(`rcbench simulate`, default noise: range noise, clutter, people, dropouts,
+drifting odometry), then run
+  - global localization from uniform particles (default 5000 particles), and
+  - tracking from the true first pose,
+and report:
+  - the fraction of seeds whose global localization converged (error below
+    0.2 m and 5 deg for 10 consecutive records, and still so at the end);
+  - the median tracking error.
+Writes <out>/accuracy_study.csv and <out>/accuracy_study.md.
+
+Usage: scripts/accuracy_study.py [--rcbench build/rcbench] [--out out/accuracy]
+       [--seeds 20] [--particles 5000] [--records 500]
+"""
+import argparse
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+WEAN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "wean", "wean.dat")
+
+
+def run(cmd):
+    result = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        sys.exit(f"command failed ({result.returncode}): {' '.join(cmd)}\n{result.stderr}")
+
+
+def first_pose(gt_path):
+    with open(gt_path) as f:
+        for line in f:
+            if line.strip() and not line.startswith("#"):
+                _, x, y, theta = line.split()
+                return f"{x},{y},{theta}"
+    sys.exit(f"{gt_path}: no pose")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rcbench", default="build/rcbench")
+    ap.add_argument("--out", default="out/accuracy")
+    ap.add_argument("--seeds", type=int, default=20)
+    ap.add_argument("--particles", type=int, default=5000)
+    ap.add_argument("--records", type=int, default=500)
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+
+    maps = []
+    office = os.path.join(args.out, "office.yaml")
+    run([args.rcbench, "make-map", "--output", office])
+    maps.append(("office", office))
+    if os.path.exists(WEAN):
+        maps.append(("wean", os.path.normpath(WEAN)))
+    else:
+        print(f"shared data absent ({WEAN}): Wean Hall skipped", file=sys.stderr)
+
+    rows = []
+    for name, map_path in maps:
+        for seed in range(1, args.seeds + 1):
+            trace = os.path.join(args.out, f"{name}_{seed}.log")
+            gt = os.path.join(args.out, f"{name}_{seed}.gt")
+            run([args.rcbench, "simulate", "--map", map_path, "--output", trace, "--ground-truth", gt,
+                 "--records", str(args.records), "--seed", str(seed)])
+            result = {"map": name, "seed": seed}
+            for mode in ("global", "tracking"):
+                summary = os.path.join(args.out, f"{name}_{seed}_{mode}.json")
+                cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--ground-truth", gt,
+                       "--particles", str(args.particles if mode == "global" else 500), "--seed", str(seed),
+                       "--summary", summary, "--quiet"]
+                if mode == "tracking":
+                    cmd += ["--initial-pose", first_pose(gt)]
+                run(cmd)
+                with open(summary) as f:
+                    report = json.load(f)
+                a, t = report["accuracy"], report["totals"]
+                result[f"{mode}_converged"] = int(a["convergence_iteration"] >= 0 and a["converged_at_end"])
+                result[f"{mode}_convergence_iteration"] = a["convergence_iteration"]
+                result[f"{mode}_median_err_xy_m"] = a["median_err_xy_m"]
+                result[f"{mode}_final_err_xy_m"] = a["final_err_xy_m"]
+                result[f"{mode}_time_per_update_s"] = t["wall_per_update_s"]
+            rows.append(result)
+            print(f"{name} seed {seed}: global converged={result['global_converged']} "
+                  f"(record {result['global_convergence_iteration']}), tracking median "
+                  f"{result['tracking_median_err_xy_m']:.3f} m", flush=True)
+
+    with open(os.path.join(args.out, "accuracy_study.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| map | seeds | global localization converged | median convergence record | "
+             "tracking median error (m) | worst tracking median (m) |", "|---|---|---|---|---|---|"]
+    for name, _ in maps:
+        sel = [r for r in rows if r["map"] == name]
+        conv = [r for r in sel if r["global_converged"]]
+        its = [r["global_convergence_iteration"] for r in conv]
+        trk = [r["tracking_median_err_xy_m"] for r in sel]
+        lines.append(f"| {name} | {len(sel)} | {len(conv)}/{len(sel)} ({100 * len(conv) / len(sel):.0f}%) | "
+                     f"{statistics.median(its) if its else '-'} | {statistics.median(trk):.3f} | {max(trk):.3f} |")
+    with open(os.path.join(args.out, "accuracy_study.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()

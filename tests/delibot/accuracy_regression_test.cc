@@ -1,0 +1,71 @@
+// The reduced accuracy study that runs in CI: global localization and
+// tracking on traces made by the project's own simulator, on the generated
+// office map and (when ../shared/data is present) on Wean Hall. The full
+// study (20 seeds x 5000 particles per map) is scripts/accuracy_study.py.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "maps/cmu_map_loader.h"
+#include "maps/office_map_generator.h"
+#include "test_data.h"
+#include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/trace_simulator.h"
+
+namespace rc {
+namespace {
+
+struct Simulated {
+  SensorTrace trace;
+  std::vector<Pose2> truth;
+};
+
+Simulated Simulate(const OccupancyGrid& grid, std::uint64_t seed, int records) {
+  SimulationOptions o;  // default noise: range noise, clutter, people, dropouts, drifting odometry
+  o.seed = seed;
+  o.record_count = records;
+  const SimulatedTrace sim = SimulateTrace(grid, o);
+  Simulated out{sim.trace, {}};
+  for (const auto& p : sim.ground_truth) out.truth.push_back(p.pose);
+  return out;
+}
+
+void ExpectGlobalLocalization(const OccupancyGrid& grid, std::uint64_t seed, int records, int particles) {
+  const Simulated sim = Simulate(grid, seed, records);
+  DelibotSettings s;
+  s.mcl.particle_count = particles;
+  s.mcl.seed = seed;
+  const DelibotResult r = RunDelibot(grid, sim.trace, &sim.truth, s);
+  EXPECT_GE(r.summary.convergence_iteration, 0) << "seed " << seed;
+  EXPECT_TRUE(r.summary.converged) << "seed " << seed;
+  EXPECT_LT(r.summary.final_err_xy_m, 0.2) << "seed " << seed;
+  EXPECT_LT(r.summary.final_err_theta_rad, 5.0 * kPi / 180.0) << "seed " << seed;
+  EXPECT_LT(r.summary.median_err_xy_m, 0.1) << "seed " << seed;
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+}
+
+TEST(AccuracyRegressionTest, GlobalLocalizationOnTheOfficeMap) {
+  const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) ExpectGlobalLocalization(grid, seed, 400, 3000);
+}
+
+TEST(AccuracyRegressionTest, TrackingOnTheOfficeMapKeepsMedianErrorBelowTenCentimetres) {
+  const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
+  const Simulated sim = Simulate(grid, 7, 400);
+  DelibotSettings s;
+  s.mcl.particle_count = 500;
+  s.initial_pose = sim.truth.front();
+  const DelibotResult r = RunDelibot(grid, sim.trace, &sim.truth, s);
+  EXPECT_EQ(r.summary.convergence_iteration, 0);
+  EXPECT_LT(r.summary.median_err_xy_m, 0.1);
+  EXPECT_TRUE(r.summary.converged);
+}
+
+TEST(AccuracyRegressionTest, GlobalLocalizationOnSimulatedWean) {
+  RC_REQUIRE_SHARED_DATA("wean/wean.dat");
+  const OccupancyGrid grid = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
+  ExpectGlobalLocalization(grid, 3, 500, 5000);
+}
+
+}  // namespace
+}  // namespace rc
