@@ -8,5 +8,6 @@ void AddDelibotCommand(CLI::App& app);
 void AddSimulateCommand(CLI::App& app);
 void AddMakeMapCommand(CLI::App& app);
 void AddBackendsCommand(CLI::App& app);
+void AddCollideCommand(CLI::App& app);
 
 }  // namespace rc

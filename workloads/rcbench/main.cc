@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   rc::AddSimulateCommand(app);
   rc::AddMakeMapCommand(app);
   rc::AddBackendsCommand(app);
+  rc::AddCollideCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
