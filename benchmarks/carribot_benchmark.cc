@@ -1,0 +1,161 @@
+// CarriBot planning speed: grid A* on the MovingAI maps, and the RoWild
+// CarriBot query on the Intel map at scales 1, 2 and 4.
+//
+//   BM_MovingAiBucket/<map>/<bucket>  every scenario of one .scen bucket per
+//       iteration (point robot, A*); counters: expansions per second and
+//       seconds per scenario. Buckets 0, 1/4, 1/2, 3/4 and the last of each
+//       map (path lengths grow with the bucket).
+//   BM_IntelRoWildQuery/<scale>/<mode>  one query, set-up included, as
+//       RoWild's wall time is for a whole run. mode 0: point robot; 1: the
+//       footprint with a precomputed configuration space; 2: the footprint
+//       with per-expansion checks (exact rasterized checker).
+//
+// RoWild's query (cmu-roboarch/rowild, e2e/CarriBot/harness.cpp): Intel.map
+// scaled by 1, 2 or 4 (--scale-map; each cell becomes s x s cells), start
+// (227, 33, theta 0) and goal (59, 217, theta 0) multiplied by s, a 10 x 4
+// cell car (length x width, not scaled), 8 headings, Euclidean heuristic,
+// weight 1; its motions are turns of 45 degrees (free) and one step forward or
+// back along the heading. RoWild's (x, y) is the car's corner with the body in
+// [x, x + 10] x [y, y + 4] at theta 0, so our centred footprint starts and
+// ends at the corner plus (5, 2) cells, heading 0. Our motion model differs
+// (8 translations at any heading, turns cost the corner's arc), so expansion
+// counts are not comparable one to one; the path and the map sizes are.
+// RoWild's wall times on this machine: 0.59 s, 2.62 s, 12.3 s
+// (../shared/REFERENCE.md section 3).
+//
+// Without ../shared/data the benchmarks skip with a message.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "maps/movingai_map_loader.h"
+#include "workloads/carribot/grid_planner.h"
+#include "workloads/carribot/grid_upscaling.h"
+#include "workloads/carribot/movingai_scenario_reader.h"
+
+namespace rc {
+namespace {
+
+const char* const kMovingAiMaps[] = {"den312d.map", "Boston_0_256.map", "64room_005.map", "maze512-32-9.map"};
+
+std::string DataPath(const std::string& relative) { return std::string(RC_SHARED_DATA_DIR) + "/" + relative; }
+
+struct LoadedScenarios {
+  OccupancyGrid grid;
+  std::map<int, std::vector<MovingAiScenario>> buckets;
+  std::unique_ptr<GridPlanner> planner;
+};
+
+// Loaded once per map; null when the data is absent.
+LoadedScenarios* Scenarios(const std::string& map_name) {
+  static std::map<std::string, std::unique_ptr<LoadedScenarios>> cache;
+  auto it = cache.find(map_name);
+  if (it != cache.end()) return it->second.get();
+  std::unique_ptr<LoadedScenarios> loaded;
+  const std::string path = DataPath("movingai/" + map_name);
+  if (std::filesystem::exists(path) && std::filesystem::exists(path + ".scen")) {
+    loaded = std::make_unique<LoadedScenarios>();
+    loaded->grid = LoadMovingAiMap(path);
+    for (const MovingAiScenario& s : ReadMovingAiScenarios(path + ".scen").scenarios)
+      loaded->buckets[s.bucket].push_back(s);
+    loaded->planner = GridPlanner::Create(loaded->grid, PlannerOptions{});
+  }
+  return cache.emplace(map_name, std::move(loaded)).first->second.get();
+}
+
+void BM_MovingAiBucket(benchmark::State& state, const std::string& map_name, int bucket) {
+  LoadedScenarios* data = Scenarios(map_name);
+  if (data == nullptr) {
+    state.SkipWithError(("shared data absent: " + DataPath("movingai/" + map_name)).c_str());
+    return;
+  }
+  const std::vector<MovingAiScenario>& scenarios = data->buckets[bucket];
+  std::uint64_t expanded = 0, planned = 0;
+  for (auto _ : state) {
+    for (const MovingAiScenario& s : scenarios) {
+      const PlanResult r = data->planner->Plan({s.start_x, s.start_y}, {s.goal_x, s.goal_y});
+      benchmark::DoNotOptimize(r.length_cells);
+      expanded += r.expanded;
+      ++planned;
+    }
+  }
+  state.counters["expansions_per_s"] = benchmark::Counter(static_cast<double>(expanded), benchmark::Counter::kIsRate);
+  state.counters["s_per_scenario"] =
+      benchmark::Counter(static_cast<double>(planned), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["scenarios"] = static_cast<double>(scenarios.size());
+}
+
+void BM_IntelRoWildQuery(benchmark::State& state) {
+  const int scale = static_cast<int>(state.range(0));
+  const int mode = static_cast<int>(state.range(1));
+  const std::string path = DataPath("intel/Intel.map");
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError(("shared data absent: " + path).c_str());
+    return;
+  }
+  const OccupancyGrid grid = UpscaleGrid(LoadMovingAiMap(path), scale);
+  PlannerOptions options;
+  GridPose start{227 * scale, 33 * scale}, goal{59 * scale, 217 * scale};
+  if (mode != 0) {
+    const double cell = grid.resolution_m();
+    options.footprint = RectangleFootprint{4 * cell, 10 * cell, 8,
+                                           mode == 1 ? FootprintCheckMode::kPrecomputed
+                                                     : FootprintCheckMode::kPerExpansion};
+    start = {start.x + 5, start.y + 2, 0};
+    goal = {goal.x + 5, goal.y + 2, 0};
+  }
+  PlanResult result;
+  double setup_s = 0.0;
+  for (auto _ : state) {
+    const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, options);
+    result = planner->Plan(start, goal);
+    setup_s = planner->setup_wall_s();
+  }
+  if (!result.found()) {
+    state.SkipWithError((std::string("no path: ") + result.message).c_str());
+    return;
+  }
+  state.counters["setup_s"] = setup_s;
+  state.counters["plan_s"] = result.wall_s;
+  state.counters["expanded"] = static_cast<double>(result.expanded);
+  state.counters["expansions_per_s"] = result.expanded / result.wall_s;
+  state.counters["collision_queries"] = static_cast<double>(result.collision_queries);
+  state.counters["path_length_m"] = result.length_m;
+  state.counters["cells"] = static_cast<double>(grid.cell_count());
+}
+
+BENCHMARK(BM_IntelRoWildQuery)
+    ->ArgNames({"scale", "mode"})
+    ->ArgsProduct({{1, 2, 4}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Buckets exist only once the .scen files are read, so these register at
+// start-up (before main parses the command line).
+const bool kRegistered = [] {
+  for (const char* map_name : kMovingAiMaps) {
+    const LoadedScenarios* data = Scenarios(map_name);
+    if (data == nullptr || data->buckets.empty()) {
+      benchmark::RegisterBenchmark(("BM_MovingAiBucket/" + std::string(map_name)).c_str(), BM_MovingAiBucket,
+                                   std::string(map_name), 0);
+      continue;
+    }
+    const int last = data->buckets.rbegin()->first;
+    for (const int bucket : {0, last / 4, last / 2, 3 * last / 4, last}) {
+      if (data->buckets.count(bucket) == 0) continue;
+      benchmark::RegisterBenchmark(("BM_MovingAiBucket/" + std::string(map_name) + "/" + std::to_string(bucket)).c_str(),
+                                   BM_MovingAiBucket, std::string(map_name), bucket)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace rc
+
+BENCHMARK_MAIN();

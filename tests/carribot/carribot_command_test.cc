@@ -1,0 +1,137 @@
+// `rcbench carribot` end to end, in process: the command is registered on a
+// fresh CLI11 app and run like main() does, mapping exceptions to exit codes
+// 1 (InputError) and 2 (UsageError, CLI11 parse errors). Exit code 3 leaves
+// through std::exit, so those cases are death tests (the child process writes
+// its outputs before exiting; the parent then reads them).
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/input_error.h"
+#include "maps/map_test_util.h"
+#include "test_data.h"
+#include "traces/csv_table.h"
+
+namespace rc {
+void AddCarribotCommand(CLI::App& app);
+
+namespace {
+
+// Runs `rcbench carribot ARGS...`; returns main()'s exit code.
+int RunCarribot(std::vector<std::string> args) {
+  CLI::App app{"rcbench"};
+  app.require_subcommand(1);
+  AddCarribotCommand(app);
+  args.insert(args.begin(), {"rcbench", "carribot", "--quiet"});
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  try {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+  } catch (const CLI::ParseError&) {
+    return 2;
+  } catch (const UsageError&) {
+    return 2;
+  } catch (const InputError&) {
+    return 1;
+  }
+  return 0;
+}
+
+const std::string kRoomsMap = "type octile\nheight 3\nwidth 9\nmap\n....@....\n....@....\n....@....\n";
+
+TEST(CarribotCommand, AllScenariosOfAMapMatchTheirOptima) {
+  RC_REQUIRE_SHARED_DATA("movingai/den312d.map");
+  test::TempDir dir;
+  const std::string map = test::SharedDataPath("movingai/den312d.map");
+  ASSERT_EQ(RunCarribot({"--map", map, "--scen", map + ".scen", "--timeline", dir.Path("t.csv")}), 0);
+  const CsvContents t = ReadCsv(dir.Path("t.csv"));
+  ASSERT_EQ(t.rows.size(), 290u);
+  const std::vector<std::string> header = {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells",
+                                           "path_length_m", "optimal_length_cells", "turns", "expanded",
+                                           "collision_queries", "wall_s", "status"};
+  ASSERT_EQ(t.header, header);
+  for (const auto& row : t.rows) {
+    EXPECT_EQ(row[13], "found");
+    EXPECT_NEAR(std::stod(row[6]), std::stod(row[8]), 1e-4) << "scenario " << row[0];
+    EXPECT_EQ(row[6], row[7]);  // 1 m per cell
+  }
+}
+
+TEST(CarribotCommand, SingleFootprintQueryWritesPathAndPlot) {
+  RC_REQUIRE_SHARED_DATA("movingai/den312d.map");
+  test::TempDir dir;
+  const std::string map = test::SharedDataPath("movingai/den312d.map");
+  ASSERT_EQ(RunCarribot({"--map", map, "--scen", map + ".scen", "--scenario", "202", "--footprint", "0.5x1.5",
+                         "--headings", "16", "--resolution", "0.5", "--path", dir.Path("out/p.csv"), "--plot",
+                         dir.Path("out/p.png"), "--timeline", dir.Path("out/t.csv")}),
+            0);
+  const CsvContents path = ReadCsv(dir.Path("out/p.csv"));
+  ASSERT_GE(path.rows.size(), 2u);
+  EXPECT_EQ(path.header.front(), "step");
+  const CsvContents timeline = ReadCsv(dir.Path("out/t.csv"));
+  ASSERT_EQ(timeline.rows.size(), 1u);
+  EXPECT_EQ(timeline.rows[0][0], "202");
+  // The last path row's cost is the timeline's path length, in cells and m.
+  EXPECT_EQ(path.rows.back()[7], timeline.rows[0][6]);
+  EXPECT_EQ(path.rows.back()[8], timeline.rows[0][7]);
+  EXPECT_NEAR(std::stod(path.rows.back()[8]), 0.5 * std::stod(timeline.rows[0][6]), 1e-6);  // 9 digits in CSV
+  const cv::Mat png = cv::imread(dir.Path("out/p.png"));
+  ASSERT_FALSE(png.empty());
+  EXPECT_EQ(png.cols, 65 * 7);  // den312d is 65 x 81 cells, magnified to >= 512 px
+  EXPECT_EQ(png.rows, 81 * 7);
+}
+
+TEST(CarribotCommand, UnreachableGoalExitsWithThreeAndStillWritesTheTimeline) {
+  test::TempDir dir;
+  const std::string map = dir.Write("rooms.map", kRoomsMap);
+  const std::string timeline = dir.Path("t.csv");
+  EXPECT_EXIT(RunCarribot({"--map", map, "--start", "0,0", "--goal", "8,2", "--timeline", timeline}),
+              ::testing::ExitedWithCode(3), "");
+  const CsvContents t = ReadCsv(timeline);
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(t.rows[0][13], "no_path");
+  EXPECT_EQ(t.rows[0][6], "");  // no length for a path that does not exist
+  EXPECT_EXIT(RunCarribot({"--map", map, "--start", "4,0", "--goal", "8,2"}), ::testing::ExitedWithCode(3), "");
+}
+
+TEST(CarribotCommand, UsageErrorsExitWithTwo) {
+  RC_REQUIRE_SHARED_DATA("movingai/den312d.map");
+  test::TempDir dir;
+  const std::string map = dir.Write("rooms.map", kRoomsMap);
+  const std::string den = test::SharedDataPath("movingai/den312d.map");
+  const std::string scen = den + ".scen";
+  const std::vector<std::vector<std::string>> cases = {
+      {"--map", map},                                                       // neither --scen nor --start/--goal
+      {"--map", map, "--start", "0,0"},                                     // --start without --goal
+      {"--map", den, "--scen", scen, "--start", "1,1", "--goal", "2,2"},    // both
+      {"--map", map, "--start", "9,0", "--goal", "0,0"},                    // outside the map
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--headings", "8"}, // --headings needs --footprint
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1by2"},
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1x2", "--headings", "12"},
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1x2", "--start-heading", "8"},
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--weight", "0.5"},
+      {"--map", den, "--scen", scen, "--path", dir.Path("p.csv")},          // a path needs one query
+      {"--map", den, "--scen", scen, "--scenario", "290"},                  // only 290 scenarios
+  };
+  for (const auto& args : cases) {
+    std::string joined;
+    for (const auto& a : args) joined += a + " ";
+    EXPECT_EQ(RunCarribot(args), 2) << joined;
+  }
+}
+
+TEST(CarribotCommand, BadInputExitsWithOne) {
+  test::TempDir dir;
+  const std::string map = dir.Write("rooms.map", kRoomsMap);
+  const std::string walls = dir.Write("walls.map", "type octile\nheight 1\nwidth 2\nmap\n@@\n");
+  const std::string wrong_size = dir.Write("w.scen", "version 1\n0\trooms.map\t8\t3\t0\t0\t1\t1\t1.41421356\n");
+  const std::string truncated = dir.Write("t.scen", "version 1\n0\trooms.map\t9\t3\t0\t0\t1\n");
+  EXPECT_EQ(RunCarribot({"--map", walls, "--start", "0,0", "--goal", "1,0"}), 1);  // no free cell
+  EXPECT_EQ(RunCarribot({"--map", map, "--scen", wrong_size}), 1);
+  EXPECT_EQ(RunCarribot({"--map", map, "--scen", truncated}), 1);
+  EXPECT_EQ(RunCarribot({"--map", dir.Path("missing.map"), "--start", "0,0", "--goal", "1,0"}), 1);
+}
+
+}  // namespace
+}  // namespace rc

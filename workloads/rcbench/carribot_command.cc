@@ -1,0 +1,325 @@
+// `rcbench carribot`: grid A* / weighted A* for a point robot or a rectangular
+// footprint (CarriBot), on MovingAI scenarios or one start/goal pair.
+//
+// Exit codes (also in --help): 0 every query found a path; 1 bad input;
+// 2 bad usage; 3 at least one query found no path. Code 3 is reached through
+// std::exit after every output is written and flushed, because main() maps
+// every exception to 1 or 2.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "common/input_error.h"
+#include "maps/map_loader.h"
+#include "traces/csv_table.h"
+#include "workloads/carribot/grid_planner.h"
+#include "workloads/carribot/grid_upscaling.h"
+#include "workloads/carribot/movingai_scenario_reader.h"
+#include "workloads/carribot/path_output.h"
+#include "workloads/carribot/path_plot.h"
+#include "workloads/rcbench/progress_bar.h"
+
+namespace rc {
+
+// Also declared in commands.h once the command is registered there; declared
+// here so that this file compiles on its own (tests/carribot build it).
+void AddCarribotCommand(CLI::App& app);
+
+namespace {
+
+constexpr int kExitNoPath = 3;
+constexpr double kOptimalTolerance = 1e-4;  // cells; the .scen files print 8 decimals
+
+struct CarribotCli {
+  std::string map_path, scen_path;
+  double resolution_m = 0.0;  // 0: the map format's own (1 m per cell for MovingAI)
+  int map_scale = 1;
+  long scenario = -1;
+  std::vector<int> start, goal;
+  int start_heading = kAnyHeading, goal_heading = kAnyHeading;
+  double weight = 1.0;
+  std::string footprint;  // "WxL" in metres
+  int headings = 8;
+  std::string collision_mode = "precomputed";
+  std::uint64_t max_expansions = 0;
+  std::string timeline_path, path_path, plot_path;
+  bool quiet = false;
+};
+
+struct Query {
+  long index = 0;           // scenario index in the .scen file (0 for --start/--goal)
+  std::optional<int> bucket;
+  GridPose start, goal;     // on the (scaled) map
+  std::optional<double> optimal_length;  // cells, from the .scen file
+  std::string origin;       // for messages: "scenario 12 (line 14)"
+};
+
+RectangleFootprint ParseFootprint(const std::string& text, const CarribotCli& cli) {
+  const std::size_t x = text.find_first_of("xX");
+  RectangleFootprint f;
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("no x");
+    std::size_t used_w = 0, used_l = 0;
+    f.width_m = std::stod(text.substr(0, x), &used_w);
+    f.length_m = std::stod(text.substr(x + 1), &used_l);
+    if (used_w != x || used_l != text.size() - x - 1) throw std::invalid_argument("trailing text");
+  } catch (const std::exception&) {
+    throw UsageError("--footprint '" + text + "' is not WIDTHxLENGTH in metres, e.g. 0.4x0.8");
+  }
+  f.heading_count = cli.headings;
+  if (cli.collision_mode == "precomputed") f.check_mode = FootprintCheckMode::kPrecomputed;
+  else f.check_mode = FootprintCheckMode::kPerExpansion;
+  return f;
+}
+
+OccupancyGrid LoadGrid(const CarribotCli& cli, OccupancyGrid* original) {
+  MapLoadOptions options;
+  if (cli.resolution_m > 0) options.resolution_m = cli.resolution_m;
+  LoadedMap loaded = LoadMap(cli.map_path, options);
+  if (loaded.grid.CountCells(CellState::kFree) == 0)
+    throw InputError(cli.map_path, 0, "", "the map has no free cell; there is nothing to plan on");
+  std::cout << "map: " << cli.map_path << " (" << loaded.format << ", " << loaded.grid.size_x() << " x "
+            << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
+            << loaded.value_convention << ")\n";
+  *original = loaded.grid;
+  if (cli.map_scale == 1) return std::move(loaded.grid);
+  OccupancyGrid scaled = UpscaleGrid(loaded.grid, cli.map_scale);
+  std::cout << "map scale " << cli.map_scale << ": " << scaled.size_x() << " x " << scaled.size_y()
+            << " cells of " << scaled.resolution_m() << " m (start and goal cells multiplied by "
+            << cli.map_scale << ", as RoWild's --scale-map)\n";
+  return scaled;
+}
+
+std::vector<Query> MakeQueries(const CarribotCli& cli, const OccupancyGrid& original) {
+  const int s = cli.map_scale;
+  std::vector<Query> queries;
+  if (cli.scen_path.empty()) {
+    const GridPose start{cli.start[0], cli.start[1], cli.start_heading};
+    const GridPose goal{cli.goal[0], cli.goal[1], cli.goal_heading};
+    for (const auto& [name, p] : {std::pair{"--start", start}, std::pair{"--goal", goal}})
+      if (!original.Contains(p.x, p.y))
+        throw UsageError(std::string(name) + " " + std::to_string(p.x) + "," + std::to_string(p.y) +
+                         " is outside the " + std::to_string(original.size_x()) + " x " +
+                         std::to_string(original.size_y()) + " map");
+    queries.push_back({0, std::nullopt, {start.x * s, start.y * s, start.heading},
+                       {goal.x * s, goal.y * s, goal.heading}, std::nullopt, "query"});
+    return queries;
+  }
+  const MovingAiScenarioFile file = ReadMovingAiScenarios(cli.scen_path);
+  CheckScenariosMatchMap(file, original);
+  if (file.scenarios.empty()) throw InputError(cli.scen_path, 0, "", "the file holds no scenario");
+  const std::string map_file = std::filesystem::path(cli.map_path).filename().string();
+  if (file.scenarios.front().map_name != map_file)
+    std::cerr << "rcbench: warning: " << cli.scen_path << " names map '" << file.scenarios.front().map_name
+              << "', not '" << map_file << "' (sizes match; planning anyway)\n";
+  if (cli.scenario >= static_cast<long>(file.scenarios.size()))
+    throw UsageError("--scenario " + std::to_string(cli.scenario) + " is outside [0, " +
+                     std::to_string(file.scenarios.size()) + ")");
+  for (long i = 0; i < static_cast<long>(file.scenarios.size()); ++i) {
+    if (cli.scenario >= 0 && i != cli.scenario) continue;
+    const MovingAiScenario& sc = file.scenarios[i];
+    queries.push_back({i, sc.bucket, {sc.start_x * s, sc.start_y * s, cli.start_heading},
+                       {sc.goal_x * s, sc.goal_y * s, cli.goal_heading},
+                       s == 1 ? std::optional<double>(sc.optimal_length) : std::nullopt,
+                       "scenario " + std::to_string(i) + " (line " + std::to_string(sc.line) + ")"});
+  }
+  return queries;
+}
+
+void CheckUsage(const CarribotCli& cli) {
+  const bool pair = !cli.start.empty() || !cli.goal.empty();
+  if (cli.scen_path.empty() == !pair)
+    throw UsageError("give either --scen FILE.scen or --start X,Y and --goal X,Y");
+  if (pair && (cli.start.empty() || cli.goal.empty())) throw UsageError("--start and --goal go together");
+  for (const int h : {cli.start_heading, cli.goal_heading})
+    if (h != kAnyHeading && (h < 0 || h >= cli.headings))
+      throw UsageError("heading index " + std::to_string(h) + " is outside [0, " + std::to_string(cli.headings) + ")");
+}
+
+std::string Describe(const PlannerOptions& o, const GridPlanner& planner) {
+  std::ostringstream out;
+  out << (o.heuristic_weight == 1.0 ? "A*" : "weighted A* (weight " + std::to_string(o.heuristic_weight) + ")")
+      << ", octile heuristic, ties to larger g then first pushed; robot: ";
+  if (!o.footprint) return out.str() + "point (8-connected, no corner cutting)";
+  const RectangleFootprint& f = *o.footprint;
+  out << f.width_m << " m x " << f.length_m << " m rectangle (width x length), " << f.heading_count
+      << " headings, turn cost " << planner.turn_cost_cells() << " cells, "
+      << (f.check_mode == FootprintCheckMode::kPrecomputed ? "precomputed configuration space"
+                                                           : "per-expansion checks (rasterized checker)")
+      << ", set-up " << planner.setup_wall_s() << " s";
+  return out.str();
+}
+
+void WriteTimeline(const std::string& path, const std::vector<Query>& queries, const std::vector<PlanResult>& results) {
+  CsvTable table(path, {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells", "path_length_m",
+                        "optimal_length_cells", "turns", "expanded", "collision_queries", "wall_s", "status"});
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const Query& q = queries[i];
+    const PlanResult& r = results[i];
+    table.AddRow({q.index, q.bucket ? CsvCell(*q.bucket) : CsvCell::Empty(), q.start.x, q.start.y, q.goal.x,
+                  q.goal.y, r.found() ? CsvCell(r.length_cells) : CsvCell::Empty(),
+                  r.found() ? CsvCell(r.length_m) : CsvCell::Empty(),
+                  q.optimal_length ? CsvCell(*q.optimal_length) : CsvCell::Empty(), r.turns, r.expanded,
+                  r.collision_queries, r.wall_s, ToString(r.status)});
+  }
+  table.Commit();
+}
+
+void CreateParent(const std::string& file) {
+  const auto parent = std::filesystem::path(file).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+}
+
+// Returns the process exit code: 0, or kExitNoPath.
+int Run(const CarribotCli& cli) {
+  CheckUsage(cli);
+  PlannerOptions options;
+  options.heuristic_weight = cli.weight;
+  options.max_expansions = cli.max_expansions;
+  if (!cli.footprint.empty()) options.footprint = ParseFootprint(cli.footprint, cli);
+  std::string error;
+  if (!options.IsValid(&error)) throw UsageError(error);
+
+  OccupancyGrid original;
+  const OccupancyGrid grid = LoadGrid(cli, &original);
+  const std::vector<Query> queries = MakeQueries(cli, original);
+  if (queries.size() > 1 && (!cli.path_path.empty() || !cli.plot_path.empty()))
+    throw UsageError("--path and --plot need a single query: add --scenario I, or use --start/--goal");
+
+  const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, options);
+  std::cout << "planner: " << Describe(options, *planner) << "\n";
+  std::vector<PlanResult> results;
+  results.reserve(queries.size());
+  {
+    ProgressBar bar("carribot", !cli.quiet && queries.size() > 1);
+    for (const Query& q : queries) {
+      results.push_back(planner->Plan(q.start, q.goal));
+      if (queries.size() > 1) results.back().path = {};  // only a single query writes its path
+      bar.Update(results.size(), queries.size());
+    }
+  }
+
+  // Outputs only after every query ran, so a failure leaves no partial file.
+  if (!cli.timeline_path.empty()) {
+    CreateParent(cli.timeline_path);
+    WriteTimeline(cli.timeline_path, queries, results);
+  }
+  const PlanResult& first = results.front();
+  if (queries.size() == 1 && first.found()) {
+    if (!cli.path_path.empty()) {
+      CreateParent(cli.path_path);
+      WritePathCsv(cli.path_path, first, grid.resolution_m(), planner->heading_count());
+    }
+    if (!cli.plot_path.empty()) {
+      CreateParent(cli.plot_path);
+      WritePathPlot(cli.plot_path, grid, first, PathPlotOptions{options.footprint, 24});
+    }
+  }
+
+  std::size_t found = 0, optimal_checked = 0, optimal_matched = 0;
+  std::uint64_t expanded = 0;
+  double wall_s = 0.0, worst_gap = 0.0;
+  const bool expect_optimal = !options.footprint && options.heuristic_weight == 1.0;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const PlanResult& r = results[i];
+    expanded += r.expanded;
+    wall_s += r.wall_s;
+    if (!r.found()) continue;
+    ++found;
+    if (expect_optimal && queries[i].optimal_length) {
+      ++optimal_checked;
+      const double gap = std::abs(r.length_cells - *queries[i].optimal_length);
+      worst_gap = std::max(worst_gap, gap);
+      if (gap <= kOptimalTolerance) ++optimal_matched;
+    }
+  }
+  if (queries.size() == 1 && first.found())
+    std::cout << "path: " << first.length_cells << " cells = " << first.length_m << " m (" << first.path.size()
+              << " states, " << first.turns << " turns)\n";
+  std::cout << "found " << found << " of " << queries.size() << " paths; " << expanded << " expansions in " << wall_s
+            << " s (" << (wall_s > 0 ? expanded / wall_s : 0.0) << " per s)\n";
+  if (optimal_checked > 0)
+    std::cout << "optimal length matched (1e-4 cells): " << optimal_matched << " of " << optimal_checked
+              << " (largest difference " << worst_gap << " cells)\n";
+  for (const auto& [path, what] : {std::pair{cli.timeline_path, "timeline"}, std::pair{cli.path_path, "path"},
+                                   std::pair{cli.plot_path, "plot"}})
+    if (!path.empty() && (std::string(what) == "timeline" || (queries.size() == 1 && first.found())))
+      std::cout << what << ": " << path << "\n";
+  if (found == queries.size()) return 0;
+  int shown = 0;
+  for (std::size_t i = 0; i < results.size() && shown < 5; ++i)
+    if (!results[i].found()) {
+      std::cout << queries[i].origin << ": " << ToString(results[i].status) << ": " << results[i].message << "\n";
+      ++shown;
+    }
+  if (queries.size() - found > 5) std::cout << "... and " << queries.size() - found - 5 << " more without a path\n";
+  return kExitNoPath;
+}
+
+}  // namespace
+
+void AddCarribotCommand(CLI::App& app) {
+  auto cli = std::make_shared<CarribotCli>();
+  CLI::App* cmd = app.add_subcommand(
+      "carribot", "Grid A* for a point robot or a rectangular footprint with headings (CarriBot), on MovingAI "
+                  "scenarios or one start/goal pair");
+  cmd->add_option("--map", cli->map_path, "Map file: MovingAI .map, or any format rcbench reads")->required();
+  cmd->add_option("--scen", cli->scen_path, "MovingAI scenario file (.scen); plans every scenario unless --scenario");
+  cmd->add_option("--scenario", cli->scenario, "Plan only scenario I of --scen (0-based, in file order)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--start", cli->start, "Start cell X,Y (column, row of the map)")->expected(2)->delimiter(',');
+  cmd->add_option("--goal", cli->goal, "Goal cell X,Y (column, row of the map)")->expected(2)->delimiter(',');
+  cmd->add_option("--weight", cli->weight, "Heuristic weight (>= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
+      ->capture_default_str();
+  auto* footprint = cmd->add_option("--footprint", cli->footprint,
+                                    "Rectangular robot WIDTHxLENGTH (m, across x along the heading), e.g. 0.4x0.8; "
+                                    "default: a point robot");
+  cmd->add_option("--headings", cli->headings, "Heading count of a footprint robot: 8 or 16")
+      ->check(CLI::IsMember({8, 16}))
+      ->needs(footprint)
+      ->capture_default_str();
+  cmd->add_option("--start-heading", cli->start_heading, "Start heading index (angle 2*pi*k/headings from +x); "
+                                                         "default: any collision-free heading")
+      ->needs(footprint);
+  cmd->add_option("--goal-heading", cli->goal_heading, "Goal heading index; default: any")->needs(footprint);
+  cmd->add_option("--collision-mode", cli->collision_mode,
+                  "precomputed (configuration space per heading, built once) | per-expansion (footprint checks "
+                  "batched per A* expansion)")
+      ->check(CLI::IsMember({"precomputed", "per-expansion"}))
+      ->needs(footprint)
+      ->capture_default_str();
+  cmd->add_option("--max-expansions", cli->max_expansions, "Stop a query after N expansions (0 = no limit)")
+      ->capture_default_str();
+  cmd->add_option("--resolution,--map-resolution", cli->resolution_m,
+                  "Cell size (m) for MovingAI maps (default 1) and images")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--map-scale", cli->map_scale,
+                  "Split every cell into NxN cells (RoWild's --scale-map); start and goal cells are multiplied by N")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  cmd->add_option("--timeline", cli->timeline_path, "Write one CSV row per query here");
+  cmd->add_option("--path", cli->path_path, "Write the path (cells and metres, CSV) of a single query here");
+  cmd->add_option("--plot", cli->plot_path, "Write a PNG of a single query's path on the map here");
+  cmd->add_flag("--quiet", cli->quiet, "No progress bar");
+  cmd->footer(
+      "Exit codes: 0 every query found a path; 1 bad input (a file, or a map with no free cell); 2 bad usage; "
+      "3 at least one query found no path (goal unreachable, start or goal on a blocked cell or with the "
+      "footprint in collision, or --max-expansions reached). With exit code 3 every output is still written; the timeline's "
+      "status column says why each query failed.");
+  cmd->callback([cli] {
+    const int code = Run(*cli);
+    if (code != 0) {
+      std::cout.flush();
+      std::cerr.flush();
+      std::exit(code);
+    }
+  });
+}
+
+}  // namespace rc
