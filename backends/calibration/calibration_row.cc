@@ -55,8 +55,10 @@ std::string FormatSentence(const char* format, ...) {
 std::string FormatValue(double value, CalibrationUnit unit) {
   if (std::isnan(value)) return "-";
   char buf[48];
-  if (unit == CalibrationUnit::kSpeedup)
+  if (unit == CalibrationUnit::kSpeedup && value >= 1.0)
     std::snprintf(buf, sizeof buf, "%.2fx faster", value);
+  else if (unit == CalibrationUnit::kSpeedup)
+    std::snprintf(buf, sizeof buf, "%.2fx (%.2fx slower)", value, 1.0 / value);
   else
     std::snprintf(buf, sizeof buf, "%+.1f%%", value);
   return buf;

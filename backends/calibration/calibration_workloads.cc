@@ -119,7 +119,7 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
                   : "seeded random workspace OBBs (no " + robot_path + ")") +
       Format(", %.0f queries (%.0f collide), against the shelf scene (%.0f boxes, ", double(obbs.size()),
              double(summary.collisions), double(scene.size())) +
-      Format("%.0f-node median-split tree, 32-byte float nodes), depth-first; %.2f nodes per query, %.0f axis "
+      Format("%.0f-node median-split tree, 32-byte float nodes), depth-first; %.2f nodes per query, %.1f axis "
              "tests per node on average.",
              double(tree.nodes().size()), summary.nodes_per_query_mean,
              double(summary.box_normal + summary.edge_edge) / double(summary.node_visits));

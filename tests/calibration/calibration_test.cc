@@ -165,6 +165,25 @@ TEST_F(CalibrationTest, FullyParallelNodeCostsOneRound) {
   for (std::uint8_t exit : parallel.node_exits) EXPECT_TRUE(exit == 0 || exit == kNoExit);
 }
 
+// Without the shared data: the generated office map and random OBBs, said
+// so in the report, and still every row.
+TEST(CalibrationFallback, GeneratedInputsGiveEveryRowAndSaySo) {
+  CalibrationOptions o = SmallOptions();
+  o.data_dir = "/nonexistent-calibration-data";
+  o.random_obbs = 64;
+  const CalibrationWorkloads w = MakeCalibrationWorkloads(o);
+  EXPECT_NE(w.ray_description.find("generated office map"), std::string::npos) << w.ray_description;
+  EXPECT_NE(w.collision_description.find("random"), std::string::npos) << w.collision_description;
+  EXPECT_EQ(w.sact.query_count(), 64u);
+  const CalibrationReport report = Calibrate(w, BackendParameters{});
+  std::vector<std::string> names;
+  for (const CalibrationRow& r : report.rows) {
+    names.push_back(r.result);
+    EXPECT_TRUE(std::isfinite(r.ours)) << r.result;
+  }
+  EXPECT_EQ(names, ExpectedRows());
+}
+
 TEST(SactDatapathVariants, RoundsMustCoverEveryAxisOnce) {
   SactDatapathVariant bad = SactUnitCopies(2);
   bad.rounds.pop_back();
