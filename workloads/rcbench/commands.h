@@ -9,5 +9,6 @@ void AddSimulateCommand(CLI::App& app);
 void AddMakeMapCommand(CLI::App& app);
 void AddBackendsCommand(CLI::App& app);
 void AddCollideCommand(CLI::App& app);
+void AddCalibrateCommand(CLI::App& app);
 
 }  // namespace rc

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   rc::AddMakeMapCommand(app);
   rc::AddBackendsCommand(app);
   rc::AddCollideCommand(app);
+  rc::AddCalibrateCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
