@@ -8,7 +8,7 @@ namespace rc {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr int kMarginUlps = 1024;
+constexpr int kMarginUlps = 256;
 
 // The Scalar box [c - h, c + h] that contains [lower, upper] (double):
 // centre rounded to nearest, half grown until the box covers both ends.
@@ -65,8 +65,12 @@ FlatBoxTree<Scalar>::FlatBoxTree(const BoxTree& tree) : kind_(tree.kind), max_ch
       upper[i] = upper[i].cwiseMax(upper[c]);
     }
   }
-  const double magnitude = std::max(lower[0].cwiseAbs().maxCoeff(), upper[0].cwiseAbs().maxCoeff());
-  const double margin = kMarginUlps * std::numeric_limits<Scalar>::epsilon() * magnitude;
+  // The SACT's rounding near contact is relative to the centre offset and
+  // the radii it handles, not to how far from the origin the scene is (the
+  // offset of two nearby centres is exact), so the margin follows the
+  // scene's size.
+  const double scene_half = 0.5 * (upper[0] - lower[0]).maxCoeff();
+  const double margin = kMarginUlps * std::numeric_limits<Scalar>::epsilon() * scene_half;
   internal_margin_ = static_cast<Scalar>(margin);
   for (std::size_t i = 0; i < n; ++i) {
     if (nodes_[i].is_leaf()) continue;

@@ -20,12 +20,18 @@
 //
 // Leaves hold their scene box exactly (cast to Scalar). Internal boxes are
 // conservative: they contain the Scalar-rounded boxes below them, rounded
-// outward, plus a margin of 1024 ulps of the scene's magnitude (largest
-// coordinate of the root bounds). The SACT's own rounding is a few ulps of
-// the magnitudes it handles, so a node whose box contains a leaf that
-// overlaps the query is never rejected: the tree answers exactly what
-// testing every box would (tests/collision check this), at the price of a
-// few extra visits for queries within the margin of a node.
+// outward, plus a margin of 256 ulps of the scene's half extent (root
+// bounds; 0.15 mm in float for a 10 m scene). The SACT's rounding near
+// contact is a few ulps of the radii and centre offset it handles, so a
+// node whose box contains a leaf that overlaps the query is not rejected:
+// the tree answers exactly what testing every box would (tests/collision
+// check this, near contact and far from the origin; internal boxes shrunk
+// by 1e-6 fail them, while the margin itself has not yet been needed:
+// the SACT's rounding has been monotone in practice), at the price of a
+// few extra visits within the margin. The guarantee assumes OBBs no larger than
+// about 16 x the scene's half extent; a larger OBB can only differ within
+// its own rounding (u x its size) of exact contact, where the box-by-box
+// answer is itself decided by rounding.
 #include <cstdint>
 #include <vector>
 

@@ -4,6 +4,11 @@
 // per OBB and a timeline of what the queries did (nodes per query, how the
 // node tests ended), and prints the sphere-robot and artifact comparisons.
 //
+// Output exit_axis: how the query's last node test ended: 0..14 the SACT
+// axis that separated (sact.h numbering; a collision-free query), -1
+// overlap (the colliding leaf), -2 a sphere pre-test rejected, -3 no node
+// was tested (empty scene).
+//
 //   rcbench collide --obbs ../shared/data/collision/mpnet_master_obb.csv --scene shelf
 #include <filesystem>
 #include <iomanip>
@@ -180,7 +185,9 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--scene", cli->scene, "Generated scene: shelf (a cubby shelf in front of the robot and one behind)");
   cmd->add_option("--scene-seed", cli->shelf.seed, "Seed of the shelf's objects (unitless)")->capture_default_str();
   cmd->add_option("--scene-output", cli->scene_output_path, "Write the generated scene's boxes here (box CSV)");
-  cmd->add_option("--output", cli->output_path, "Per-OBB results CSV: index,collides,nodes_visited,exit_axis");
+  cmd->add_option("--output", cli->output_path,
+                  "Per-OBB results CSV: index,collides,nodes_visited,exit_axis (exit of the last node test: "
+                  "0..14 separating axis, -1 overlap, -2 sphere reject, -3 none)");
   cmd->add_option("--timeline", cli->timeline_path,
                   "Batch timeline CSV (section,key,value): nodes per query mean and histogram, exit-axis distributions");
   cmd->add_option("--precision", cli->precision, "SACT and node precision: double | float")
