@@ -5,6 +5,7 @@
 namespace rc {
 
 void AddDelibotCommand(CLI::App& app);
+void AddCarribotCommand(CLI::App& app);
 void AddSimulateCommand(CLI::App& app);
 void AddMakeMapCommand(CLI::App& app);
 void AddBackendsCommand(CLI::App& app);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   CLI::App app{"rcbench: robotics kernels (MCL ray casting, A*, RRT*) on modelled GPU backends"};
   app.require_subcommand(1);
   rc::AddDelibotCommand(app);
+  rc::AddCarribotCommand(app);
   rc::AddSimulateCommand(app);
   rc::AddMakeMapCommand(app);
   rc::AddBackendsCommand(app);
