@@ -14,6 +14,9 @@
 #include <iomanip>
 #include <iostream>
 
+#include "backends/backend.h"
+#include "backends/backend_params.h"
+#include "backends/calibration/sact_kernel_record.h"
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
@@ -31,7 +34,7 @@ constexpr int kArtifactNodeBytes = 432;
 
 struct CollideCli {
   std::string obbs_path, boxes_path, octree_path, scene;
-  std::string output_path, timeline_path, scene_output_path;
+  std::string output_path, timeline_path, scene_output_path, backend_params_path;
   std::string precision = "double", traversal = "dfs";
   double parallel_epsilon = 1e-6;
   bool sphere_pretest = false;
@@ -61,7 +64,28 @@ void WriteOutput(const std::string& path, const CollisionBatch& batch) {
 
 // Long format (section, key, value): one file for the summary numbers, the
 // nodes-per-query histogram and both exit-axis distributions.
-void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch) {
+// Every modelled backend prices the batch's recorded traversal (run once,
+// price many times). Empty when sphere pre-tests decided some visits: the
+// shipped SACT program has no sphere section to price them with.
+std::vector<BatchCost> PriceCollisionBatch(const CollisionBatch& batch, const BackendParameters& params) {
+  if (batch.outcomes.empty()) return {};
+  KernelRecord record;
+  try {
+    record = SactKernelRecord(batch);
+  } catch (const std::invalid_argument&) {
+    return {};
+  }
+  std::vector<std::unique_ptr<Backend>> owned;
+  std::vector<const Backend*> backends;
+  for (const std::string& name : Backend::ModelledNames()) {
+    owned.push_back(Backend::Create(name, params));
+    backends.push_back(owned.back().get());
+  }
+  return PriceAll(backends, record);
+}
+
+void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch,
+                   const std::vector<BatchCost>& costs) {
   CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
@@ -79,6 +103,8 @@ void WriteTimeline(const std::string& path, const CollisionSummary& s, const Col
   out << "stages,sphere_pretest," << s.sphere_pretests << "\nstages,pre_process," << s.pre_process
       << "\nstages,box_normal," << s.box_normal << "\nstages,edge_edge," << s.edge_edge
       << "\nstages,sphere_decided," << s.sphere_decided << '\n';
+  for (const BatchCost& c : costs)
+    out << "cycles," << c.backend << ',' << c.cycles << "\nenergy_j," << c.backend << ',' << c.energy_joules << '\n';
   file.Commit();
 }
 
@@ -111,9 +137,12 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
 
   const CollisionBatch batch = CollideBatch(flat, obbs, options);
   const CollisionSummary summary = Summarize(batch);
+  const BackendParameters params =
+      cli.backend_params_path.empty() ? BackendParameters{} : LoadBackendParameters(cli.backend_params_path);
+  const std::vector<BatchCost> costs = PriceCollisionBatch(batch, params);
   // Outputs only after the whole run succeeded.
   if (!cli.output_path.empty()) WriteOutput(cli.output_path, batch);
-  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch);
+  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs);
 
   std::cout << "scene: " << ToString(tree.kind) << ", " << tree.boxes.size() << " boxes, " << flat.nodes().size()
             << " nodes of " << flat.node_bytes() << " B (" << flat.bytes() << " B; the artifact's node is "
@@ -121,6 +150,15 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   std::cout << "kernel: " << cli.precision << " SACT, epsilon " << cli.parallel_epsilon << ", "
             << (cli.sphere_pretest ? "sphere pre-tests, " : "") << ToString(options.order) << " traversal\n";
   PrintSummary(std::cout, summary);
+  if (costs.empty()) {
+    std::cout << "backend pricing         skipped: sphere pre-tests have no section in the SACT program\n";
+  } else {
+    std::cout << "modelled cost of the batch (every backend prices the same traversal):\n";
+    for (const BatchCost& c : costs)
+      std::cout << "  " << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
+                << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules
+                << " uJ\n";
+  }
 
   const SphereRobotReport spheres = CompareSphereRobot(flat, obbs, options);
   std::cout << "sphere robot            " << spheres.sphere_collisions << " collisions, " << spheres.false_collisions
@@ -188,6 +226,8 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--output", cli->output_path,
                   "Per-OBB results CSV: index,collides,nodes_visited,exit_axis (exit of the last node test: "
                   "0..14 separating axis, -1 overlap, -2 sphere reject, -3 none)");
+  cmd->add_option("--backend-params", cli->backend_params_path,
+                  "JSON file overriding backend cost parameters (see rcbench backends)");
   cmd->add_option("--timeline", cli->timeline_path,
                   "Batch timeline CSV (section,key,value): nodes per query mean and histogram, exit-axis distributions");
   cmd->add_option("--precision", cli->precision, "SACT and node precision: double | float")
