@@ -46,8 +46,9 @@ struct DelibotSettings {
   double jump_threshold_m = 1.0;
   // Shadow costing: every modelled backend prices every update's ray batch
   // (beam model only; the likelihood field casts no rays), and the policy
-  // picks the backend that "ran".
-  bool price_backends = true;
+  // picks the backend that "ran". Off by default in the library (pricing
+  // costs 2-5x the filter); the CLI turns it on unless --no-pricing.
+  bool price_backends = false;
   BackendParameters backend_params;
   LedgerOptions ledger;
 };
