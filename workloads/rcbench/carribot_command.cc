@@ -144,8 +144,9 @@ void CheckUsage(const CarribotCli& cli) {
 
 std::string Describe(const PlannerOptions& o, const GridPlanner& planner) {
   std::ostringstream out;
-  out << (o.heuristic_weight == 1.0 ? "A*" : "weighted A* (weight " + std::to_string(o.heuristic_weight) + ")")
-      << ", octile heuristic, ties to larger g then first pushed; robot: ";
+  if (o.heuristic_weight == 1.0) out << "A*";
+  else out << "weighted A* (weight " << o.heuristic_weight << ")";
+  out << ", octile heuristic, ties to larger g then first pushed; robot: ";
   if (!o.footprint) return out.str() + "point (8-connected, no corner cutting)";
   const RectangleFootprint& f = *o.footprint;
   out << f.width_m << " m x " << f.length_m << " m rectangle (width x length), " << f.heading_count
