@@ -1,0 +1,63 @@
+// Regression tests of the adaptive policy on DeliBot runs with fixed seeds:
+// on the real Wean logs (when ../shared/data is present) and on a simulated
+// trace, adaptive's total modelled cycles are at most the best static
+// backend's and within 2% of the hindsight oracle.
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "maps/cmu_map_loader.h"
+#include "maps/office_map_generator.h"
+#include "test_data.h"
+#include "traces/trace_reader.h"
+#include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/trace_simulator.h"
+
+namespace rc {
+namespace {
+
+DelibotSettings PricedSettings() {
+  DelibotSettings s;
+  s.mcl.particle_count = 300;
+  s.mcl.seed = 11;
+  s.max_records = 60;
+  s.price_backends = true;
+  s.ledger.policy.kind = SchedulerKind::kAdaptive;
+  return s;
+}
+
+void ExpectAdaptiveGrades(const DelibotResult& r, const std::string& what) {
+  ASSERT_TRUE(r.priced) << what;
+  const LedgerSummary& l = r.pricing;
+  const double best_static = *std::min_element(l.static_total_cycles.begin(), l.static_total_cycles.end());
+  EXPECT_GT(best_static, 0.0) << what;
+  EXPECT_LE(l.policy_total_cycles, best_static) << what;
+  EXPECT_LE(l.gap_to_oracle_percent, 2.0) << what;
+  EXPECT_GE(l.policy_total_cycles, l.oracle_total_cycles) << what << ": nothing beats hindsight";
+}
+
+TEST(DelibotScheduleTest, AdaptiveOnTheRealWeanLogs) {
+  RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
+  const OccupancyGrid grid = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
+  for (int log = 1; log <= 4; ++log) {
+    const std::string name = "wean/robotdata" + std::to_string(log) + ".log";
+    const SensorTrace trace = ReadTrace(test::SharedDataPath(name), TraceReadOptions{});
+    ExpectAdaptiveGrades(RunDelibot(grid, trace, nullptr, PricedSettings()), name);
+  }
+}
+
+TEST(DelibotScheduleTest, AdaptiveOnASimulatedTrace) {
+  const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
+  SimulationOptions sim;
+  sim.record_count = 80;
+  const SimulatedTrace trace = SimulateTrace(grid, sim);
+  for (auto caster : {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching}) {
+    DelibotSettings s = PricedSettings();
+    s.ray_caster = caster;
+    ExpectAdaptiveGrades(RunDelibot(grid, trace.trace, nullptr, s), ToString(caster));
+  }
+}
+
+}  // namespace
+}  // namespace rc
