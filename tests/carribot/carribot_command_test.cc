@@ -12,10 +12,9 @@
 #include "maps/map_test_util.h"
 #include "test_data.h"
 #include "traces/csv_table.h"
+#include "workloads/rcbench/commands.h"
 
 namespace rc {
-void AddCarribotCommand(CLI::App& app);
-
 namespace {
 
 // Runs `rcbench carribot ARGS...`; returns main()'s exit code.

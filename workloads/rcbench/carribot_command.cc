@@ -23,14 +23,10 @@
 #include "workloads/carribot/movingai_scenario_reader.h"
 #include "workloads/carribot/path_output.h"
 #include "workloads/carribot/path_plot.h"
+#include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/progress_bar.h"
 
 namespace rc {
-
-// Also declared in commands.h once the command is registered there; declared
-// here so that this file compiles on its own (tests/carribot build it).
-void AddCarribotCommand(CLI::App& app);
-
 namespace {
 
 constexpr int kExitNoPath = 3;
