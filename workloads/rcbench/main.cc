@@ -2,7 +2,8 @@
 //
 // Exit codes: 0 success; 1 bad input (a file, a value, or a run that cannot
 // proceed, e.g. a map with no free cell), with one message naming the file,
-// line and field; 2 bad command-line usage.
+// line and field; 2 bad command-line usage; 3 `carribot` found no path for
+// at least one query (after writing all its outputs).
 #include <cstdio>
 #include <exception>
 #include <iostream>
