@@ -25,7 +25,7 @@ std::string ToString(SensorModelKind k);
 struct DelibotSettings {
   MclOptions mcl;
   SensorModelKind sensor_model = SensorModelKind::kBeam;
-  RayCastMethod ray_caster = RayCastMethod::kDda;
+  RayCastMethod ray_caster = RayCastMethod::kRayMarching;  // exact (= dda) and the fewest fetches
   BeamModelParams beam;           // max_range_m is shared by both models
   LikelihoodFieldParams likelihood;
   long max_records = 0;           // 0 = the whole trace

@@ -29,7 +29,7 @@ struct DelibotCli {
   std::string map_path, map_format = "auto", map_convention;
   double map_resolution_m = 0.0;
   std::string trace_path, trace_format = "auto", ground_truth_path;
-  std::string sensor_model = "beam", ray_caster = "dda";
+  std::string sensor_model = "beam", ray_caster = "rm";
   std::vector<double> initial_pose;
   std::string timeline_path, summary_path;
   int threads = 0;
