@@ -74,7 +74,7 @@ def main():
                 summary = os.path.join(args.out, f"{name}_{seed}_{mode}.json")
                 cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--ground-truth", gt,
                        "--particles", str(args.particles if mode == "global" else 500), "--seed", str(seed),
-                       "--summary", summary, "--quiet"]
+                       "--summary", summary, "--quiet", "--no-pricing"]
                 if mode == "tracking":
                     cmd += ["--initial-pose", first_pose(gt)]
                 run(cmd)

@@ -90,7 +90,7 @@ def main():
         summary_path = os.path.join(args.out, "sweep_summary.json")
         cmd = [args.rcbench, "delibot", *map_args, "--trace", trace, "--ground-truth", gt, "--particles", str(p),
                "--beam-step", str(k), "--sensor-model", model, "--seed", str(args.seed), "--summary", summary_path,
-               "--threads", str(args.threads), "--quiet"]
+               "--threads", str(args.threads), "--quiet", "--no-pricing"]
         if caster != "-":
             cmd += ["--raycaster", caster]
         if not args.global_loc:
