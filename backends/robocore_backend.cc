@@ -13,7 +13,8 @@ RoboCoreBackend::RoboCoreBackend(const BackendParameters& params)
   specs_.has_sact_units = true;
   specs_.early_exit = EarlyExitMode::kConditionalReturn;
   specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest};
+                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
+                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
   specs_.clock_hz = gpu_.core_clock_hz;
   specs_.sms = gpu_.sms;
 }

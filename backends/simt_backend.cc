@@ -26,7 +26,8 @@ SimtBackend::SimtBackend(const BackendParameters& params)
   specs_.description = "CUDA cores: warps of 32 queries, coalesced sectors, GTO issue";
   specs_.has_cost_model = true;
   specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest};
+                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
+                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
   specs_.clock_hz = gpu_.core_clock_hz;
   specs_.sms = gpu_.sms;
 }

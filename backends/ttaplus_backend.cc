@@ -24,7 +24,8 @@ TtaPlusBackend::TtaPlusBackend(const BackendParameters& params, EarlyExitMode mo
   specs_.has_rt_unit = true;
   specs_.early_exit = mode;
   specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest};
+                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
+                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
   specs_.clock_hz = gpu_.core_clock_hz;
   specs_.sms = gpu_.sms;
 }

@@ -30,6 +30,8 @@ enum class StepProgramKind : std::uint8_t {
   kDdaStep,    // dda:   programs/dda_step.asm
   kRmStep,     // rm:    programs/rm_step.asm
   kSactTest,   // one OBB-vs-AABB SACT per node: programs/sact_obb_aabb.asm
+  kBallQueryPRay,     // ball query, point probe vs state spheres: programs/ball_query_pray.asm
+  kBallQueryPSphere,  // ball query, query sphere vs state boxes: programs/ball_query_psphere.asm
 };
 const char* ToString(StepProgramKind kind);
 StepProgramKind StepProgramFor(RayCastMethod method);
