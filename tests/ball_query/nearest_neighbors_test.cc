@@ -4,6 +4,7 @@
 // ties resolved deterministically, after adds, removes and clear, for both
 // formulations and several k, r and dimensions.
 #include <algorithm>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -26,6 +27,11 @@ struct Case {
   double sphere_radius;
   bool early_exit;
 };
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << ToString(c.formulation) << ", n = " << c.dimension << ", sphere_radius = " << c.sphere_radius
+      << (c.early_exit ? ", early exit" : ", no early exit");
+}
 
 std::string Name(const testing::TestParamInfo<Case>& info) {
   return std::string(ToString(info.param.formulation)) + "_n" + std::to_string(info.param.dimension) + "_r" +
