@@ -25,7 +25,10 @@
 // distance; between equal distances the element added first comes first
 // (NearestNeighborsLinear::nearest's rule). remove() removes the most
 // recently added element equal to the argument, as NearestNeighborsLinear
-// does. clear() empties the structure but keeps the record and counters.
+// does (a scan: O(size); RRTstar removes only when pruning). clear()
+// empties the structure but keeps the record and counters. counters() add
+// up from construction or ResetCounters(); a taken record carries its own
+// batch's numbers (query_count(), total_nodes()).
 //
 // Memory: the tree (ball_query_tree.h: 32n + 8 bytes per node slot plus n
 // doubles per state on the host) and the record (9 bytes per node fetch +
