@@ -14,6 +14,32 @@ OnlineScheduler MakeOnline(const SchedulerOptions& policy) {
   return OnlineScheduler(online);
 }
 
+// Sums two launches' costs. SIMT efficiency is active lanes over issued
+// lanes, so the sum is the issued-instruction-weighted mean.
+void AddCost(BatchCost& total, const BatchCost& more) {
+  const double wa = static_cast<double>(total.warp_instructions), wb = static_cast<double>(more.warp_instructions);
+  if (wa + wb > 0) total.simt_efficiency = (total.simt_efficiency * wa + more.simt_efficiency * wb) / (wa + wb);
+  total.host_seconds += more.host_seconds;
+  total.queries += more.queries;
+  total.nodes += more.nodes;
+  total.cycles += more.cycles;
+  total.launch_cycles += more.launch_cycles;
+  total.seconds += more.seconds;
+  total.energy_joules += more.energy_joules;
+  total.memory.sector_requests += more.memory.sector_requests;
+  total.memory.l1_hits += more.memory.l1_hits;
+  total.memory.l2_accesses += more.memory.l2_accesses;
+  total.memory.l2_hits += more.memory.l2_hits;
+  total.memory.dram_accesses += more.memory.dram_accesses;
+  for (std::size_t k = 0; k < total.micro_ops.size(); ++k) total.micro_ops[k] += more.micro_ops[k];
+  total.predicated_off_micro_ops += more.predicated_off_micro_ops;
+  total.interconnect_hops += more.interconnect_hops;
+  total.ctrl_exits += more.ctrl_exits;
+  total.warp_instructions += more.warp_instructions;
+  total.thread_instructions += more.thread_instructions;
+  total.nodes_counted += more.nodes_counted;
+}
+
 }  // namespace
 
 BackendLedger::BackendLedger(const BackendParameters& params, LedgerOptions options)
@@ -57,27 +83,38 @@ const std::string& BackendLedger::BeginIteration() {
   return pending_backend_;
 }
 
+void BackendLedger::AddLaunch(const KernelRecord& record) {
+  if (record.query_count() == 0) return;
+  if (!threshold_known_) {
+    // First priced launch: derive the crossover for batches like this one.
+    const CrossoverResult crossing =
+        DeriveCrossoverThreshold(*backends_[IndexOf(options_.policy.high_backend)],
+                                 *backends_[IndexOf(options_.policy.low_backend)], record, record.query_count());
+    options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
+    threshold_has_crossing_ = crossing.has_crossing;
+    threshold_known_ = true;
+    // Until now no counter was seen, so the policy is still on its
+    // initial choice; a fresh one with the threshold continues from there.
+    online_ = MakeOnline(options_.policy);
+  }
+  std::vector<BatchCost> costs = PriceAll(backend_ptrs_, record);
+  if (open_costs_.empty()) open_costs_ = std::move(costs);
+  else
+    for (std::size_t b = 0; b < costs.size(); ++b) AddCost(open_costs_[b], costs[b]);
+  open_queries_ += record.query_count();
+  open_nodes_ += record.total_nodes();
+}
+
 const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
   LedgerIteration it;
   it.backend = pending_backend_.empty() ? online_.current() : pending_backend_;
   it.nodes_per_query_prev = last_nodes_per_query_;
   it.switched = !previous_backend_.empty() && it.backend != previous_backend_;
-  if (record && record->query_count() > 0) {
-    if (!threshold_known_) {
-      // First priced iteration: derive the crossover for batches like this one.
-      const CrossoverResult crossing =
-          DeriveCrossoverThreshold(*backends_[IndexOf(options_.policy.high_backend)],
-                                   *backends_[IndexOf(options_.policy.low_backend)], *record, record->query_count());
-      options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
-      threshold_has_crossing_ = crossing.has_crossing;
-      threshold_known_ = true;
-      // Until now no counter was seen, so the policy is still on its
-      // initial choice; a fresh one with the threshold continues from there.
-      online_ = MakeOnline(options_.policy);
-    }
+  if (record) AddLaunch(*record);
+  if (open_queries_ > 0) {
     it.priced = true;
-    it.costs = PriceAll(backend_ptrs_, *record);
-    it.nodes_per_query = static_cast<double>(record->total_nodes()) / static_cast<double>(record->query_count());
+    it.costs = std::move(open_costs_);
+    it.nodes_per_query = static_cast<double>(open_nodes_) / static_cast<double>(open_queries_);
     const BatchCost& chosen = it.costs[IndexOf(it.backend)];
     it.chosen_cycles = static_cast<double>(chosen.cycles);
     it.chosen_energy_j = chosen.energy_joules;
@@ -85,6 +122,8 @@ const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
   } else {
     last_nodes_per_query_ = -1.0;
   }
+  open_costs_.clear();
+  open_queries_ = open_nodes_ = 0;
   if (it.switched) it.chosen_cycles += switch_cost_cycles_;
   if (options_.policy.kind != SchedulerKind::kStatic) it.threshold = options_.policy.threshold_nodes_per_query;
   previous_backend_ = it.backend;

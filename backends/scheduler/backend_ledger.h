@@ -68,6 +68,10 @@ class BackendLedger {
   const std::string& BeginIteration();
   // Prices the iteration's record on every backend (null: nothing ran).
   const LedgerIteration& EndIteration(const KernelRecord* record);
+  // An iteration of several kernel launches (CarriBot: one per A*
+  // expansion): prices one launch on every backend now and adds its cost to
+  // the iteration in progress, which EndIteration closes with the sums.
+  void AddLaunch(const KernelRecord& record);
   const std::vector<LedgerIteration>& iterations() const { return iterations_; }
   LedgerSummary Finish() const;
   const SchedulerOptions& policy() const { return options_.policy; }
@@ -87,6 +91,8 @@ class BackendLedger {
   std::string pending_backend_;
   std::string previous_backend_;
   std::vector<LedgerIteration> iterations_;
+  std::vector<BatchCost> open_costs_;  // launches added to the iteration in progress
+  std::uint64_t open_queries_ = 0, open_nodes_ = 0;
 };
 
 }  // namespace rc

@@ -5,6 +5,10 @@
 // its outputs before exiting; the parent then reads them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -37,6 +41,13 @@ int RunCarribot(std::vector<std::string> args) {
   return 0;
 }
 
+// The cell of `row` in the column named `name`.
+std::string Cell(const CsvContents& t, std::size_t row, const std::string& name) {
+  const auto it = std::find(t.header.begin(), t.header.end(), name);
+  if (it == t.header.end()) throw std::invalid_argument("no column " + name);
+  return t.rows.at(row).at(static_cast<std::size_t>(it - t.header.begin()));
+}
+
 const std::string kRoomsMap = "type octile\nheight 3\nwidth 9\nmap\n....@....\n....@....\n....@....\n";
 
 TEST(CarribotCommand, AllScenariosOfAMapMatchTheirOptima) {
@@ -48,10 +59,12 @@ TEST(CarribotCommand, AllScenariosOfAMapMatchTheirOptima) {
   ASSERT_EQ(t.rows.size(), 290u);
   const std::vector<std::string> header = {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells",
                                            "path_length_m", "optimal_length_cells", "turns", "expanded",
-                                           "collision_queries", "wall_s", "status"};
-  ASSERT_EQ(t.header, header);
+                                           "collision_queries", "kernel_launches", "kernel_queries",
+                                           "nodes_per_query", "wall_s", "status"};
+  ASSERT_EQ(t.header, header);  // a point robot runs no kernel: no pricing columns
   for (const auto& row : t.rows) {
-    EXPECT_EQ(row[13], "found");
+    EXPECT_EQ(row[16], "found");
+    EXPECT_EQ(row[13], "0");
     EXPECT_NEAR(std::stod(row[6]), std::stod(row[8]), 1e-4) << "scenario " << row[0];
     EXPECT_EQ(row[6], row[7]);  // 1 m per cell
   }
@@ -69,12 +82,16 @@ TEST(CarribotCommand, SingleFootprintQueryWritesPathAndPlot) {
   ASSERT_GE(path.rows.size(), 2u);
   EXPECT_EQ(path.header.front(), "step");
   const CsvContents timeline = ReadCsv(dir.Path("out/t.csv"));
-  ASSERT_EQ(timeline.rows.size(), 1u);
-  EXPECT_EQ(timeline.rows[0][0], "202");
+  // The kernel filled the configuration space (the set-up row), then the query.
+  ASSERT_EQ(timeline.rows.size(), 2u);
+  EXPECT_EQ(Cell(timeline, 0, "status"), "setup");
+  EXPECT_EQ(Cell(timeline, 0, "kernel_queries"), std::to_string(65 * 81 * 16));
+  EXPECT_EQ(Cell(timeline, 1, "scenario"), "202");
+  EXPECT_EQ(Cell(timeline, 1, "kernel_queries"), "0");
   // The last path row's cost is the timeline's path length, in cells and m.
-  EXPECT_EQ(path.rows.back()[7], timeline.rows[0][6]);
-  EXPECT_EQ(path.rows.back()[8], timeline.rows[0][7]);
-  EXPECT_NEAR(std::stod(path.rows.back()[8]), 0.5 * std::stod(timeline.rows[0][6]), 1e-6);  // 9 digits in CSV
+  EXPECT_EQ(path.rows.back()[7], Cell(timeline, 1, "path_length_cells"));
+  EXPECT_EQ(path.rows.back()[8], Cell(timeline, 1, "path_length_m"));
+  EXPECT_NEAR(std::stod(path.rows.back()[8]), 0.5 * std::stod(Cell(timeline, 1, "path_length_cells")), 1e-6);
   const cv::Mat png = cv::imread(dir.Path("out/p.png"));
   ASSERT_FALSE(png.empty());
   EXPECT_EQ(png.cols, 65 * 7);  // den312d is 65 x 81 cells, magnified to >= 512 px
@@ -89,9 +106,45 @@ TEST(CarribotCommand, UnreachableGoalExitsWithThreeAndStillWritesTheTimeline) {
               ::testing::ExitedWithCode(3), "");
   const CsvContents t = ReadCsv(timeline);
   ASSERT_EQ(t.rows.size(), 1u);
-  EXPECT_EQ(t.rows[0][13], "no_path");
-  EXPECT_EQ(t.rows[0][6], "");  // no length for a path that does not exist
+  EXPECT_EQ(Cell(t, 0, "status"), "no_path");
+  EXPECT_EQ(Cell(t, 0, "path_length_cells"), "");  // no length for a path that does not exist
   EXPECT_EXIT(RunCarribot({"--map", map, "--start", "4,0", "--goal", "8,2"}), ::testing::ExitedWithCode(3), "");
+}
+
+// Every --backend value plans the same path; the timeline prices every
+// per-expansion launch on every backend, and adaptive names its choice.
+TEST(CarribotCommand, EveryBackendPlansTheSamePathAndPricesEveryLaunch) {
+  test::TempDir dir;
+  const std::string map = dir.Write("open.map", "type octile\nheight 6\nwidth 10\nmap\n"
+                                                "..........\n..........\n....@.....\n....@.....\n"
+                                                "..........\n..........\n");
+  std::string first_path;
+  for (const std::string backend : {"adaptive", "oracle", "static:simt", "static:ttaplus", "static:ttaplus-p",
+                                    "static:ttaplus-cr", "static:robocore"}) {
+    const std::string path = dir.Path(backend + "_p.csv"), timeline = dir.Path(backend + "_t.csv");
+    ASSERT_EQ(RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2",
+                           "--collision-mode", "per-expansion", "--backend", backend, "--path", path, "--timeline",
+                           timeline}),
+              0)
+        << backend;
+    std::ifstream in(path);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (first_path.empty()) first_path = text;
+    EXPECT_EQ(text, first_path) << backend;
+    const CsvContents t = ReadCsv(timeline);
+    ASSERT_EQ(t.rows.size(), 1u);
+    EXPECT_GT(std::stoll(Cell(t, 0, "kernel_launches")), 1);
+    EXPECT_GT(std::stod(Cell(t, 0, "nodes_per_query")), 1.0);
+    for (const char* b : {"simt", "ttaplus", "ttaplus_p", "ttaplus_cr", "robocore"})
+      EXPECT_GT(std::stod(Cell(t, 0, std::string("cycles_") + b)), 0.0) << b;
+    EXPECT_GT(std::stod(Cell(t, 0, "energy_j")), 0.0);
+    if (backend.rfind("static:", 0) == 0) {
+      EXPECT_EQ("static:" + Cell(t, 0, "backend"), backend);
+    }
+  }
+  EXPECT_EQ(RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2", "--backend",
+                         "gpu"}),
+            2);
 }
 
 TEST(CarribotCommand, UsageErrorsExitWithTwo) {

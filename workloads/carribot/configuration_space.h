@@ -10,9 +10,11 @@
 //    O(cells * headings * (L + W)): about 0.5 s for the Intel map at scale 4
 //    (2 Mi cells) with 8 headings and a 10 x 4 cell robot on a shared 2-core
 //    machine; this is what the planner uses.
-//  - FromChecker: every (cell, heading) asked of a FootprintChecker, one
-//    batch per heading and map column. This is how a collision kernel fills
-//    the configuration space, and how it is held to the exact answer.
+//  - FromChecker: every (cell, heading) asked of a FootprintChecker, in
+//    batches of at most max_batch poses (one heading's cells in storage
+//    order, then the next heading). This is how a collision kernel fills the
+//    configuration space (one launch per batch: large batches fill a GPU and
+//    pay few launches), and how it is held to the exact answer.
 // Memory: headings bytes per cell (8 MB for 1 Mi cells at 8 headings).
 #include <cstdint>
 #include <vector>
@@ -26,8 +28,9 @@ namespace rc {
 class ConfigurationSpace {
  public:
   static ConfigurationSpace FromStencils(const OccupancyGrid& grid, const FootprintStencils& stencils);
+  static constexpr std::size_t kDefaultMaxBatch = 65536;  // poses per launch
   static ConfigurationSpace FromChecker(const OccupancyGrid& grid, const FootprintStencils& stencils,
-                                        FootprintChecker& checker);
+                                        FootprintChecker& checker, std::size_t max_batch = kDefaultMaxBatch);
 
   int size_x() const { return size_x_; }
   int size_y() const { return size_y_; }

@@ -23,7 +23,9 @@ FootprintStateSpace::FootprintStateSpace(const OccupancyGrid& grid, const Footpr
   if (mode == FootprintCheckMode::kPerExpansion && checker == nullptr)
     throw std::invalid_argument("FootprintStateSpace: per-expansion checking needs a FootprintChecker");
   if (mode == FootprintCheckMode::kPrecomputed)
-    cspace_ = std::make_unique<ConfigurationSpace>(ConfigurationSpace::FromStencils(grid, stencils));
+    cspace_ = std::make_unique<ConfigurationSpace>(checker != nullptr
+                                                       ? ConfigurationSpace::FromChecker(grid, stencils, *checker)
+                                                       : ConfigurationSpace::FromStencils(grid, stencils));
 }
 
 bool FootprintStateSpace::IsPoseFree(int ix, int iy, int heading) {

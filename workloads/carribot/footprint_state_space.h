@@ -15,7 +15,9 @@
 //
 // Collision checking, one query per motion whose target is not closed:
 //  - kPrecomputed: the target pose is read from a ConfigurationSpace built up
-//    front (exact; one byte per state);
+//    front (exact; one byte per state): by the checker, one query per cell
+//    and heading, when one is given (a collision kernel), else from the
+//    footprint stencils;
 //  - kPerExpansion: the targets of one expansion go to a FootprintChecker as
 //    one batch (the plug-in point of a collision kernel).
 // In both modes the cells the motion sweeps beyond its end footprints are then
@@ -43,7 +45,8 @@ class FootprintStateSpace {
   static constexpr std::uint8_t kTurnCounterClockwise = 8;  // motion ids 0-7 are octile steps
   static constexpr std::uint8_t kTurnClockwise = 9;
 
-  // The stencils and (kPerExpansion) the checker must outlive the space.
+  // The stencils and (kPerExpansion) the checker must outlive the space. In
+  // kPrecomputed mode a checker, if given, fills the configuration space.
   // Throws std::invalid_argument for a null checker in kPerExpansion, or a
   // map too large for 32-bit state ids.
   FootprintStateSpace(const OccupancyGrid& grid, const FootprintStencils& stencils, FootprintCheckMode mode,

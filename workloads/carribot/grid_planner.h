@@ -90,9 +90,11 @@ class GridPlanner {
   virtual ~GridPlanner() = default;
 
   // Throws UsageError for invalid options. `checker` is used, not owned, by a
-  // footprint robot in kPerExpansion mode; null selects the exact
-  // RasterizedFootprintChecker. The grid is copied; it need not outlive the
-  // planner.
+  // footprint robot: in kPerExpansion mode it answers every expansion's
+  // batch (null selects the exact RasterizedFootprintChecker); in
+  // kPrecomputed mode it fills the configuration space, one query per cell
+  // and heading (null: the exact stencils do). The grid is copied; it need
+  // not outlive the planner.
   static std::unique_ptr<GridPlanner> Create(const OccupancyGrid& grid, const PlannerOptions& options,
                                              FootprintChecker* checker = nullptr);
 

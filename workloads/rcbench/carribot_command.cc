@@ -1,5 +1,8 @@
 // `rcbench carribot`: grid A* / weighted A* for a point robot or a rectangular
-// footprint (CarriBot), on MovingAI scenarios or one start/goal pair.
+// footprint (CarriBot), on MovingAI scenarios or one start/goal pair. A
+// footprint's collision checks run on the collision kernel (OBB against the
+// map's quadtree), and every launch is priced on every modelled backend while
+// the --backend policy picks the one that ran (carribot_run.h).
 //
 // Exit codes (also in --help): 0 every query found a path; 1 bad input;
 // 2 bad usage; 3 at least one query found no path. Code 3 is reached through
@@ -15,9 +18,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "backends/backend.h"
+#include "backends/backend_params.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "traces/csv_table.h"
+#include "workloads/carribot/carribot_report.h"
+#include "workloads/carribot/carribot_run.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/grid_upscaling.h"
 #include "workloads/carribot/movingai_scenario_reader.h"
@@ -43,18 +50,17 @@ struct CarribotCli {
   std::string footprint;  // "WxL" in metres
   int headings = 8;
   std::string collision_mode = "precomputed";
+  std::string checker = "kernel";
   std::uint64_t max_expansions = 0;
   std::string timeline_path, path_path, plot_path;
   bool quiet = false;
+  std::string backend_policy = "adaptive", backend_params_path;
+  double threshold = -1.0;
+  bool no_pricing = false;
+  LedgerOptions ledger;
 };
 
-struct Query {
-  long index = 0;           // scenario index in the .scen file (0 for --start/--goal)
-  std::optional<int> bucket;
-  GridPose start, goal;     // on the (scaled) map
-  std::optional<double> optimal_length;  // cells, from the .scen file
-  std::string origin;       // for messages: "scenario 12 (line 14)"
-};
+using Query = CarribotQuery;
 
 RectangleFootprint ParseFootprint(const std::string& text, const CarribotCli& cli) {
   const std::size_t x = text.find_first_of("xX");
@@ -138,34 +144,22 @@ void CheckUsage(const CarribotCli& cli) {
       throw UsageError("heading index " + std::to_string(h) + " is outside [0, " + std::to_string(cli.headings) + ")");
 }
 
-std::string Describe(const PlannerOptions& o, const GridPlanner& planner) {
+std::string Describe(const PlannerOptions& o, const CarribotResult& run, FootprintCheckerKind checker) {
   std::ostringstream out;
   if (o.heuristic_weight == 1.0) out << "A*";
   else out << "weighted A* (weight " << o.heuristic_weight << ")";
   out << ", octile heuristic, ties to larger g then first pushed; robot: ";
   if (!o.footprint) return out.str() + "point (8-connected, no corner cutting)";
   const RectangleFootprint& f = *o.footprint;
+  const bool kernel = checker == FootprintCheckerKind::kKernel;
   out << f.width_m << " m x " << f.length_m << " m rectangle (width x length), " << f.heading_count
-      << " headings, turn cost " << planner.turn_cost_cells() << " cells, "
-      << (f.check_mode == FootprintCheckMode::kPrecomputed ? "precomputed configuration space"
-                                                           : "per-expansion checks (rasterized checker)")
-      << ", set-up " << planner.setup_wall_s() << " s";
+      << " headings, turn cost " << run.turn_cost_cells << " cells, "
+      << (f.check_mode == FootprintCheckMode::kPrecomputed
+              ? (kernel ? "configuration space precomputed on the collision kernel"
+                        : "configuration space precomputed from exact stencils")
+              : (kernel ? "per-expansion checks on the collision kernel" : "per-expansion checks (rasterized checker)"))
+      << ", set-up " << run.setup_wall_s << " s";
   return out.str();
-}
-
-void WriteTimeline(const std::string& path, const std::vector<Query>& queries, const std::vector<PlanResult>& results) {
-  CsvTable table(path, {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells", "path_length_m",
-                        "optimal_length_cells", "turns", "expanded", "collision_queries", "wall_s", "status"});
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    const Query& q = queries[i];
-    const PlanResult& r = results[i];
-    table.AddRow({q.index, q.bucket ? CsvCell(*q.bucket) : CsvCell::Empty(), q.start.x, q.start.y, q.goal.x,
-                  q.goal.y, r.found() ? CsvCell(r.length_cells) : CsvCell::Empty(),
-                  r.found() ? CsvCell(r.length_m) : CsvCell::Empty(),
-                  q.optimal_length ? CsvCell(*q.optimal_length) : CsvCell::Empty(), r.turns, r.expanded,
-                  r.collision_queries, r.wall_s, ToString(r.status)});
-  }
-  table.Commit();
 }
 
 void CreateParent(const std::string& file) {
@@ -189,29 +183,50 @@ int Run(const CarribotCli& cli) {
   if (queries.size() > 1 && (!cli.path_path.empty() || !cli.plot_path.empty()))
     throw UsageError("--path and --plot need a single query: add --scenario I, or use --start/--goal");
 
-  const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, options);
-  std::cout << "planner: " << Describe(options, *planner) << "\n";
-  std::vector<PlanResult> results;
-  results.reserve(queries.size());
+  CarribotSettings settings;
+  settings.planner = options;
+  settings.checker = ParseFootprintCheckerKind(cli.checker);
+  settings.ledger = cli.ledger;
+  try {
+    const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend_policy, Backend::ModelledNames());
+    settings.ledger.policy.kind = parsed.kind;
+    settings.ledger.policy.static_backend = parsed.static_backend;
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--backend: ") + e.what());
+  }
+  if (!(cli.ledger.policy.hysteresis_nodes_per_query >= 0.0))
+    throw UsageError("--hysteresis must be >= 0 nodes per query");
+  if (cli.threshold >= 0.0) {
+    settings.ledger.policy.threshold_nodes_per_query = cli.threshold;
+    settings.ledger.threshold_overridden = true;
+  }
+  if (!cli.backend_params_path.empty()) settings.backend_params = LoadBackendParameters(cli.backend_params_path);
+  settings.price_backends = !cli.no_pricing;
+  if (!options.footprint && !cli.no_pricing)
+    std::cout << "note: a point robot checks grid cells directly; no collision kernel runs, nothing is priced\n";
+  if (options.footprint && settings.checker == FootprintCheckerKind::kRasterized && !cli.no_pricing)
+    std::cout << "note: the rasterized checker is the CPU reference; nothing is priced\n";
+
+  CarribotResult run;
   {
     ProgressBar bar("carribot", !cli.quiet && queries.size() > 1);
-    for (const Query& q : queries) {
-      results.push_back(planner->Plan(q.start, q.goal));
-      if (queries.size() > 1) results.back().path = {};  // only a single query writes its path
-      bar.Update(results.size(), queries.size());
-    }
+    run = RunCarribot(grid, queries, settings, false,
+                      [&](std::size_t done, std::size_t total) { bar.Update(done, total); });
   }
+  std::vector<PlanResult> results;
+  for (const CarribotRow& row : run.rows) results.push_back(row.result);
+  std::cout << "planner: " << Describe(options, run, settings.checker) << "\n";
 
   // Outputs only after every query ran, so a failure leaves no partial file.
   if (!cli.timeline_path.empty()) {
     CreateParent(cli.timeline_path);
-    WriteTimeline(cli.timeline_path, queries, results);
+    WriteCarribotTimeline(cli.timeline_path, queries, run);
   }
   const PlanResult& first = results.front();
   if (queries.size() == 1 && first.found()) {
     if (!cli.path_path.empty()) {
       CreateParent(cli.path_path);
-      WritePathCsv(cli.path_path, first, grid.resolution_m(), planner->heading_count());
+      WritePathCsv(cli.path_path, first, grid.resolution_m(), run.heading_count);
     }
     if (!cli.plot_path.empty()) {
       CreateParent(cli.plot_path);
@@ -244,6 +259,7 @@ int Run(const CarribotCli& cli) {
   if (optimal_checked > 0)
     std::cout << "optimal length matched (1e-4 cells): " << optimal_matched << " of " << optimal_checked
               << " (largest difference " << worst_gap << " cells)\n";
+  PrintCarribotPricing(std::cout, run, settings);
   for (const auto& [path, what] : {std::pair{cli.timeline_path, "timeline"}, std::pair{cli.path_path, "path"},
                                    std::pair{cli.plot_path, "plot"}})
     if (!path.empty() && (std::string(what) == "timeline" || (queries.size() == 1 && first.found())))
@@ -286,11 +302,33 @@ void AddCarribotCommand(CLI::App& app) {
       ->needs(footprint);
   cmd->add_option("--goal-heading", cli->goal_heading, "Goal heading index; default: any")->needs(footprint);
   cmd->add_option("--collision-mode", cli->collision_mode,
-                  "precomputed (configuration space per heading, built once) | per-expansion (footprint checks "
-                  "batched per A* expansion)")
+                  "precomputed (configuration space: one query per cell and heading, in launches of up to 65536, "
+                  "built once and shared by every query) | per-expansion (one launch per A* expansion: its "
+                  "successors' footprints)")
       ->check(CLI::IsMember({"precomputed", "per-expansion"}))
       ->needs(footprint)
       ->capture_default_str();
+  cmd->add_option("--checker", cli->checker,
+                  "Footprint collision checker: kernel (OBB vs the map's quadtree on the collision kernel, priced on "
+                  "every backend) | rasterized (exact CPU reference, not priced)")
+      ->check(CLI::IsMember({"kernel", "rasterized"}))
+      ->needs(footprint)
+      ->capture_default_str();
+  cmd->add_option("--backend", cli->backend_policy,
+                  "Backend that runs each iteration (a query, or the configuration-space set-up): adaptive | oracle | "
+                  "static:<simt|ttaplus|ttaplus-p|ttaplus-cr|robocore> (every backend is priced regardless)")
+      ->capture_default_str();
+  cmd->add_option("--threshold", cli->threshold,
+                  "Adaptive switch threshold (tree nodes per kernel query); default: the cost models' crossover");
+  cmd->add_option("--hysteresis", cli->ledger.policy.hysteresis_nodes_per_query,
+                  "Adaptive margin around the threshold (nodes per query)")
+      ->capture_default_str();
+  cmd->add_option("--switch-cost", cli->ledger.switch_cost_cycles,
+                  "Cost of one backend switch (core cycles); negative: one kernel launch")
+      ->capture_default_str();
+  cmd->add_option("--backend-params", cli->backend_params_path,
+                  "JSON file overriding backend cost parameters (see rcbench backends)");
+  cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price kernel launches on the modelled backends");
   cmd->add_option("--max-expansions", cli->max_expansions, "Stop a query after N expansions (0 = no limit)")
       ->capture_default_str();
   cmd->add_option("--resolution,--map-resolution", cli->resolution_m,

@@ -1,0 +1,133 @@
+#include "workloads/carribot/carribot_run.h"
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include "backends/calibration/sact_kernel_record.h"
+#include "common/input_error.h"
+#include "workloads/carribot/configuration_space.h"
+#include "workloads/carribot/kernel_footprint_checker.h"
+
+namespace rc {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double SecondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Every launch of the kernel checker, recorded and priced on every backend
+// into the ledger's open iteration, and counted.
+class LaunchRecorder {
+ public:
+  LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : ledger_(ledger) {
+    checker.set_batch_observer([this](const CollisionBatch& batch) { Record(batch); });
+  }
+  // The work since the last call.
+  KernelWork TakeWork() {
+    KernelWork w = open_;
+    open_ = {};
+    return w;
+  }
+  double pricing_wall_s() const { return pricing_wall_s_; }
+
+ private:
+  void Record(const CollisionBatch& batch) {
+    ++open_.launches;
+    open_.queries += batch.query_count();
+    open_.node_visits += batch.visits.size();
+    if (!ledger_) return;
+    const auto t0 = Clock::now();
+    ledger_->AddLaunch(SactKernelRecord(batch));
+    pricing_wall_s_ += SecondsSince(t0);
+  }
+
+  BackendLedger* ledger_;
+  KernelWork open_;
+  double pricing_wall_s_ = 0.0;
+};
+
+// A record with the kernel's program and tree layout, for the adaptive
+// threshold before the first iteration (its fetches do not matter).
+KernelRecord LayoutRecord(const KernelFootprintChecker& checker) {
+  CollisionOptions<double> options;
+  options.sact.parallel_epsilon = 0.0;
+  const CollisionBatch one = CollideBatch(checker.tree(), std::vector<Obbd>{Obbd{}}, options);
+  return SactKernelRecord(one);
+}
+
+}  // namespace
+
+FootprintCheckerKind ParseFootprintCheckerKind(const std::string& name) {
+  if (name == "kernel") return FootprintCheckerKind::kKernel;
+  if (name == "rasterized") return FootprintCheckerKind::kRasterized;
+  throw std::invalid_argument("footprint checker '" + name + "': expected kernel or rasterized");
+}
+
+const char* ToString(FootprintCheckerKind kind) {
+  return kind == FootprintCheckerKind::kKernel ? "kernel" : "rasterized";
+}
+
+CarribotResult RunCarribot(const OccupancyGrid& grid, const std::vector<CarribotQuery>& queries,
+                           const CarribotSettings& settings, bool keep_paths, const CarribotProgress& progress) {
+  std::string error;
+  if (!settings.planner.IsValid(&error)) throw UsageError(error);
+  const bool footprint = settings.planner.footprint.has_value();
+  const bool on_kernel = footprint && settings.checker == FootprintCheckerKind::kKernel;
+  const bool precomputed = footprint && settings.planner.footprint->check_mode == FootprintCheckMode::kPrecomputed;
+
+  CarribotResult out;
+  std::unique_ptr<KernelFootprintChecker> checker;
+  std::unique_ptr<BackendLedger> ledger;
+  std::unique_ptr<LaunchRecorder> recorder;
+  if (on_kernel) {
+    checker = std::make_unique<KernelFootprintChecker>(grid);
+    if (settings.price_backends) {
+      ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
+      // Per expansion: at most 10 successors (8 steps, 2 turns) per launch.
+      const std::size_t batch = precomputed ? std::min(ConfigurationSpace::kDefaultMaxBatch,
+                                                       grid.cell_count() * settings.planner.footprint->heading_count)
+                                            : 10;
+      ledger->PrepareThreshold(LayoutRecord(*checker), batch);
+    }
+    recorder = std::make_unique<LaunchRecorder>(*checker, ledger.get());
+  }
+
+  if (ledger && precomputed) ledger->BeginIteration();
+  const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, settings.planner, checker.get());
+  out.setup_wall_s = planner->setup_wall_s();
+  out.turn_cost_cells = planner->turn_cost_cells();
+  out.heading_count = planner->heading_count();
+  if (on_kernel && precomputed) {
+    out.has_setup = true;
+    out.setup_kernel = recorder->TakeWork();
+    out.setup_wall_s -= recorder->pricing_wall_s();
+    if (ledger) out.setup_pricing = ledger->EndIteration(nullptr);
+  }
+
+  out.rows.reserve(queries.size());
+  for (const CarribotQuery& q : queries) {
+    if (ledger) ledger->BeginIteration();
+    const double priced_before = recorder ? recorder->pricing_wall_s() : 0.0;
+    CarribotRow row;
+    row.result = planner->Plan(q.start, q.goal);
+    if (recorder) {
+      row.result.wall_s -= recorder->pricing_wall_s() - priced_before;
+      row.kernel = recorder->TakeWork();
+    }
+    if (queries.size() > 1 && !keep_paths) row.result.path = {};
+    if (ledger) {
+      row.priced = true;
+      row.pricing = ledger->EndIteration(nullptr);
+    }
+    out.rows.push_back(std::move(row));
+    if (progress) progress(out.rows.size(), queries.size());
+  }
+  if (ledger) {
+    out.priced = true;
+    out.pricing = ledger->Finish();
+  }
+  if (recorder) out.pricing_wall_s = recorder->pricing_wall_s();
+  return out;
+}
+
+}  // namespace rc
