@@ -24,10 +24,32 @@ LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid, Likelihood
     : grid_(&grid), field_(DistanceField::Build(grid, DistanceTarget::kOccupied)), params_(params) {}
 
 double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
+  // The field holds centre-to-centre distances at cell centres ((i + 0.5) r).
+  // A beam that ends exactly on a wall face lies half a cell from the centre
+  // of the wall cell, so a nearest-cell lookup scores it as r (if the end
+  // point falls in the free cell) or 0 (in the wall cell): the best-scoring
+  // pose puts end points inside the walls, half a cell too far (AMCL has this
+  // bias). Interpolating bilinearly between the four surrounding centres and
+  // subtracting half a cell gives the distance to the wall's face instead:
+  // 0 on the face, growing one-for-one away from it.
   const double r = grid_->resolution_m();
-  const double fx = std::floor(x_m / r), fy = std::floor(y_m / r);
-  if (!(fx >= 0 && fy >= 0 && fx < grid_->size_x() && fy < grid_->size_y())) return params_.max_occ_dist_m;
-  return std::min<double>(field_.At(static_cast<int>(fx), static_cast<int>(fy)), params_.max_occ_dist_m);
+  const double u = x_m / r - 0.5, v = y_m / r - 0.5;
+  if (!(x_m >= 0 && y_m >= 0 && x_m < grid_->extent_x_m() && y_m < grid_->extent_y_m()))
+    return params_.max_occ_dist_m;
+  const double fu = std::floor(u), fv = std::floor(v);
+  const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
+  const double tu = u - fu, tv = v - fv;
+  // Capping each sample (the field is +inf on a map with no occupied cell)
+  // half a cell above the cap keeps the far field at exactly the cap.
+  const double sample_cap = params_.max_occ_dist_m + 0.5 * r;
+  auto capped = [&](int i, int j) {
+    i = std::clamp(i, 0, grid_->size_x() - 1);
+    j = std::clamp(j, 0, grid_->size_y() - 1);
+    return std::min<double>(field_.At(i, j), sample_cap);
+  };
+  const double d = (1 - tu) * ((1 - tv) * capped(i0, j0) + tv * capped(i0, j0 + 1)) +
+                   tu * ((1 - tv) * capped(i0 + 1, j0) + tv * capped(i0 + 1, j0 + 1));
+  return std::clamp(d - 0.5 * r, 0.0, params_.max_occ_dist_m);
 }
 
 void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,

@@ -28,7 +28,8 @@ class LikelihoodFieldModel final : public SensorModel {
   void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                       const LaserGeometry& geometry, const BeamSelection& beams,
                       std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
-  // Distance (m) to the nearest occupied cell at a point; max_occ_dist_m
+  // Distance (m) from a point to the face of the nearest occupied cell
+  // (bilinear between cell centres, see the .cc); max_occ_dist_m
   // outside the map or beyond the cap.
   double DistanceAt(double x_m, double y_m) const;
 

@@ -1,0 +1,90 @@
+// The likelihood field must score a beam by the distance from its end point
+// to the wall's face, in the map frame of occupancy_grid.h (origin at the
+// outer corner of cell (0, 0), cell centres at (i + 0.5) * r). A lookup of
+// the centre-to-centre distance at the end point's cell is off by half a
+// cell, and the filter then tracks half a cell behind the truth.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "workloads/delibot/likelihood_field_model.h"
+
+namespace rc {
+namespace {
+
+constexpr double kResolution = 0.1;
+
+// 4 m x 4 m, free for x < 2 m, a solid wall from x = 2 m on.
+OccupancyGrid HalfWall() {
+  OccupancyGrid g(40, 40, kResolution);
+  for (int ix = 20; ix < 40; ++ix)
+    for (int iy = 0; iy < 40; ++iy) g.Set(ix, iy, CellState::kOccupied);
+  return g;
+}
+
+TEST(LikelihoodFieldTest, DistanceIsMeasuredToTheWallFace) {
+  const OccupancyGrid g = HalfWall();
+  const LikelihoodFieldModel model(g, LikelihoodFieldParams{});
+  // Every point in front of the wall, including points inside one cell
+  // (where a per-cell lookup is constant), measures its true distance.
+  for (double x = 1.0; x <= 2.0 + 1e-9; x += 0.01) {
+    for (double y : {1.0, 1.05, 1.333}) {
+      EXPECT_NEAR(model.DistanceAt(x, y), 2.0 - x, 1e-6) << "x " << x << " y " << y;
+    }
+  }
+  EXPECT_DOUBLE_EQ(model.DistanceAt(2.3, 1.0), 0.0);  // inside the wall
+}
+
+TEST(LikelihoodFieldTest, DistanceIsCappedAndOutsideTheMapIsFar) {
+  const OccupancyGrid g = HalfWall();
+  LikelihoodFieldParams p;
+  p.max_occ_dist_m = 0.5;
+  const LikelihoodFieldModel model(g, p);
+  EXPECT_DOUBLE_EQ(model.DistanceAt(0.2, 2.0), 0.5);
+  EXPECT_DOUBLE_EQ(model.DistanceAt(-0.01, 2.0), 0.5);
+  EXPECT_DOUBLE_EQ(model.DistanceAt(1.0, 4.0), 0.5);
+  // A map without any occupied cell: every distance is the cap, not NaN.
+  const OccupancyGrid empty(10, 10, kResolution);
+  const LikelihoodFieldModel empty_model(empty, p);
+  EXPECT_DOUBLE_EQ(empty_model.DistanceAt(0.55, 0.55), 0.5);
+}
+
+// A noise-free scan of a wall scores best at the pose it was taken from, not
+// half a cell closer to the wall (where a cell-centre lookup peaks: it moves
+// the end points inside the wall cells).
+TEST(LikelihoodFieldTest, ExactScanOfAWallScoresBestAtItsOwnPose) {
+  const OccupancyGrid g = HalfWall();
+  LaserGeometry geometry;
+  geometry.max_range_m = 3.0;
+  LikelihoodFieldParams p;
+  p.sigma_hit_m = 0.05;  // sharp enough that a 1 cm shift changes the score
+  p.max_range_m = geometry.max_range_m;
+  LikelihoodFieldModel model(g, p);
+  for (const Pose2& truth : {Pose2{1.03, 2.01, 0.0}, Pose2{1.27, 1.55, 0.4}, Pose2{0.86, 2.3, -0.3}}) {
+    // Beams that meet the wall face x = 2 m within range; the others read
+    // "no return" and the likelihood field skips them.
+    LaserScan scan;
+    const Pose2 sensor = SensorPose(truth, geometry);
+    for (int i = 0; i < geometry.beam_count; ++i) {
+      const double a = sensor.theta + geometry.BeamAngle(i);
+      const double range = std::cos(a) > 0 ? (2.0 - sensor.x) / std::cos(a) : geometry.max_range_m;
+      scan.ranges_m.push_back(static_cast<float>(std::min(range, geometry.max_range_m)));
+    }
+    std::vector<Pose2> candidates;
+    for (int k = -10; k <= 10; ++k) candidates.push_back({truth.x + 0.01 * k, truth.y, truth.theta});
+    std::vector<double> log_likelihoods;
+    SensorUpdateWork work;
+    model.LogLikelihoods(candidates, scan, geometry, BeamSelection{1}, log_likelihoods, work);
+    // Index 10 is the truth. Approaching the wall from 10 cm in front, the
+    // score rises with every centimetre (a per-cell lookup is flat over
+    // each cell); past the truth the end points are inside the wall, where
+    // the distance is 0, so the score can only stay level.
+    for (int k = 1; k <= 10; ++k)
+      EXPECT_GT(log_likelihoods[k], log_likelihoods[k - 1]) << "shift " << 0.01 * (k - 10) << " m";
+    for (int k = 11; k <= 20; ++k)
+      EXPECT_LE(log_likelihoods[k], log_likelihoods[10] + 1e-9) << "shift " << 0.01 * (k - 10) << " m";
+  }
+}
+
+}  // namespace
+}  // namespace rc
