@@ -14,6 +14,7 @@
 //   footprint >  capacity  "lru": the L1 as a fully associative LRU list of
 //                          lines (O(1) per access); the L2 as 16-way sets of
 //                          lines indexed by line number modulo the set count.
+//                          (cache_level.h: one level, its data structures.)
 // Examples with the defaults: a 400 x 300 grid of 1-byte cells is 117 KiB,
 // which does NOT fit the 64 KiB L1 (it takes the LRU path there) but fits
 // the L2; the Wean map's 800 x 800 grid (625 KiB) and its 4-byte distance
@@ -31,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "backends/cache_level.h"
 #include "backends/gpu_params.h"
 
 namespace rc {
@@ -41,39 +43,36 @@ class CacheHierarchy {
  public:
   // [footprint_begin, footprint_end): every byte the kernel may read.
   CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_begin, std::uint64_t footprint_end);
-  ~CacheHierarchy();
-  CacheHierarchy(const CacheHierarchy&) = delete;
-  CacheHierarchy& operator=(const CacheHierarchy&) = delete;
 
   // One 32-byte sector request from SM `sm`: where it was served from.
   MemoryLevel Access(int sm, std::uint64_t address);
 
-  // The same in two phases, for a replay that runs each SM's L1 on its own
-  // (in parallel) and then the shared L2 on the L1 misses in a fixed order.
-  // Sectors are numbered from the footprint's first line.
+  // The levels themselves, for a replay that runs each SM's L1 on its own
+  // (in parallel; each SM's L1 may be driven from its own thread) and then
+  // the shared L2 on the L1 misses in a fixed order. Sectors are numbered
+  // from the footprint's first line.
   std::uint32_t SectorNumber(std::uint64_t address) const {
     return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
   }
-  // For each of n sectors in order: level[i] = 0 if SM `sm`'s L1 held it,
-  // else 1 (a miss fills it), and the missing indices are appended to
-  // `misses`. Each SM's L1 may be driven from its own thread.
-  void AccessL1(int sm, const std::uint32_t* sectors, std::size_t n, std::uint8_t* level,
-                std::vector<std::uint32_t>& misses);
-  bool AccessL2(std::uint32_t sector);
+  std::uint64_t begin() const { return begin_; }
+  int sector_shift() const { return sector_shift_; }
+  CacheLevel& L1(int sm) { return l1_[static_cast<std::size_t>(sm)]; }
+  CacheLevel& L2() { return l2_.front(); }
+
   // Core cycles from request to data: L1 hit; L1 miss + L2 hit; + DRAM.
+  // They grow level by level (GpuParams::IsValid: extra latencies >= 0).
   int LatencyCycles(MemoryLevel level) const { return latency_[static_cast<int>(level)]; }
 
   const std::string& l1_model() const { return l1_model_; }
   const std::string& l2_model() const { return l2_model_; }
 
  private:
-  class Level;
   std::uint64_t begin_;
   int sector_shift_;  // log2(sector_bytes): sizes are powers of two (GpuParams::IsValid)
   int line_shift_;
   int latency_[3];
-  std::vector<std::unique_ptr<Level>> l1_;  // one per SM
-  std::unique_ptr<Level> l2_;
+  std::vector<CacheLevel> l1_;  // one per SM
+  std::vector<CacheLevel> l2_;  // one
   std::string l1_model_;
   std::string l2_model_;
 };

@@ -10,65 +10,86 @@
 namespace rc {
 namespace {
 
-// The sector requests one SM issues, in issue order. Each request belongs to
-// a group (one node fetch of one thread, or one warp step), whose latency is
-// its slowest request's and is charged to the group's owner (the query, or
-// the warp). Rounds mark the SM's waves, so the shared L2 can see the SMs'
-// requests interleaved wave by wave.
-struct SmStream {
-  std::vector<std::uint32_t> sectors;    // per request
-  std::vector<std::uint32_t> owner;      // per request: its group's query or warp
-  std::vector<std::uint8_t> group_start; // per request: 1 if it starts a group
-  std::vector<std::uint8_t> level;       // per request: MemoryLevel
-  std::vector<std::uint32_t> round_end;  // per wave: one past its last request
-  std::vector<std::uint32_t> l1_misses;  // requests that missed L1, in order
+// What one SM's replay leaves for the shared L2: its L1 misses, in issue
+// order, wave by wave, and its request counts. A group (one node fetch of
+// one thread, or one warp step) waits for its slowest request. Latencies
+// grow level by level (cache_model.h), so a group that hit L1 everywhere
+// waits for the L1, and one with a miss waits for its slowest miss: the
+// owner is charged the L1 latency per group up front, and the difference
+// when the group's last miss has been through the L2.
+struct SmMisses {
+  std::vector<std::uint32_t> sector;
+  std::vector<std::uint32_t> owner;     // the query (per thread) or warp (coalesced)
+  std::vector<std::uint8_t> group_end;  // 1 on the last miss of its group
+  std::vector<std::uint32_t> wave_end;  // per wave: one past its last miss
+  std::uint64_t requests = 0, l2_hits = 0, dram = 0;
 };
 
-// Builds one SM's stream: each wave step-major (step 0 of every warp, warps
-// and lanes in order, then step 1, ...). The wave's fetches are first sorted
-// by step with a counting sort that reads the record sequentially, so the
-// step-major walk reads a small buffer, not hundreds of strided streams.
-class StreamBuilder {
+// Replays one SM's waves through its L1. Each wave runs step-major (step 0
+// of every warp, warps and lanes in order, then step 1, ...). The wave's
+// fetches are first sorted by step with a counting sort that reads the
+// record sequentially, so the step-major walk reads a small buffer, not
+// hundreds of strided streams; the buffer is reused wave after wave and
+// stays in the host's caches. Nothing per request outlives the wave except
+// the L1 misses.
+class SmReplay {
  public:
-  StreamBuilder(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
-                const CacheHierarchy& caches, const std::vector<std::uint32_t>& steps)
-      : record_(record), gpu_(gpu), pattern_(pattern), caches_(caches), steps_(steps) {
+  SmReplay(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
+           CacheHierarchy& caches, int sm, const std::vector<std::uint32_t>& steps, SmMisses& out)
+      : record_(record), gpu_(gpu), coalesced_(pattern.coalesced), l1_(caches.L1(sm)),
+        begin_(caches.begin()), sector_shift_(caches.sector_shift()), steps_(steps), out_(out) {
     const std::uint32_t b = record.node_bytes;
     one_sector_nodes_ = b > 0 && (b & (b - 1)) == 0 && b <= static_cast<std::uint32_t>(gpu.sector_bytes);
     for (const MemoryRegion& r : record.regions) one_sector_nodes_ = one_sector_nodes_ && r.base % b == 0;
   }
 
-  void Build(const std::vector<std::uint32_t>& warps, SmStream& out) {
-    // One request per node fetch, when a node fits a sector (a bound when
-    // coalesced); wider nodes grow the arrays as they go.
-    std::uint64_t fetches = 0;
-    for (std::uint32_t w : warps) {
-      const std::size_t lo = static_cast<std::size_t>(w) * gpu_.warp_size;
-      const std::size_t hi = std::min(record_.query_count(), lo + gpu_.warp_size);
-      fetches += record_.fetch_offsets[hi] - record_.fetch_offsets[lo];
+  // The wave made of `count` warps.
+  void Wave(const std::uint32_t* warps, std::size_t count) {
+    const std::uint32_t max_steps = SortByStep(warps, count);
+    if (one_sector_nodes_ && !coalesced_) {
+      // A group per request: a miss is its group's last.
+      for (const std::uint64_t v : packed_)
+        if (!l1_.Access(static_cast<std::uint32_t>(v))) AddMiss(static_cast<std::uint32_t>(v), v >> 32, 1);
+      out_.requests += packed_.size();
+    } else if (one_sector_nodes_) {
+      Walk(max_steps, [&](std::uint64_t e) {
+        const std::uint64_t v = packed_[e];
+        return Fetch{static_cast<std::uint32_t>(v >> 32), static_cast<std::uint32_t>(v),
+                     static_cast<std::uint32_t>(v)};
+      });
+    } else {
+      const std::uint64_t last_byte = record_.node_bytes - 1;
+      Walk(max_steps, [&](std::uint64_t e) {
+        const std::uint64_t a = by_step_address_[e];
+        return Fetch{by_step_owner_[e], Sector(a), Sector(a + last_byte)};
+      });
     }
-    out.sectors.reserve(fetches);
-    out.owner.reserve(fetches);
-    out.group_start.reserve(fetches);
-    const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern_.warps_per_wave));
-    for (std::size_t lo = 0; lo < warps.size(); lo += wave) {
-      AddWave(warps.data() + lo, std::min(wave, warps.size() - lo), out);
-      out.round_end.push_back(static_cast<std::uint32_t>(out.sectors.size()));
-    }
+    out_.wave_end.push_back(static_cast<std::uint32_t>(out_.sector.size()));
   }
 
  private:
-  void AddWave(const std::uint32_t* warps, std::size_t count, SmStream& out) {
+  struct Fetch {
+    std::uint32_t owner, first_sector, last_sector;
+  };
+
+  std::uint32_t Sector(std::uint64_t address) const {
+    return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
+  }
+
+  // Fills packed_ (one-sector nodes: owner << 32 | sector) or
+  // by_step_address_ / by_step_owner_ with the wave's fetches, step-major;
+  // step_start_[k] is where step k begins. Returns the wave's step count.
+  std::uint32_t SortByStep(const std::uint32_t* warps, std::size_t count) {
     const std::size_t n = record_.query_count();
     const std::uint64_t* offsets = record_.fetch_offsets.data();
     lane_query_.clear();
-    lane_warp_.clear();
+    lane_owner_.clear();
     std::uint32_t max_steps = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t lo = static_cast<std::size_t>(warps[i]) * gpu_.warp_size;
       for (std::size_t q = lo; q < std::min(n, lo + gpu_.warp_size); ++q) {
         lane_query_.push_back(static_cast<std::uint32_t>(q));
-        lane_warp_.push_back(warps[i]);
+        lane_owner_.push_back(coalesced_ ? warps[i] : static_cast<std::uint32_t>(q));
       }
       max_steps = std::max(max_steps, steps_[warps[i]]);
     }
@@ -88,87 +109,88 @@ class StreamBuilder {
       total += c;
     }
     cursor_.assign(step_start_.begin(), step_start_.end());
-    const std::uint64_t node_bytes = record_.node_bytes;
-    const std::size_t base = out.sectors.size();
-    if (!pattern_.coalesced && one_sector_nodes_) {
-      // Per thread, one request per fetch: the step-sorted order is the
-      // stream itself, so scatter straight into it.
-      out.sectors.resize(base + total);
-      out.owner.resize(base + total);
-      out.group_start.resize(base + total, 1);
-      for (std::uint32_t j = 0; j < lane_query_.size(); ++j) {
+    const std::uint64_t* addresses = record_.fetch_addresses.data();
+    if (one_sector_nodes_) {
+      packed_.resize(total);
+      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
         const std::uint32_t q = lane_query_[j];
-        const std::uint64_t* a = record_.fetch_addresses.data() + offsets[q];
-        const std::uint32_t nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+        const std::uint64_t owner = std::uint64_t{lane_owner_[j]} << 32;
+        const std::uint64_t* a = addresses + offsets[q];
+        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+        for (std::uint32_t k = 0; k < nodes; ++k) packed_[cursor_[k]++] = owner | Sector(a[k]);
+      }
+    } else {
+      by_step_address_.resize(total);
+      by_step_owner_.resize(total);
+      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
+        const std::uint32_t q = lane_query_[j];
+        const std::uint64_t* a = addresses + offsets[q];
+        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
         for (std::uint32_t k = 0; k < nodes; ++k) {
-          const std::uint64_t at = base + cursor_[k]++;
-          out.sectors[at] = caches_.SectorNumber(a[k]);
-          out.owner[at] = q;
-        }
-      }
-      return;
-    }
-    // General case (coalesced, or nodes wider than a sector): sort by step,
-    // then walk the steps, writing at most `span` requests per fetch.
-    by_step_address_.resize(total);
-    by_step_owner_.resize(total);
-    for (std::uint32_t j = 0; j < lane_query_.size(); ++j) {
-      const std::uint32_t q = lane_query_[j];
-      const std::uint32_t owner = pattern_.coalesced ? lane_warp_[j] : q;
-      const std::uint64_t* a = record_.fetch_addresses.data() + offsets[q];
-      const std::uint32_t nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
-      for (std::uint32_t k = 0; k < nodes; ++k) {
-        const std::uint64_t at = cursor_[k]++;
-        by_step_address_[at] = a[k];
-        by_step_owner_[at] = owner;
-      }
-    }
-    const std::uint64_t span = (node_bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1;
-    out.sectors.resize(base + total * span);
-    out.owner.resize(base + total * span);
-    out.group_start.resize(base + total * span);
-    std::uint32_t* sector_out = out.sectors.data();
-    std::uint32_t* owner_out = out.owner.data();
-    std::uint8_t* start_out = out.group_start.data();
-    std::size_t at = base, group_begin = base;
-    for (std::uint32_t k = 0; k < max_steps; ++k) {
-      for (std::uint64_t e = step_start_[k]; e < step_start_[k + 1]; ++e) {
-        const std::uint32_t owner = by_step_owner_[e];
-        // Coalesced: one group per warp step (the warp's lanes are adjacent
-        // within a step); per thread: one group per node fetch.
-        if (!pattern_.coalesced || e == step_start_[k] || owner != by_step_owner_[e - 1]) {
-          group_begin = at;
-          ++group_id_;
-        }
-        const std::uint64_t address = by_step_address_[e];
-        const std::uint32_t last = caches_.SectorNumber(address + node_bytes - 1);
-        for (std::uint32_t sector = caches_.SectorNumber(address); sector <= last; ++sector) {
-          if (pattern_.coalesced && IsRepeat(sector, sector_out + group_begin, sector_out + at)) continue;
-          sector_out[at] = sector;
-          owner_out[at] = owner;
-          start_out[at] = at == group_begin;
-          ++at;
+          const std::uint64_t at = cursor_[k]++;
+          by_step_address_[at] = a[k];
+          by_step_owner_[at] = lane_owner_[j];
         }
       }
     }
-    out.sectors.resize(at);
-    out.owner.resize(at);
-    out.group_start.resize(at);
+    return max_steps;
   }
 
-  // Whether `sector` is already among the current group's requests
-  // [begin, end), and remember it. A small table indexed by the sector's
-  // hash answers most lookups; a slot taken by another sector of the
-  // same group falls back to a scan.
-  bool IsRepeat(std::uint32_t sector, const std::uint32_t* begin, const std::uint32_t* end) {
+  // Walks the sorted fetches step by step. Coalesced: one group per warp
+  // step (a warp's lanes are adjacent within a step), each distinct sector
+  // requested once; per thread: one group per fetch, every sector it spans.
+  template <class FetchAt>
+  void Walk(std::uint32_t max_steps, FetchAt fetch_at) {
+    for (std::uint32_t k = 0; k < max_steps; ++k) {
+      const std::uint64_t e0 = step_start_[k], e1 = step_start_[k + 1];
+      std::uint32_t group_owner = 0;
+      for (std::uint64_t e = e0; e < e1; ++e) {
+        const Fetch f = fetch_at(e);
+        if (!coalesced_ || e == e0 || f.owner != group_owner) {
+          EndGroup();
+          group_owner = f.owner;
+          ++group_id_;
+          group_sectors_.clear();
+        }
+        for (std::uint32_t s = f.first_sector; s <= f.last_sector; ++s) {
+          if (coalesced_ && IsRepeat(s)) continue;
+          ++out_.requests;
+          if (!l1_.Access(s)) {
+            AddMiss(s, f.owner, 0);
+            group_missed_ = true;
+          }
+        }
+      }
+    }
+    EndGroup();
+  }
+
+  void EndGroup() {
+    if (group_missed_) out_.group_end.back() = 1;
+    group_missed_ = false;
+  }
+
+  void AddMiss(std::uint32_t sector, std::uint64_t owner, std::uint8_t group_end) {
+    out_.sector.push_back(sector);
+    out_.owner.push_back(static_cast<std::uint32_t>(owner));
+    out_.group_end.push_back(group_end);
+  }
+
+  // Whether `sector` was already requested by the current group, and
+  // remember it. The last one requested, then a small table indexed by
+  // the sector's hash, answer most lookups; a slot taken by another sector
+  // of the same group falls back to a scan.
+  bool IsRepeat(std::uint32_t sector) {
+    if (!group_sectors_.empty() && group_sectors_.back() == sector) return true;
     // Fibonacci hashing: grid rows are a fixed number of sectors apart, so
     // low bits alone would collide.
     Seen& slot = seen_[(sector * 2654435769u) >> (32 - kSeenBits)];
     if (slot.group == group_id_) {
       if (slot.sector == sector) return true;
-      if (std::find(begin, end, sector) != end) return true;
+      if (std::find(group_sectors_.begin(), group_sectors_.end(), sector) != group_sectors_.end()) return true;
     }
     slot = {sector, group_id_};
+    group_sectors_.push_back(sector);
     return false;
   }
 
@@ -179,17 +201,22 @@ class StreamBuilder {
   static constexpr int kSeenBits = 6;  // 64 slots for at most 32 lanes per group
   std::array<Seen, 1 << kSeenBits> seen_{};
   std::uint64_t group_id_ = 0;
+  std::vector<std::uint32_t> group_sectors_;  // the current group's requests
+  bool group_missed_ = false;
 
   const KernelRecord& record_;
   const GpuParams& gpu_;
-  const AccessPattern& pattern_;
-  const CacheHierarchy& caches_;
+  const bool coalesced_;
+  CacheLevel& l1_;
+  const std::uint64_t begin_;
+  const int sector_shift_;
   const std::vector<std::uint32_t>& steps_;
+  SmMisses& out_;
   // Every node lies within one sector: a power-of-two size no larger than a
   // sector, at addresses aligned to it (the layouts guarantee it).
   bool one_sector_nodes_ = false;
-  std::vector<std::uint32_t> lane_query_, lane_warp_, by_step_owner_;
-  std::vector<std::uint64_t> step_start_, cursor_, by_step_address_;
+  std::vector<std::uint32_t> lane_query_, lane_owner_, by_step_owner_;
+  std::vector<std::uint64_t> step_start_, cursor_, by_step_address_, packed_;
 };
 
 std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
@@ -213,12 +240,12 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
   return (record.query_count() + w - 1) / w;
 }
 
-// Three phases: (1) per SM, in parallel: build its request stream and run
-// it through its own L1; (2) serially: the L1 misses of all SMs through the
-// shared L2, wave round by wave round, SMs in order; (3) per SM, in
-// parallel: charge each group's slowest latency to its owner. Each SM's
-// work is independent and the L2 order is fixed, so the result does not
-// depend on the thread count.
+// Two phases: (1) per SM, in parallel: replay its waves through its own L1
+// (SmReplay), keeping only the misses; (2) serially: the misses of all SMs
+// through the shared L2, wave round by wave round, SMs in order, charging
+// each group with a miss when its last miss is served. Each SM's work is
+// independent and the L2 order is fixed, so the result does not depend on
+// the thread count.
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
                            const AccessPattern& pattern) {
   MemoryProfile profile;
@@ -226,77 +253,67 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
                         std::max(record.footprint_end(), record.footprint_begin()));
   profile.l1_model = caches.l1_model();
   profile.l2_model = caches.l2_model();
+  const std::uint64_t latency[3] = {static_cast<std::uint64_t>(caches.LatencyCycles(MemoryLevel::kL1)),
+                                    static_cast<std::uint64_t>(caches.LatencyCycles(MemoryLevel::kL2)),
+                                    static_cast<std::uint64_t>(caches.LatencyCycles(MemoryLevel::kDram))};
 
+  // Groups: a warp has one per step (its slowest lane's node count); a
+  // thread one per node fetch. Each waits for the L1 at least.
   const std::size_t n = record.query_count();
   const std::size_t warps = WarpCount(record, gpu);
   std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
-  std::vector<std::uint32_t> steps(warps, 0);  // per warp: its slowest lane's node count
+  std::vector<std::uint32_t> steps(warps, 0);
   for (std::size_t w = 0; w < warps; ++w) {
     sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
     for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
       steps[w] = std::max(steps[w], record.nodes(q));
   }
-  if (pattern.coalesced)
-    profile.warp_memory_cycles.assign(warps, 0);
-  else
-    profile.query_memory_cycles.assign(n, 0);
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
+  owner_cycles.resize(pattern.coalesced ? warps : n);
+  for (std::size_t i = 0; i < owner_cycles.size(); ++i)
+    owner_cycles[i] = latency[0] * (pattern.coalesced ? steps[i] : record.nodes(i));
 
-  std::vector<SmStream> streams(gpu.sms);
+  std::vector<SmMisses> sms(gpu.sms);
+  const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    SmStream& s = streams[sm];
-    StreamBuilder(record, gpu, pattern, caches, steps).Build(sm_warps[sm], s);
-    s.level.resize(s.sectors.size());
-    // Level 0 = L1 hit; 1 = missed, L2 or DRAM decided below.
-    caches.AccessL1(sm, s.sectors.data(), s.sectors.size(), s.level.data(), s.l1_misses);
+    SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
+    const std::vector<std::uint32_t>& list = sm_warps[sm];
+    for (std::size_t lo = 0; lo < list.size(); lo += wave) replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
   }
 
   std::size_t rounds = 0;
-  for (const SmStream& s : streams) rounds = std::max(rounds, s.round_end.size());
+  for (const SmMisses& s : sms) rounds = std::max(rounds, s.wave_end.size());
   std::vector<std::size_t> next_miss(gpu.sms, 0);
+  CacheLevel& l2 = caches.L2();
   for (std::size_t r = 0; r < rounds; ++r)
     for (int sm = 0; sm < gpu.sms; ++sm) {
-      SmStream& s = streams[sm];
-      if (r >= s.round_end.size()) continue;
+      SmMisses& s = sms[sm];
+      if (r >= s.wave_end.size()) continue;
       std::size_t& m = next_miss[sm];
-      for (; m < s.l1_misses.size() && s.l1_misses[m] < s.round_end[r]; ++m) {
-        const std::uint32_t i = s.l1_misses[m];
-        s.level[i] = caches.AccessL2(s.sectors[i]) ? 1 : 2;
+      int slowest = 1;
+      for (; m < s.wave_end[r]; ++m) {
+        const int level = l2.Access(s.sector[m]) ? 1 : 2;
+        ++(level == 1 ? s.l2_hits : s.dram);
+        slowest = std::max(slowest, level);
+        if (s.group_end[m]) {
+          owner_cycles[s.owner[m]] += latency[slowest] - latency[0];
+          slowest = 1;
+        }
       }
     }
-
-  const int latency[3] = {caches.LatencyCycles(MemoryLevel::kL1),
-                          caches.LatencyCycles(MemoryLevel::kL2),
-                          caches.LatencyCycles(MemoryLevel::kDram)};
-  std::vector<std::array<std::uint64_t, 3>> sm_levels(gpu.sms, {0, 0, 0});
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int sm = 0; sm < gpu.sms; ++sm) {
-    const SmStream& s = streams[sm];
-    std::array<std::uint64_t, 3> counts = {0, 0, 0};
-    int slowest = 0;
-    for (std::size_t i = 0; i < s.sectors.size(); ++i) {
-      ++counts[s.level[i]];
-      const int l = latency[s.level[i]];
-      slowest = s.group_start[i] ? l : std::max(slowest, l);
-      // A group ends before the next group's first request: charge it then.
-      if (i + 1 == s.sectors.size() || s.group_start[i + 1])
-        owner_cycles[s.owner[i]] += static_cast<std::uint64_t>(slowest);  // owners are per SM
-    }
-    sm_levels[sm] = counts;
-  }
 
   profile.sm_sector_requests.assign(gpu.sms, 0);
   MemoryCounters& c = profile.totals;
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    const auto& l = sm_levels[sm];
-    profile.sm_sector_requests[sm] = l[0] + l[1] + l[2];
-    c.sector_requests += l[0] + l[1] + l[2];
-    c.l1_hits += l[0];
-    c.l2_accesses += l[1] + l[2];
-    c.l2_hits += l[1];
-    c.dram_accesses += l[2];
+    const SmMisses& s = sms[sm];
+    profile.sm_sector_requests[sm] = s.requests;
+    c.sector_requests += s.requests;
+    c.l1_hits += s.requests - s.sector.size();
+    c.l2_accesses += s.sector.size();
+    c.l2_hits += s.l2_hits;
+    c.dram_accesses += s.dram;
   }
   return profile;
 }
