@@ -4,8 +4,10 @@
 //                                 and, for ours, fetched nodes per query;
 //   BM_ModelledCycles/<formulation>/<k>  one batch of 1000 k-nearest queries
 //                                 priced on every modelled backend: modelled
-//                                 cycles per query (counters cycles_<backend>),
-//                                 and the time the pricing takes.
+//                                 cycles per query (counters cycles_<backend>:
+//                                 the batch's cycles / its 1000 queries), what
+//                                 bounded each backend (label), and the time
+//                                 the pricing takes.
 // Structures: 0 NearestNeighborsLinear, 1 NearestNeighborsGNAT (RRTstar's
 // default), 2 ours P-Sphere, 3 ours P-Ray (both record every query, as in
 // the planner).
@@ -98,7 +100,6 @@ void BM_ModelledCycles(benchmark::State& state) {
   const int structure = static_cast<int>(state.range(0));
   const std::size_t k = static_cast<std::size_t>(state.range(1));
   auto nn = std::static_pointer_cast<rc::BackendNearestNeighbors<State>>(Make(structure));
-  state.SetLabel(kStructureNames[structure]);
   std::vector<State> out;
   for (State q : TheData().queries) nn->nearestK(q, k, out);
   const rc::KernelRecord record = nn->TakeKernelRecord();
@@ -115,7 +116,12 @@ void BM_ModelledCycles(benchmark::State& state) {
   }
   const double queries = static_cast<double>(record.query_count());
   state.counters["nodes_per_query"] = static_cast<double>(record.total_nodes()) / queries;
-  for (const rc::BatchCost& c : costs) state.counters["cycles_" + c.backend] = static_cast<double>(c.cycles) / queries;
+  std::string label = kStructureNames[structure];
+  for (const rc::BatchCost& c : costs) {
+    state.counters["cycles_" + c.backend] = static_cast<double>(c.cycles) / queries;
+    label += "; " + c.backend + ": " + c.bound;  // what limited its busiest SM
+  }
+  state.SetLabel(label);
 }
 BENCHMARK(BM_ModelledCycles)->ArgsProduct({{2, 3}, {1, 10}})->Unit(benchmark::kMillisecond)->Iterations(3);
 
