@@ -57,6 +57,23 @@ BatchCost Backend::Run(const RayCastScene& scene, const RayBatch& batch,
   return cost;
 }
 
+template <typename Scalar>
+BatchCost Backend::RunCollisions(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                 std::vector<CollisionResult>& results,
+                                 const CollisionOptions<Scalar>& options) const {
+  const auto start = std::chrono::steady_clock::now();
+  KernelRecord record;
+  RoboCoreContext().CheckCollisions(obbs, tree, results, record, options);
+  const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BatchCost cost = Price(record);
+  cost.host_seconds = host;
+  return cost;
+}
+template BatchCost Backend::RunCollisions(const FlatBoxTree<float>&, const std::vector<Obb<float>>&,
+                                          std::vector<CollisionResult>&, const CollisionOptions<float>&) const;
+template BatchCost Backend::RunCollisions(const FlatBoxTree<double>&, const std::vector<Obb<double>>&,
+                                          std::vector<CollisionResult>&, const CollisionOptions<double>&) const;
+
 std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends,
                                 const KernelRecord& record) {
   PricingContext context(record);

@@ -24,6 +24,7 @@
 #include "backends/memory_replay.h"
 #include "robocore/kernel_record.h"
 #include "robocore/ray_batch.h"
+#include "robocore/robocore_api.h"
 
 namespace rc {
 
@@ -87,6 +88,16 @@ class Backend {
   // Runs the batch: functional hits (identical to CastRayBatch) and cost.
   virtual BatchCost Run(const RayCastScene& scene, const RayBatch& batch,
                         std::vector<RayHit>& hits) const;
+
+  // Runs a collision batch (robot-link OBBs against a box tree) through the
+  // RoboCore API's CheckCollisions: functional results identical to
+  // CollideBatch on every backend (the host kernel answers; the backend
+  // prices its recorded SACT traversal), and the cost. Throws as
+  // CheckCollisions does.
+  template <typename Scalar>
+  BatchCost RunCollisions(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                          std::vector<CollisionResult>& results,
+                          const CollisionOptions<Scalar>& options = {}) const;
 
  protected:
   virtual BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const = 0;

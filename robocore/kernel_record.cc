@@ -12,6 +12,7 @@ const char* ToString(StepProgramKind kind) {
     case StepProgramKind::kDdaStep: return "dda_step";
     case StepProgramKind::kRmStep: return "rm_step";
     case StepProgramKind::kSactTest: return "sact_obb_aabb";
+    case StepProgramKind::kSphereTest: return "sphere_aabb";
     case StepProgramKind::kBallQueryPRay: return "ball_query_pray";
     case StepProgramKind::kBallQueryPSphere: return "ball_query_psphere";
   }

@@ -30,6 +30,7 @@ enum class StepProgramKind : std::uint8_t {
   kDdaStep,    // dda:   programs/dda_step.asm
   kRmStep,     // rm:    programs/rm_step.asm
   kSactTest,   // one OBB-vs-AABB SACT per node: programs/sact_obb_aabb.asm
+  kSphereTest, // one sphere-vs-AABB test per node (sphere robot): programs/sphere_aabb.asm
   kBallQueryPRay,     // ball query, point probe vs state spheres: programs/ball_query_pray.asm
   kBallQueryPSphere,  // ball query, query sphere vs state boxes: programs/ball_query_psphere.asm
 };

@@ -48,6 +48,7 @@ std::string ToString(RayCastMethod m);
 enum class FetchKind : std::uint8_t {
   kGridCell = 0,       // one CellState byte
   kDistanceCell = 1,   // one float of the distance field
+  kTreeNode = 2,       // one flattened box-tree node (robocore/collision/flat_box_tree.h)
 };
 
 struct RayHit {

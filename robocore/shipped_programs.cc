@@ -30,6 +30,7 @@ std::shared_ptr<const MicroProgram> ShippedStepProgram(StepProgramKind kind) {
     case StepProgramKind::kDdaStep: return ShippedProgram("dda_step.asm");
     case StepProgramKind::kRmStep: return ShippedProgram("rm_step.asm");
     case StepProgramKind::kSactTest: return ShippedProgram("sact_obb_aabb.asm");
+    case StepProgramKind::kSphereTest: return ShippedProgram("sphere_aabb.asm");
     case StepProgramKind::kBallQueryPRay: return ShippedProgram("ball_query_pray.asm");
     case StepProgramKind::kBallQueryPSphere: return ShippedProgram("ball_query_psphere.asm");
   }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace rc {
 
@@ -19,6 +21,33 @@ Sphere<Scalar> BoundingSphere(const Obb<Scalar>& obb) {
     r = std::max(r, v.norm());
   }
   return Sphere<Scalar>{obb.centre, r * (1 + 8 * std::numeric_limits<Scalar>::epsilon())};
+}
+
+template <typename Scalar>
+std::vector<Sphere<Scalar>> SphereCover(const Obb<Scalar>& obb, int spheres_per_obb) {
+  if (spheres_per_obb < 1)
+    throw std::invalid_argument("spheres per OBB: " + std::to_string(spheres_per_obb) + ", expected >= 1");
+  if (spheres_per_obb == 1) return {BoundingSphere(obb)};
+  int longest = 0;
+  for (int j = 1; j < 3; ++j)
+    if (obb.half[j] > obb.half[longest]) longest = j;
+  const int n = spheres_per_obb;
+  // Each slab is an OBB with the same axes, 1/n of the longest extent.
+  Obb<Scalar> slab = obb;
+  slab.half[longest] = obb.half[longest] / Scalar(n);
+  std::vector<Sphere<Scalar>> cover;
+  cover.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    // Slab centres at -h + (2i + 1) h / n along the longest axis. The
+    // division rounds, so the radius is taken from a slab grown by the
+    // rounding of h / n (16 ulps of h) to keep the slabs overlapping.
+    const Scalar offset = obb.half[longest] * (Scalar(2 * i + 1 - n) / Scalar(n));
+    slab.centre = obb.centre + offset * obb.axes.col(longest);
+    Obb<Scalar> grown = slab;
+    grown.half[longest] += 16 * std::numeric_limits<Scalar>::epsilon() * obb.half[longest];
+    cover.push_back(Sphere<Scalar>{slab.centre, BoundingSphere(grown).radius});
+  }
+  return cover;
 }
 
 template <typename Scalar>
@@ -41,30 +70,59 @@ TraversalOutcome CollideSphere(const FlatBoxTree<Scalar>& tree, const Sphere<Sca
 }
 
 template <typename Scalar>
-SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
-                                     const CollisionOptions<Scalar>& options) {
-  SphereRobotReport report;
+SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                    int spheres_per_obb, TraversalOrder order, std::uint64_t base_address) {
+  SphereRobotBatch out;
+  out.spheres_per_obb = spheres_per_obb;
+  CollisionBatch& batch = out.spheres;
+  batch.robot_model = CollisionRobotModel::kSpheres;
+  batch.base_address = base_address;
+  batch.node_bytes = tree.node_bytes();
+  batch.node_count = tree.nodes().size();
+  batch.outcomes.reserve(obbs.size() * spheres_per_obb);
+  out.obb_collides.reserve(obbs.size());
   for (const Obb<Scalar>& obb : obbs) {
-    const TraversalOutcome exact = CollideObb(tree, obb, options);
-    const TraversalOutcome sphere = CollideSphere(tree, BoundingSphere(obb), options.order);
+    bool any = false;
+    for (const Sphere<Scalar>& sphere : SphereCover(obb, spheres_per_obb)) {
+      batch.outcomes.push_back(CollideSphere(tree, sphere, order, &batch.visits));
+      batch.visit_offsets.push_back(batch.visits.size());
+      any = any || batch.outcomes.back().collides;
+    }
+    out.obb_collides.push_back(any);
+  }
+  return out;
+}
+
+template <typename Scalar>
+SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                     const CollisionOptions<Scalar>& options, int spheres_per_obb) {
+  const SphereRobotBatch spheres = CollideSphereBatch(tree, obbs, spheres_per_obb, options.order);
+  SphereRobotReport report;
+  report.spheres_per_obb = spheres_per_obb;
+  report.sphere_nodes = spheres.spheres.visits.size();
+  for (std::size_t k = 0; k < obbs.size(); ++k) {
+    const TraversalOutcome exact = CollideObb(tree, obbs[k], options);
+    const bool sphere = spheres.obb_collides[k];
     ++report.queries;
     report.obb_collisions += exact.collides;
-    report.sphere_collisions += sphere.collides;
-    report.false_collisions += sphere.collides && !exact.collides;
-    report.missed_collisions += exact.collides && !sphere.collides;
+    report.sphere_collisions += sphere;
+    report.false_collisions += sphere && !exact.collides;
+    report.missed_collisions += exact.collides && !sphere;
     report.obb_nodes += exact.nodes_visited;
-    report.sphere_nodes += sphere.nodes_visited;
   }
   return report;
 }
 
 #define RC_INSTANTIATE(Scalar)                                                                              \
   template Sphere<Scalar> BoundingSphere(const Obb<Scalar>&);                                               \
+  template std::vector<Sphere<Scalar>> SphereCover(const Obb<Scalar>&, int);                                \
   template bool SphereOverlapsAabb(const Sphere<Scalar>&, const Aabb<Scalar>&);                             \
+  template SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,  \
+                                               int, TraversalOrder, std::uint64_t);                         \
   template TraversalOutcome CollideSphere(const FlatBoxTree<Scalar>&, const Sphere<Scalar>&, TraversalOrder, \
                                           std::vector<NodeVisit>*);                                         \
   template SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&, \
-                                                const CollisionOptions<Scalar>&);
+                                                const CollisionOptions<Scalar>&, int);
 RC_INSTANTIATE(float)
 RC_INSTANTIATE(double)
 #undef RC_INSTANTIATE

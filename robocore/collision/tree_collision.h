@@ -5,7 +5,9 @@
 //
 // Pricing a batch on the backends (DESIGN.md, "run once, price many
 // times"): a CollisionBatch maps one-to-one onto a KernelRecord for the
-// shipped program programs/sact_obb_aabb.asm (StepProgramKind::kSactTest):
+// shipped program programs/sact_obb_aabb.asm (StepProgramKind::kSactTest;
+// sact_kernel_record.h builds it, and the RoboCore API's CheckCollisions
+// returns it):
 //   region   {base_address, node_bytes, tree node count}
 //   query i  its visits in order: address = Address(visit), node exit =
 //            visit.exit (0..14: RETURN_IF #k, the axis that separated) or
@@ -40,8 +42,13 @@ template <typename Scalar>
 bool CollidesBruteForce(const std::vector<Aabb<Scalar>>& boxes, const Obb<Scalar>& obb,
                         const SactOptions<Scalar>& options);
 
+// What each query of a batch is: a robot-link OBB (the SACT per node) or
+// one sphere of the sphere robot (sphere_robot.h; one sphere test per node).
+enum class CollisionRobotModel : std::uint8_t { kObb, kSpheres };
+
 // A recorded batch. Memory: 8 bytes per visit + 16 per query.
 struct CollisionBatch {
+  CollisionRobotModel robot_model = CollisionRobotModel::kObb;
   std::vector<TraversalOutcome> outcomes;        // one per query, in input order
   std::vector<std::uint64_t> visit_offsets{0};   // CSR: query i's visits are [offsets[i], offsets[i+1])
   std::vector<NodeVisit> visits;

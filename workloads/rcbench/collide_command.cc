@@ -4,10 +4,17 @@
 // per OBB and a timeline of what the queries did (nodes per query, how the
 // node tests ended), and prints the sphere-robot and artifact comparisons.
 //
+// The OBB batch runs through the RoboCore API (RoboCoreContext::
+// CheckCollisions with the shipped SACT program); the sphere robot
+// (--spheres-per-obb spheres covering each OBB) runs the same tree with
+// programs/sphere_aabb.asm. Both records are priced on every modelled
+// backend; --robot-model picks whose answers go to --output.
+//
 // Output exit_axis: how the query's last node test ended: 0..14 the SACT
 // axis that separated (sact.h numbering; a collision-free query), -1
-// overlap (the colliding leaf), -2 a sphere pre-test rejected, -3 no node
-// was tested (empty scene).
+// overlap (the colliding leaf), -2 a sphere pre-test rejected (or, with
+// --robot-model spheres, the OBB's last sphere missed its last node), -3 no
+// node was tested (empty scene).
 //
 //   rcbench collide --obbs ../shared/data/collision/mpnet_master_obb.csv --scene shelf
 #include <filesystem>
@@ -16,14 +23,16 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
-#include "backends/calibration/sact_kernel_record.h"
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
 #include "robocore/collision/collision_summary.h"
 #include "robocore/collision/octree_from_octomap.h"
+#include "robocore/collision/sact_kernel_record.h"
 #include "robocore/collision/shelf_scene.h"
 #include "robocore/collision/sphere_robot.h"
+#include "robocore/robocore_api.h"
+#include "robocore/shipped_programs.h"
 #include "workloads/rcbench/commands.h"
 
 namespace rc {
@@ -35,7 +44,8 @@ constexpr int kArtifactNodeBytes = 432;
 struct CollideCli {
   std::string obbs_path, boxes_path, octree_path, scene;
   std::string output_path, timeline_path, scene_output_path, backend_params_path;
-  std::string precision = "double", traversal = "dfs";
+  std::string precision = "double", traversal = "dfs", robot_model = "obb";
+  int spheres_per_obb = 1;
   double parallel_epsilon = 1e-6;
   bool sphere_pretest = false;
   ShelfSceneOptions shelf;
@@ -50,31 +60,44 @@ void CreateParent(const std::string& path) {
   if (!parent.empty()) std::filesystem::create_directories(parent);
 }
 
-void WriteOutput(const std::string& path, const CollisionBatch& batch) {
+void WriteOutput(const std::string& path, const std::vector<CollisionResult>& results) {
   CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "index,collides,nodes_visited,exit_axis\n";
-  for (std::size_t i = 0; i < batch.query_count(); ++i) {
-    const TraversalOutcome& q = batch.outcomes[i];
-    out << i << ',' << (q.collides ? 1 : 0) << ',' << q.nodes_visited << ',' << int{q.last_exit} << '\n';
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const CollisionResult& q = results[i];
+    out << i << ',' << (q.collides ? 1 : 0) << ',' << q.nodes_visited << ',' << int{q.exit_axis} << '\n';
   }
   file.Commit();
+}
+
+// The sphere robot's answer per OBB: collides if any of its spheres does;
+// nodes summed over its spheres; the exit of its last sphere's last test.
+std::vector<CollisionResult> SphereResults(const SphereRobotBatch& spheres) {
+  std::vector<CollisionResult> results(spheres.obb_collides.size());
+  const auto n = static_cast<std::size_t>(spheres.spheres_per_obb);
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    results[k].collides = spheres.obb_collides[k];
+    for (std::size_t s = k * n; s < (k + 1) * n; ++s) {
+      const TraversalOutcome& q = spheres.spheres.outcomes[s];
+      results[k].nodes_visited += q.nodes_visited;
+      results[k].exit_axis = q.last_exit;
+      if (q.collides) {
+        results[k].colliding_box = q.colliding_box;
+        break;
+      }
+    }
+  }
+  return results;
 }
 
 // Long format (section, key, value): one file for the summary numbers, the
 // nodes-per-query histogram and both exit-axis distributions.
 // Every modelled backend prices the batch's recorded traversal (run once,
-// price many times). Empty when sphere pre-tests decided some visits: the
-// shipped SACT program has no sphere section to price them with.
-std::vector<BatchCost> PriceCollisionBatch(const CollisionBatch& batch, const BackendParameters& params) {
-  if (batch.outcomes.empty()) return {};
-  KernelRecord record;
-  try {
-    record = SactKernelRecord(batch);
-  } catch (const std::invalid_argument&) {
-    return {};
-  }
+// price many times). Empty for an empty batch.
+std::vector<BatchCost> PriceOnEveryBackend(const KernelRecord& record, const BackendParameters& params) {
+  if (record.query_count() == 0) return {};
   std::vector<std::unique_ptr<Backend>> owned;
   std::vector<const Backend*> backends;
   for (const std::string& name : Backend::ModelledNames()) {
@@ -85,7 +108,8 @@ std::vector<BatchCost> PriceCollisionBatch(const CollisionBatch& batch, const Ba
 }
 
 void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch,
-                   const std::vector<BatchCost>& costs) {
+                   const std::vector<BatchCost>& costs, const SphereRobotReport& spheres,
+                   const std::vector<BatchCost>& sphere_costs) {
   CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
@@ -105,7 +129,21 @@ void WriteTimeline(const std::string& path, const CollisionSummary& s, const Col
       << "\nstages,sphere_decided," << s.sphere_decided << '\n';
   for (const BatchCost& c : costs)
     out << "cycles," << c.backend << ',' << c.cycles << "\nenergy_j," << c.backend << ',' << c.energy_joules << '\n';
+  out << "sphere_robot,spheres_per_obb," << spheres.spheres_per_obb << "\nsphere_robot,collisions,"
+      << spheres.sphere_collisions << "\nsphere_robot,false_collisions," << spheres.false_collisions
+      << "\nsphere_robot,false_collision_rate," << spheres.false_collision_rate()
+      << "\nsphere_robot,missed_collisions," << spheres.missed_collisions << "\nsphere_robot,node_visits,"
+      << spheres.sphere_nodes << '\n';
+  for (const BatchCost& c : sphere_costs)
+    out << "cycles_spheres," << c.backend << ',' << c.cycles << "\nenergy_j_spheres," << c.backend << ','
+        << c.energy_joules << '\n';
   file.Commit();
+}
+
+void PrintCosts(std::ostream& out, const std::vector<BatchCost>& costs) {
+  for (const BatchCost& c : costs)
+    out << "  " << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
+        << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules << " uJ\n";
 }
 
 void PrintSummary(std::ostream& out, const CollisionSummary& s) {
@@ -135,14 +173,35 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   std::string error;
   if (!options.sact.IsValid(&error)) throw UsageError(error);
 
-  const CollisionBatch batch = CollideBatch(flat, obbs, options);
-  const CollisionSummary summary = Summarize(batch);
   const BackendParameters params =
       cli.backend_params_path.empty() ? BackendParameters{} : LoadBackendParameters(cli.backend_params_path);
-  const std::vector<BatchCost> costs = PriceCollisionBatch(batch, params);
+  // The OBB batch through the RoboCore API; with sphere pre-tests (which the
+  // SACT program cannot price) the kernel runs directly and is not priced.
+  std::vector<CollisionResult> results;
+  KernelRecord record;
+  std::vector<BatchCost> costs;
+  if (!options.sact.sphere_pretests) {
+    RoboCoreContext robocore;
+    robocore.ConfigRoboCore(ShippedStepProgram(StepProgramKind::kSactTest));
+    robocore.ConfigDecode({{FetchKind::kTreeNode, flat.node_bytes()}});
+    robocore.CheckCollisions(obbs, flat, results, record, options);
+    costs = PriceOnEveryBackend(record, params);
+  }
+  // The summary needs every visit's stages, which the record does not keep.
+  const CollisionBatch batch = CollideBatch(flat, obbs, options);
+  const CollisionSummary summary = Summarize(batch);
+  if (options.sact.sphere_pretests)
+    for (const TraversalOutcome& q : batch.outcomes)
+      results.push_back(CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box});
+  const SphereRobotBatch sphere_batch = CollideSphereBatch(flat, obbs, cli.spheres_per_obb, options.order);
+  const std::vector<BatchCost> sphere_costs = PriceOnEveryBackend(SphereKernelRecord(sphere_batch.spheres), params);
+  CollisionOptions<Scalar> exact_options = options;
+  exact_options.sact.sphere_pretests = false;
+  const SphereRobotReport spheres = CompareSphereRobot(flat, obbs, exact_options, cli.spheres_per_obb);
   // Outputs only after the whole run succeeded.
-  if (!cli.output_path.empty()) WriteOutput(cli.output_path, batch);
-  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs);
+  if (!cli.output_path.empty())
+    WriteOutput(cli.output_path, cli.robot_model == "spheres" ? SphereResults(sphere_batch) : results);
+  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs, spheres, sphere_costs);
 
   std::cout << "scene: " << ToString(tree.kind) << ", " << tree.boxes.size() << " boxes, " << flat.nodes().size()
             << " nodes of " << flat.node_bytes() << " B (" << flat.bytes() << " B; the artifact's node is "
@@ -150,21 +209,22 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   std::cout << "kernel: " << cli.precision << " SACT, epsilon " << cli.parallel_epsilon << ", "
             << (cli.sphere_pretest ? "sphere pre-tests, " : "") << ToString(options.order) << " traversal\n";
   PrintSummary(std::cout, summary);
-  if (costs.empty()) {
+  if (options.sact.sphere_pretests) {
     std::cout << "backend pricing         skipped: sphere pre-tests have no section in the SACT program\n";
   } else {
     std::cout << "modelled cost of the batch (every backend prices the same traversal):\n";
-    for (const BatchCost& c : costs)
-      std::cout << "  " << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
-                << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules
-                << " uJ\n";
+    PrintCosts(std::cout, costs);
   }
 
-  const SphereRobotReport spheres = CompareSphereRobot(flat, obbs, options);
-  std::cout << "sphere robot            " << spheres.sphere_collisions << " collisions, " << spheres.false_collisions
-            << " false (" << std::setprecision(3) << 100 * spheres.false_collision_rate() << "% of queries, "
-            << 100 * spheres.false_rate_among_free() << "% of collision-free ones), " << spheres.missed_collisions
-            << " missed; nodes " << spheres.sphere_nodes << " vs " << spheres.obb_nodes << " for OBBs\n";
+  std::cout << "sphere robot            " << cli.spheres_per_obb << " sphere(s) per OBB: " << spheres.sphere_collisions
+            << " collisions, " << spheres.false_collisions << " false (" << std::setprecision(3)
+            << 100 * spheres.false_collision_rate() << "% of queries, " << 100 * spheres.false_rate_among_free()
+            << "% of collision-free ones), " << spheres.missed_collisions << " missed; nodes " << spheres.sphere_nodes
+            << " vs " << spheres.obb_nodes << " for OBBs\n";
+  if (!sphere_costs.empty()) {
+    std::cout << "modelled cost of the sphere robot (programs/sphere_aabb.asm, same tree):\n";
+    PrintCosts(std::cout, sphere_costs);
+  }
   CollisionOptions<Scalar> artifact = options;
   artifact.sact.convention = TranslationConvention::kArtifactRows;
   artifact.sact.sphere_pretests = false;
@@ -237,6 +297,16 @@ void AddCollideCommand(CLI::App& app) {
       ->check(CLI::IsMember({"dfs", "bfs"}))
       ->capture_default_str();
   cmd->add_option("--epsilon", cli->parallel_epsilon, "Added to |R_ij| against near-parallel edges (unitless)")
+      ->capture_default_str();
+  cmd->add_option("--robot-model", cli->robot_model,
+                  "Whose answers --output gets: obb (the exact SACT) | spheres (the sphere robot, "
+                  "--spheres-per-obb spheres covering each OBB); both are always priced and compared")
+      ->check(CLI::IsMember({"obb", "spheres"}))
+      ->capture_default_str();
+  cmd->add_option("--spheres-per-obb", cli->spheres_per_obb,
+                  "Spheres covering each OBB in the sphere robot (count; 1 = the bounding sphere, n = n slabs "
+                  "along the longest axis)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_flag("--sphere-pretest", cli->sphere_pretest,
                 "Bounding-sphere reject and inscribed-sphere accept before the SACT axes");
