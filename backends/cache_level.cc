@@ -15,11 +15,11 @@ CacheLevel::CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::u
     capacity_ = capacity_lines;
     mask_.assign(footprint_lines, 0);
     last_.assign(footprint_lines, 0);
-    // Compacting costs O(history); doing it when the history is a few times
-    // the capacity makes it O(1) per access, and keeps the history small
-    // enough to stay in the host's caches.
-    compact_at_ = std::max<std::size_t>(std::size_t{1} << 14, 4 * static_cast<std::size_t>(capacity_lines));
-    history_.reserve(compact_at_);
+    // Compacting costs O(history) and leaves at most `capacity` entries;
+    // doing it when the history holds a few times that makes it O(1) per
+    // access, and keeps the history small enough to stay in the host's
+    // caches.
+    history_.resize(std::max<std::size_t>(std::size_t{1} << 14, 4 * static_cast<std::size_t>(capacity_lines)));
   } else {
     mode_ = Mode::kSetAssociative;
     ways_ = static_cast<std::uint64_t>(ways);
@@ -30,27 +30,107 @@ CacheLevel::CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::u
   }
 }
 
-void CacheLevel::EvictLeastRecentlyUsed() {
-  while (mask_[history_[tail_]] == 0 || last_[history_[tail_]] != tail_) ++tail_;
-  mask_[history_[tail_]] = 0;
-  ++tail_;
-  --resident_;
+std::size_t CacheLevel::AccessAll(const std::uint32_t* sectors, std::size_t n, std::uint32_t* misses) {
+  switch (mode_) {
+    case Mode::kCold: return AccessCold(sectors, n, misses);
+    case Mode::kFullyAssociative: return AccessFullyAssociative(sectors, n, misses);
+    case Mode::kSetAssociative: break;
+  }
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!AccessSet(sectors[i] >> per_line_shift_, static_cast<std::uint8_t>(1u << (sectors[i] & sector_mask_))))
+      misses[m++] = static_cast<std::uint32_t>(i);
+  return m;
 }
 
-// Only the entries from tail_ on matter, and of those only each resident
-// line's last access. Keeping those, in order and renumbered, keeps the LRU
-// order.
-void CacheLevel::CompactHistory() {
+std::size_t CacheLevel::AccessCold(const std::uint32_t* sectors, std::size_t n, std::uint32_t* misses) {
+  std::uint64_t* valid = valid_.data();
+  std::size_t m = 0;
+  std::uint32_t previous = ~std::uint32_t{0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t s = sectors[i];
+    if (s == previous) continue;  // the sector just accessed: a hit
+    previous = s;
+    const std::uint64_t word = valid[s >> 6], bit = std::uint64_t{1} << (s & 63);
+    if (word & bit) continue;
+    valid[s >> 6] = word | bit;
+    misses[m++] = static_cast<std::uint32_t>(i);
+  }
+  return m;
+}
+
+namespace {
+
+// Keeps, of the history entries from `tail` on, each resident line's last
+// access, in order and renumbered (which keeps the LRU order). Returns the
+// new size; the tail becomes 0.
+std::uint32_t CompactHistory(std::uint32_t* history, std::uint32_t size, std::uint32_t tail,
+                             const std::uint8_t* mask, std::uint32_t* last) {
   std::uint32_t kept = 0;
-  for (std::uint32_t t = tail_; t < history_.size(); ++t) {
-    const std::uint32_t line = history_[t];
-    if (mask_[line] != 0 && last_[line] == t) {
-      history_[kept] = line;
-      last_[line] = kept++;
+  for (std::uint32_t t = tail; t < size; ++t) {
+    const std::uint32_t line = history[t];
+    if (mask[line] != 0 && last[line] == t) {
+      history[kept] = line;
+      last[line] = kept++;
     }
   }
-  history_.resize(kept);
-  tail_ = 0;
+  return kept;
+}
+
+}  // namespace
+
+std::size_t CacheLevel::AccessFullyAssociative(const std::uint32_t* sectors, std::size_t n,
+                                               std::uint32_t* misses) {
+  std::uint8_t* mask = mask_.data();
+  std::uint32_t* last = last_.data();
+  std::uint32_t* history = history_.data();
+  const auto history_capacity = static_cast<std::uint32_t>(history_.size());
+  std::uint32_t size = history_size_, tail = tail_, mru = mru_;
+  std::uint64_t resident = resident_;
+  const std::uint64_t capacity = capacity_;
+  const int shift = per_line_shift_;
+  const std::uint32_t sector_mask = sector_mask_;
+  std::size_t m = 0;
+  std::uint32_t previous = ~std::uint32_t{0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t sector = sectors[i];
+    // The sector just accessed: a hit on the most recently used line, which
+    // changes nothing. Neighbouring threads often fetch the same sector.
+    if (sector == previous) continue;
+    previous = sector;
+    const std::uint32_t line = sector >> shift;
+    const auto bit = static_cast<std::uint8_t>(1u << (sector & sector_mask));
+    if (line != mru) {
+      if (size == history_capacity) {
+        size = CompactHistory(history, size, tail, mask, last);
+        tail = 0;
+      }
+      last[line] = size;
+      history[size++] = line;
+      mru = line;
+      if (mask[line] == 0) {
+        if (resident == capacity) {  // evict the least recently used line
+          while (mask[history[tail]] == 0 || last[history[tail]] != tail) ++tail;
+          mask[history[tail]] = 0;
+          ++tail;
+          --resident;
+        }
+        mask[line] = bit;
+        ++resident;
+        misses[m++] = static_cast<std::uint32_t>(i);
+        continue;
+      }
+    }
+    const std::uint8_t resident_sectors = mask[line];
+    if (resident_sectors & bit) continue;
+    mask[line] = resident_sectors | bit;
+    misses[m++] = static_cast<std::uint32_t>(i);
+  }
+  history_size_ = size;
+  tail_ = tail;
+  mru_ = mru;
+  resident_ = resident;
+  return m;
 }
 
 bool CacheLevel::AccessSet(std::uint32_t line, std::uint8_t bit) {

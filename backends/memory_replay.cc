@@ -29,9 +29,9 @@ struct SmMisses {
 // of every warp, warps and lanes in order, then step 1, ...). The wave's
 // fetches are first sorted by step with a counting sort that reads the
 // record sequentially, so the step-major walk reads a small buffer, not
-// hundreds of strided streams; the buffer is reused wave after wave and
-// stays in the host's caches. Nothing per request outlives the wave except
-// the L1 misses.
+// hundreds of strided streams. The wave's buffers are reused wave after
+// wave and stay in the host's caches; nothing per request outlives the
+// wave except the L1 misses.
 class SmReplay {
  public:
   SmReplay(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
@@ -47,38 +47,40 @@ class SmReplay {
   void Wave(const std::uint32_t* warps, std::size_t count) {
     const std::uint32_t max_steps = SortByStep(warps, count);
     if (one_sector_nodes_ && !coalesced_) {
-      // A group per request: a miss is its group's last.
-      for (const std::uint64_t v : packed_)
-        if (!l1_.Access(static_cast<std::uint32_t>(v))) AddMiss(static_cast<std::uint32_t>(v), v >> 32, 1);
-      out_.requests += packed_.size();
-    } else if (one_sector_nodes_) {
-      Walk(max_steps, [&](std::uint64_t e) {
-        const std::uint64_t v = packed_[e];
-        return Fetch{static_cast<std::uint32_t>(v >> 32), static_cast<std::uint32_t>(v),
-                     static_cast<std::uint32_t>(v)};
-      });
+      // Per thread, one sector per fetch: the sorted fetches are the
+      // requests, each its own group.
+      Grow(misses_, fetches_);
+      const std::size_t m = l1_.AccessAll(sector_.data(), fetches_, misses_.data());
+      for (std::size_t j = 0; j < m; ++j) AddMiss(sector_[misses_[j]], owner_[misses_[j]], 1);
+      out_.requests += fetches_;
     } else {
-      const std::uint64_t last_byte = record_.node_bytes - 1;
-      Walk(max_steps, [&](std::uint64_t e) {
-        const std::uint64_t a = by_step_address_[e];
-        return Fetch{by_step_owner_[e], Sector(a), Sector(a + last_byte)};
-      });
+      const std::size_t requests = coalesced_ ? WalkCoalesced(max_steps) : WalkWideNodes(max_steps);
+      Grow(misses_, requests);
+      const std::size_t m = l1_.AccessAll(request_sector_.data(), requests, misses_.data());
+      for (std::size_t j = 0; j < m; ++j) {
+        const std::uint32_t group = request_group_[misses_[j]];
+        const bool last = j + 1 == m || request_group_[misses_[j + 1]] != group;
+        AddMiss(request_sector_[misses_[j]], group_owner_[group], last);
+      }
+      out_.requests += requests;
     }
     out_.wave_end.push_back(static_cast<std::uint32_t>(out_.sector.size()));
   }
 
  private:
-  struct Fetch {
-    std::uint32_t owner, first_sector, last_sector;
-  };
+  // Buffers only grow: a shorter wave leaves the tail unused.
+  template <class T>
+  static void Grow(std::vector<T>& v, std::size_t n) {
+    if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
+  }
 
   std::uint32_t Sector(std::uint64_t address) const {
     return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
   }
 
-  // Fills packed_ (one-sector nodes: owner << 32 | sector) or
-  // by_step_address_ / by_step_owner_ with the wave's fetches, step-major;
-  // step_start_[k] is where step k begins. Returns the wave's step count.
+  // Fills owner_ and sector_ (one-sector nodes) or address_ with the wave's
+  // fetches, step-major; step_start_[k] is where step k begins. Returns the
+  // wave's step count.
   std::uint32_t SortByStep(const std::uint32_t* warps, std::size_t count) {
     const std::size_t n = record_.query_count();
     const std::uint64_t* offsets = record_.fetch_offsets.data();
@@ -96,113 +98,136 @@ class SmReplay {
     // Fetches per step = lanes with more nodes than the step's index.
     step_start_.assign(max_steps + 2, 0);
     for (std::uint32_t q : lane_query_) ++step_start_[offsets[q + 1] - offsets[q]];
-    std::uint64_t active = 0;
+    std::uint32_t active = 0;
     for (std::uint32_t k = max_steps + 1; k-- > 0;) {
-      const std::uint64_t ending_here = step_start_[k];
+      const std::uint32_t ending_here = step_start_[k];
       step_start_[k] = active;  // lanes still active at step k
       active += ending_here;
     }
-    std::uint64_t total = 0;
+    std::uint32_t total = 0;
     for (std::uint32_t k = 0; k <= max_steps; ++k) {
-      const std::uint64_t c = step_start_[k];
+      const std::uint32_t c = step_start_[k];
       step_start_[k] = total;
       total += c;
     }
+    fetches_ = total;
     cursor_.assign(step_start_.begin(), step_start_.end());
+    std::uint32_t* cursor = cursor_.data();
     const std::uint64_t* addresses = record_.fetch_addresses.data();
+    Grow(owner_, total);
+    std::uint32_t* owner = owner_.data();
     if (one_sector_nodes_) {
-      packed_.resize(total);
+      Grow(sector_, total);
+      std::uint32_t* sector = sector_.data();
+      const std::uint64_t begin = begin_;
+      const int shift = sector_shift_;
       for (std::size_t j = 0; j < lane_query_.size(); ++j) {
-        const std::uint32_t q = lane_query_[j];
-        const std::uint64_t owner = std::uint64_t{lane_owner_[j]} << 32;
-        const std::uint64_t* a = addresses + offsets[q];
-        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
-        for (std::uint32_t k = 0; k < nodes; ++k) packed_[cursor_[k]++] = owner | Sector(a[k]);
-      }
-    } else {
-      by_step_address_.resize(total);
-      by_step_owner_.resize(total);
-      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
-        const std::uint32_t q = lane_query_[j];
+        const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
         const std::uint64_t* a = addresses + offsets[q];
         const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
         for (std::uint32_t k = 0; k < nodes; ++k) {
-          const std::uint64_t at = cursor_[k]++;
-          by_step_address_[at] = a[k];
-          by_step_owner_[at] = lane_owner_[j];
+          const std::uint32_t at = cursor[k]++;
+          sector[at] = static_cast<std::uint32_t>((a[k] - begin) >> shift);
+          owner[at] = lane_owner;
+        }
+      }
+    } else {
+      Grow(address_, total);
+      std::uint64_t* address = address_.data();
+      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
+        const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
+        const std::uint64_t* a = addresses + offsets[q];
+        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+        for (std::uint32_t k = 0; k < nodes; ++k) {
+          const std::uint32_t at = cursor[k]++;
+          address[at] = a[k];
+          owner[at] = lane_owner;
         }
       }
     }
     return max_steps;
   }
 
-  // Walks the sorted fetches step by step. Coalesced: one group per warp
-  // step (a warp's lanes are adjacent within a step), each distinct sector
-  // requested once; per thread: one group per fetch, every sector it spans.
-  template <class FetchAt>
-  void Walk(std::uint32_t max_steps, FetchAt fetch_at) {
+  // Coalesced: one group per warp step (a warp's lanes are adjacent within
+  // a step), each distinct sector of the step requested once. Fills the
+  // request buffers; returns the request count.
+  std::size_t WalkCoalesced(std::uint32_t max_steps) {
+    const std::uint64_t span = one_sector_nodes_ ? 1 : SpanOf(record_.node_bytes);
+    Grow(request_sector_, fetches_ * span);
+    Grow(request_group_, fetches_ * span);
+    group_owner_.clear();
+    std::uint32_t* out_sector = request_sector_.data();
+    std::uint32_t* out_group = request_group_.data();
+    const std::uint32_t* owner = owner_.data();
+    std::size_t r = 0, group_begin = 0;
+    auto group = ~std::uint32_t{0};
+    // Whether `s` is among the group's requests so far: a warp step has at
+    // most 32 lanes and usually a few distinct sectors, and a repeat is
+    // most often a recent one, so scan backwards.
+    auto repeat = [&](std::uint32_t s) {
+      for (std::size_t i = r; i-- > group_begin;)
+        if (out_sector[i] == s) return true;
+      return false;
+    };
     for (std::uint32_t k = 0; k < max_steps; ++k) {
-      const std::uint64_t e0 = step_start_[k], e1 = step_start_[k + 1];
-      std::uint32_t group_owner = 0;
-      for (std::uint64_t e = e0; e < e1; ++e) {
-        const Fetch f = fetch_at(e);
-        if (!coalesced_ || e == e0 || f.owner != group_owner) {
-          EndGroup();
-          group_owner = f.owner;
-          ++group_id_;
-          group_sectors_.clear();
+      const std::uint32_t e0 = step_start_[k], e1 = step_start_[k + 1];
+      for (std::uint32_t e = e0; e < e1; ++e) {
+        const bool starts = e == e0 || owner[e] != owner[e - 1];
+        if (starts) {
+          ++group;
+          group_owner_.push_back(owner[e]);
+          group_begin = r;
         }
-        for (std::uint32_t s = f.first_sector; s <= f.last_sector; ++s) {
-          if (coalesced_ && IsRepeat(s)) continue;
-          ++out_.requests;
-          if (!l1_.Access(s)) {
-            AddMiss(s, f.owner, 0);
-            group_missed_ = true;
-          }
+        if (one_sector_nodes_) {
+          const std::uint32_t s = sector_[e];
+          if (!starts && repeat(s)) continue;
+          out_sector[r] = s;
+          out_group[r++] = group;
+          continue;
+        }
+        const std::uint32_t last = Sector(address_[e] + record_.node_bytes - 1);
+        for (std::uint32_t s = Sector(address_[e]); s <= last; ++s) {
+          if (repeat(s)) continue;
+          out_sector[r] = s;
+          out_group[r++] = group;
         }
       }
     }
-    EndGroup();
+    return r;
   }
 
-  void EndGroup() {
-    if (group_missed_) out_.group_end.back() = 1;
-    group_missed_ = false;
-  }
-
-  void AddMiss(std::uint32_t sector, std::uint64_t owner, std::uint8_t group_end) {
-    out_.sector.push_back(sector);
-    out_.owner.push_back(static_cast<std::uint32_t>(owner));
-    out_.group_end.push_back(group_end);
-  }
-
-  // Whether `sector` was already requested by the current group, and
-  // remember it. The last one requested, then a small table indexed by
-  // the sector's hash, answer most lookups; a slot taken by another sector
-  // of the same group falls back to a scan.
-  bool IsRepeat(std::uint32_t sector) {
-    if (!group_sectors_.empty() && group_sectors_.back() == sector) return true;
-    // Fibonacci hashing: grid rows are a fixed number of sectors apart, so
-    // low bits alone would collide.
-    Seen& slot = seen_[(sector * 2654435769u) >> (32 - kSeenBits)];
-    if (slot.group == group_id_) {
-      if (slot.sector == sector) return true;
-      if (std::find(group_sectors_.begin(), group_sectors_.end(), sector) != group_sectors_.end()) return true;
+  // Per thread, nodes wider than a sector (or unaligned): one group per
+  // fetch, every sector it spans.
+  std::size_t WalkWideNodes(std::uint32_t max_steps) {
+    const std::uint64_t span = SpanOf(record_.node_bytes);
+    Grow(request_sector_, fetches_ * span);
+    Grow(request_group_, fetches_ * span);
+    group_owner_.clear();
+    std::size_t r = 0;
+    for (std::uint32_t e = 0; e < step_start_[max_steps]; ++e) {
+      const auto group = static_cast<std::uint32_t>(group_owner_.size());
+      group_owner_.push_back(owner_[e]);
+      const std::uint32_t last = Sector(address_[e] + record_.node_bytes - 1);
+      for (std::uint32_t s = Sector(address_[e]); s <= last; ++s) {
+        request_sector_[r] = s;
+        request_group_[r++] = group;
+      }
     }
-    slot = {sector, group_id_};
-    group_sectors_.push_back(sector);
-    return false;
+    return r;
   }
 
-  struct Seen {
-    std::uint32_t sector = 0;
-    std::uint64_t group = 0;  // 0: never; groups count from 1
-  };
-  static constexpr int kSeenBits = 6;  // 64 slots for at most 32 lanes per group
-  std::array<Seen, 1 << kSeenBits> seen_{};
-  std::uint64_t group_id_ = 0;
-  std::vector<std::uint32_t> group_sectors_;  // the current group's requests
-  bool group_missed_ = false;
+  // Sectors a node of `bytes` may span at any alignment.
+  std::uint64_t SpanOf(std::uint64_t bytes) const {
+    return (bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1;
+  }
+
+  void AddMiss(std::uint32_t sector, std::uint32_t owner, bool group_end) {
+    out_.sector.push_back(sector);
+    out_.owner.push_back(owner);
+    out_.group_end.push_back(group_end ? 1 : 0);
+  }
+
+  std::vector<std::uint32_t> group_owner_;  // per group of the wave
 
   const KernelRecord& record_;
   const GpuParams& gpu_;
@@ -215,8 +240,10 @@ class SmReplay {
   // Every node lies within one sector: a power-of-two size no larger than a
   // sector, at addresses aligned to it (the layouts guarantee it).
   bool one_sector_nodes_ = false;
-  std::vector<std::uint32_t> lane_query_, lane_owner_, by_step_owner_;
-  std::vector<std::uint64_t> step_start_, cursor_, by_step_address_, packed_;
+  std::size_t fetches_ = 0;  // in the wave
+  std::vector<std::uint32_t> lane_query_, lane_owner_, step_start_, cursor_;
+  std::vector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
+  std::vector<std::uint64_t> address_;
 };
 
 std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
@@ -333,36 +360,48 @@ ExitProfile ProfileExits(const KernelRecord& record) {
   const std::size_t n = record.query_count();
   const std::uint64_t* offsets = record.fetch_offsets.data();
   const std::uint8_t* exits = record.node_exits.data();
-  // Distinct exits of query q: "no exit" first (counted in one vectorized
-  // pass: most passes have none), then the rare exits in first-seen order.
+  // Distinct exits of query q: "no exit" first (most passes have none),
+  // then the rare exits in first-seen order. One scan that skips whole
+  // words of "no exit" (all bits set) at a time.
   auto tally = [&](std::size_t q, std::uint8_t* variant, std::uint32_t* passes) {
-    const std::uint8_t* begin = exits + offsets[q];
+    const std::uint8_t* p = exits + offsets[q];
     const std::uint8_t* end = exits + offsets[q + 1];
-    const auto none = static_cast<std::uint32_t>(std::count(begin, end, kNoExit));
-    std::uint32_t distinct = 0;
-    if (none > 0) {
-      variant[0] = 0;
-      passes[0] = none;
-      distinct = 1;
-    }
-    if (none == static_cast<std::uint32_t>(end - begin)) return distinct;
-    for (const std::uint8_t* p = begin; p < end; ++p) {
-      // Skip whole words of "no exit" (all bits set) at a time.
-      std::uint64_t word;
-      while (end - p >= 8 && (std::memcpy(&word, p, 8), word == ~std::uint64_t{0})) p += 8;
-      if (p == end) break;
-      if (*p == kNoExit) continue;
-      const auto v = static_cast<std::uint8_t>(1 + *p);
+    const auto size = static_cast<std::uint32_t>(end - p);
+    std::uint8_t seen[256];
+    std::uint32_t seen_passes[256];
+    std::uint32_t distinct = 0, with_exit = 0;
+    auto add = [&](std::uint8_t exit) {
+      const auto v = static_cast<std::uint8_t>(1 + exit);
       std::uint32_t i = 0;
-      while (i < distinct && variant[i] != v) ++i;
+      while (i < distinct && seen[i] != v) ++i;
       if (i == distinct) {
-        variant[i] = v;
-        passes[i] = 0;
+        seen[i] = v;
+        seen_passes[i] = 0;
         ++distinct;
       }
-      ++passes[i];
+      ++seen_passes[i];
+      ++with_exit;
+    };
+    for (; end - p >= 8; p += 8) {
+      std::uint64_t word;
+      std::memcpy(&word, p, 8);
+      if (word == ~std::uint64_t{0}) continue;
+      for (int b = 0; b < 8; ++b)
+        if (p[b] != kNoExit) add(p[b]);
     }
-    return distinct;
+    for (; p < end; ++p)
+      if (*p != kNoExit) add(*p);
+    std::uint32_t out = 0;
+    if (with_exit < size) {
+      variant[0] = 0;
+      passes[0] = size - with_exit;
+      out = 1;
+    }
+    for (std::uint32_t i = 0; i < distinct; ++i, ++out) {
+      variant[out] = seen[i];
+      passes[out] = seen_passes[i];
+    }
+    return out;
   };
   ExitProfile profile;
   profile.offsets.assign(n + 1, 0);
