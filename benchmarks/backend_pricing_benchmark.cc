@@ -14,6 +14,14 @@
 //   BM_PriceAll/<method>        the five modelled backends on one record,
 //                               sharing the memory replay (PriceAll)
 //   BM_Price/<backend>/<method> one backend alone
+//   BM_Overhead/<method>        the ratio itself, measured in one run: each
+//                               iteration times the kernel, then PriceAll
+//                               on the same batch, so both see the same
+//                               machine load; counters pricing_over_kernel
+//                               (host time of PriceAll / CastRayBatch) and
+//                               record_and_price_over_kernel (adds the
+//                               recording).
+#include <chrono>
 #include <filesystem>
 #include <memory>
 
@@ -131,9 +139,45 @@ void BM_Price(benchmark::State& state) {
   state.SetLabel(name + " " + ToString(kMethods[m]));
 }
 
+void BM_Overhead(benchmark::State& state) {
+  const Workload* w = LoadWorkload();
+  if (Skip(state, w)) return;
+  const int m = static_cast<int>(state.range(0));
+  std::vector<std::unique_ptr<Backend>> owned;
+  std::vector<const Backend*> backends;
+  for (const std::string& name : Backend::ModelledNames()) {
+    owned.push_back(Backend::Create(name, BackendParameters{}));
+    backends.push_back(owned.back().get());
+  }
+  std::vector<RayHit> hits;
+  KernelRecord record;
+  double kernel_s = 0, record_s = 0, price_s = 0;
+  using Clock = std::chrono::steady_clock;
+  auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    CastRayBatch(*w->scenes[m], w->batch, hits);
+    const auto t1 = Clock::now();
+    CastRayBatchRecorded(*w->scenes[m], w->batch, hits, record);
+    const auto t2 = Clock::now();
+    benchmark::DoNotOptimize(PriceAll(backends, record));
+    const auto t3 = Clock::now();
+    kernel_s += seconds(t0, t1);
+    record_s += seconds(t1, t2);
+    price_s += seconds(t2, t3);
+  }
+  SetCounters(state, w->records[m]);
+  state.counters["kernel_ms"] = 1e3 * kernel_s / static_cast<double>(state.iterations());
+  state.counters["price_all_ms"] = 1e3 * price_s / static_cast<double>(state.iterations());
+  state.counters["pricing_over_kernel"] = price_s / kernel_s;
+  state.counters["record_and_price_over_kernel"] = (record_s + price_s) / kernel_s;
+  state.SetLabel(ToString(kMethods[m]));
+}
+
 BENCHMARK(BM_Kernel)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KernelRecorded)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PriceAll)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Overhead)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Price)
     ->ArgsProduct({benchmark::CreateDenseRange(0, 4, 1), {0, 1, 2}})
     ->Unit(benchmark::kMillisecond)
