@@ -49,9 +49,9 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   r.estimate.y,
                                   r.estimate.theta,
                                   r.ess,
-                                  r.rays,
-                                  r.nodes,
-                                  MaybeNumber(r.rays > 0, r.NodesPerRay()),
+                                  result.work_counted ? CsvCell(r.rays) : CsvCell::Empty(),
+                                  result.work_counted ? CsvCell(r.nodes) : CsvCell::Empty(),
+                                  MaybeNumber(result.work_counted && r.rays > 0, r.NodesPerRay()),
                                   r.wall_s * 1e3,
                                   static_cast<int>(r.sensor_updated),
                                   static_cast<int>(r.resampled),
@@ -136,6 +136,8 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                  {"wall_per_update_s", m.sensor_updates ? m.wall_s / m.sensor_updates : 0.0},
                  {"rays_per_s", m.wall_s > 0 ? m.rays / m.wall_s : 0.0},
                  {"resamples", m.resamples},   {"injected", m.injected}};
+  if (!result.work_counted)
+    for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
   json accuracy = {{"convergence_iteration", m.convergence_iteration},
                    {"converged_at_end", m.converged},
                    {"median_consistency_after_convergence", m.median_consistency},
@@ -193,10 +195,15 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   };
   emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
        m.sensor_updates, m.resamples, m.injected);
-  emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
-       m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);
-  emit("host time               %.3f s total, %.2f ms per update, %.2f M rays/s", m.wall_s,
-       m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0, m.wall_s > 0 ? m.rays / m.wall_s / 1e6 : 0.0);
+  if (result.work_counted) {
+    emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
+         m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);
+    emit("host time               %.3f s total, %.2f ms per update, %.2f M rays/s", m.wall_s,
+         m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0, m.wall_s > 0 ? m.rays / m.wall_s / 1e6 : 0.0);
+  } else {
+    emit("host time               %.3f s total, %.2f ms per update", m.wall_s,
+         m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0);
+  }
   if (m.convergence_iteration >= 0)
     emit("converged at record     %ld (%s)", m.convergence_iteration, m.converged ? "still localized at the end" : "LOST by the end");
   else

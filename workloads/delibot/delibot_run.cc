@@ -100,6 +100,10 @@ SensorModelKind ParseSensorModelKind(const std::string& name) {
 
 std::string ToString(SensorModelKind k) { return k == SensorModelKind::kBeam ? "beam" : "likelihood"; }
 
+DelibotSummary SummarizeDelibot(const std::vector<DelibotRow>& rows, const DelibotSettings& settings) {
+  return Summarize(rows, settings);
+}
+
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
                          const ProgressCallback& progress) {

@@ -101,9 +101,16 @@ struct DelibotResult {
   bool priced = false;
   LedgerSummary pricing;   // valid when priced
   double pricing_wall_s = 0.0;
+  // False for an engine that does not report its kernel work (MRPT's
+  // localizer): rays and nodes are then written as empty, not as 0.
+  bool work_counted = true;
 };
 
 using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
+
+// Convergence, error and consistency statistics of a run's rows; shared with
+// other engines (workloads/delibot/mrpt) so every engine is judged alike.
+DelibotSummary SummarizeDelibot(const std::vector<DelibotRow>& rows, const DelibotSettings& settings);
 
 // ground_truth: one pose per laser record of the trace (map frame), or null.
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,

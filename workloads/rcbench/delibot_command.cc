@@ -10,13 +10,16 @@
 #include "backends/scheduler/backend_scheduler.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
+#include "maps/mrpt/mrpt_map_dispatch.h"
 #include "maps/office_map_generator.h"
 #include "maps/ros_map_io.h"
 #include "traces/cmu_log_writer.h"
 #include "traces/ground_truth_io.h"
+#include "traces/mrpt/mrpt_trace_dispatch.h"
 #include "traces/trace_reader.h"
 #include "workloads/delibot/delibot_report.h"
 #include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/mrpt/delibot_engine.h"
 #include "workloads/delibot/trace_simulator.h"
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/demo_inputs.h"
@@ -37,6 +40,7 @@ struct DelibotCli {
   std::string backend_policy = "adaptive", backend_params_path;
   double threshold = -1.0;
   bool no_pricing = false;
+  std::string engine = "ours";
   DelibotSettings settings;
 };
 
@@ -46,7 +50,9 @@ void Run(DelibotCli& cli) {
   s.ray_caster = ParseRayCastMethod(cli.ray_caster);
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
-  s.price_backends = !cli.no_pricing;
+  const DelibotEngine engine = ParseDelibotEngine(cli.engine);
+  // MRPT casts its own rays: there is no kernel record to price.
+  s.price_backends = !cli.no_pricing && engine == DelibotEngine::kOurs;
   if (!cli.backend_params_path.empty()) s.backend_params = LoadBackendParameters(cli.backend_params_path);
   {
     const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend_policy, Backend::ModelledNames());
@@ -91,7 +97,7 @@ void Run(DelibotCli& cli) {
     map_options.format = cli.map_format;
     if (!cli.map_convention.empty()) map_options.convention = ParseValueConvention(cli.map_convention);
     if (cli.map_resolution_m > 0) map_options.resolution_m = cli.map_resolution_m;
-    LoadedMap loaded = LoadMap(cli.map_path, map_options);
+    LoadedMap loaded = LoadMapWithMrpt(cli.map_path, map_options).map;
     std::cout << "map: " << cli.map_path << " (" << loaded.format << ", " << loaded.grid.size_x() << " x "
               << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
               << loaded.value_convention << ")\n";
@@ -100,7 +106,7 @@ void Run(DelibotCli& cli) {
       throw InputError(cli.map_path, 0, "", "the map has no free cell: there is nowhere to localize");
     TraceReadOptions trace_options;
     trace_options.format = cli.trace_format;
-    trace = ReadTrace(cli.trace_path, trace_options);
+    trace = ReadTraceWithRawlog(cli.trace_path, trace_options);
     std::cout << "trace: " << cli.trace_path << " (" << trace.format << ", " << trace.scans.size()
               << " laser records, " << trace.geometry.beam_count << " beams)\n";
     provenance.map_path = cli.map_path;
@@ -117,19 +123,20 @@ void Run(DelibotCli& cli) {
     }
   }
 
-  std::cout << "filter: " << s.mcl.particle_count << " particles, " << ToString(s.sensor_model) << " model, "
+  std::cout << "filter: " << (engine == DelibotEngine::kMrpt ? "MRPT CMonteCarloLocalization2D, " : "")
+            << s.mcl.particle_count << " particles, " << ToString(s.sensor_model) << " model, "
             << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
             << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
             << provenance.threads << " thread(s)\n";
   DelibotResult result;
   {
     ProgressBar bar("delibot", !cli.quiet);
-    result = RunDelibot(grid, trace, have_truth ? &truth : nullptr, s,
+    result = RunDelibotEngine(engine, grid, trace, have_truth ? &truth : nullptr, s,
                         [&](std::size_t done, std::size_t total) { bar.Update(done, total); });
   }
   // Outputs are written only after the whole run succeeded.
   if (!cli.timeline_path.empty()) WriteDelibotTimeline(cli.timeline_path, result);
-  if (!cli.summary_path.empty()) WriteJsonFile(cli.summary_path, DelibotSummaryJson(result, s, provenance));
+  if (!cli.summary_path.empty()) WriteJsonFile(cli.summary_path, DelibotEngineSummaryJson(engine, result, s, provenance));
   PrintDelibotSummary(std::cout, result, s);
   if (!cli.timeline_path.empty()) std::cout << "timeline                " << cli.timeline_path << "\n";
   if (!cli.summary_path.empty()) std::cout << "summary                 " << cli.summary_path << "\n";
@@ -143,14 +150,14 @@ void AddDelibotCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "delibot", "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
                  "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
-  cmd->add_option("--map", cli->map_path, "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, or an image");
-  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")->capture_default_str();
+  cmd->add_option("--map", cli->map_path, "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, an image, or MRPT .gridmap/.simplemap[.gz]");
+  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image | gridmap | simplemap")->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention,
                   "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
                   "('occupied')");
-  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size for MovingAI maps and images (m)");
-  cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, or CARMEN .clf");
-  cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen")->capture_default_str();
+  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size for MovingAI maps, images and grids built from an MRPT .simplemap (m)");
+  cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
+  cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth_path,
                   "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
   cmd->add_option("--particles", s.mcl.particle_count, "Number of particles [1, 1e7]")->capture_default_str();
@@ -214,6 +221,10 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--backend-params", cli->backend_params_path,
                   "JSON file overriding backend cost parameters (see rcbench backends)");
   cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price updates on the modelled backends");
+  cmd->add_option("--engine", cli->engine,
+                  "ours | mrpt: MRPT's CMonteCarloLocalization2D with our settings mapped onto its own "
+                  "(workloads/delibot/mrpt/mrpt_localizer.h); no backend pricing")
+      ->capture_default_str();
   cmd->callback([cli] { Run(*cli); });
 }
 

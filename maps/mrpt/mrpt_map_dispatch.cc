@@ -1,0 +1,60 @@
+#include "maps/mrpt/mrpt_map_dispatch.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "common/input_error.h"
+#include "maps/mrpt/mrpt_map_loader.h"
+
+namespace rc {
+namespace {
+
+bool EndsWith(const std::string& path, const std::string& suffix) {
+  std::string name = std::filesystem::path(path).filename().string();
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string DetectMrptFormat(const std::string& path) {
+  if (EndsWith(path, ".gridmap") || EndsWith(path, ".gridmap.gz")) return "gridmap";
+  if (EndsWith(path, ".simplemap") || EndsWith(path, ".simplemap.gz")) return "simplemap";
+  return "";
+}
+
+void Reject(bool is_set, const std::string& option, const std::string& format) {
+  if (is_set) throw UsageError("option '" + option + "' does not apply to " + format + " maps");
+}
+
+}  // namespace
+
+LoadedMapWithOrigin LoadMapWithMrpt(const std::string& path, const MapLoadOptions& options) {
+  const std::string format = options.format == "auto" ? DetectMrptFormat(path) : options.format;
+  LoadedMapWithOrigin out;
+  if (format != "gridmap" && format != "simplemap") {
+    out.map = LoadMap(path, options);
+    if (out.map.ros) {
+      out.origin_x_m = out.map.ros->origin_x_m;
+      out.origin_y_m = out.map.ros->origin_y_m;
+    }
+    return out;
+  }
+  Reject(options.convention.has_value(), "value convention", format + " (MRPT cells are P(free) by definition)");
+  Reject(options.image_thresholds.has_value(), "image thresholds", format);
+  MrptGridMap mrpt;
+  if (format == "gridmap") {
+    Reject(options.resolution_m.has_value(), "resolution", "gridmap (the file declares it)");
+    mrpt = LoadMrptGridmap(path);
+  } else {
+    mrpt = LoadMrptSimplemap(path, options.resolution_m.value_or(kSimplemapDefaultResolution_m));
+  }
+  out.map.format = format;
+  out.map.value_convention = DescribeMrptGridMap(mrpt);
+  out.map.grid = std::move(mrpt.grid);
+  out.origin_x_m = mrpt.x_min_m;
+  out.origin_y_m = mrpt.y_min_m;
+  return out;
+}
+
+}  // namespace rc

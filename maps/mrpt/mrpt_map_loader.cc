@@ -1,0 +1,124 @@
+#include "maps/mrpt/mrpt_map_loader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include "common/input_error.h"
+#include "maps/value_convention.h"
+#include "traces/mrpt/mrpt_archive_bytes.h"
+
+namespace rc {
+namespace {
+
+MrptGridMap FromMrpt(const mrpt::maps::COccupancyGridMap2D& source, const std::string& path) {
+  const int size_x = static_cast<int>(source.getSizeX());
+  const int size_y = static_cast<int>(source.getSizeY());
+  if (size_x <= 0 || size_y <= 0) throw InputError(path, 0, "size", "the MRPT grid has no cells");
+  MrptGridMap out;
+  out.grid = OccupancyGrid(size_x, size_y, source.getResolution(), CellState::kUnknown);
+  out.x_min_m = source.getXMin();
+  out.y_min_m = source.getYMin();
+  const ProbabilityThresholds thresholds;
+  for (int cx = 0; cx < size_x; ++cx)
+    for (int cy = 0; cy < size_y; ++cy)
+      out.grid.Set(cx, cy, ClassifyProbability(source.getCell(cx, cy), ValueConvention::kProbabilityFree, thresholds));
+  return out;
+}
+
+// Deserializes one object of type T from the whole file, which must end
+// exactly where the object does.
+template <typename T>
+void ReadWholeArchive(const std::string& path, const std::string& what, T& object) {
+  const std::vector<unsigned char> bytes = ReadArchiveBytes(path, what);
+  mrpt::io::CMemoryStream memory;
+  memory.assignMemoryNotOwn(bytes.data(), bytes.size());
+  auto archive = mrpt::serialization::archiveFrom(memory);
+  try {
+    archive >> object;
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, "", "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
+                                      " bytes uncompressed): " + FirstLine(e.what()));
+  }
+  if (memory.getPosition() != bytes.size())
+    throw InputError(path, 0, "", std::to_string(bytes.size() - memory.getPosition()) +
+                                      " bytes after the " + what + " object: not a single " + what);
+}
+
+}  // namespace
+
+MrptGridMap LoadMrptGridmap(const std::string& path) {
+  mrpt::maps::COccupancyGridMap2D grid;
+  ReadWholeArchive(path, "gridmap", grid);
+  return FromMrpt(grid, path);
+}
+
+MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m) {
+  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m))
+    throw UsageError("simplemap grid resolution must be a positive number of metres");
+  mrpt::maps::CSimpleMap simple;
+  ReadWholeArchive(path, "simplemap", simple);
+  if (simple.empty()) throw InputError(path, 0, "", "the simplemap has no keyframes to build a grid from");
+  // The grid grows as observations are inserted; start with one cell.
+  mrpt::maps::COccupancyGridMap2D grid(0.0f, static_cast<float>(resolution_m), 0.0f, static_cast<float>(resolution_m),
+                                       static_cast<float>(resolution_m));
+  grid.insertionOptions.maxDistanceInsertion = 15.0f;
+  grid.insertionOptions.maxOccupancyUpdateCertainty = 0.55f;
+  grid.insertionOptions.considerInvalidRangesAsFreeSpace = true;
+  try {
+    grid.loadFromSimpleMap(simple);
+  } catch (const std::exception& e) {
+    throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + FirstLine(e.what()));
+  }
+  return FromMrpt(grid, path);
+}
+
+void ToMrptGrid(const OccupancyGrid& grid, double x_min_m, double y_min_m, mrpt::maps::COccupancyGridMap2D& out) {
+  const double r = grid.resolution_m();
+  // MRPT rounds both bounds to its cell lattice and sizes the grid by
+  // round((max - min) / r), so exact bounds give exactly our size.
+  out.setSize(static_cast<float>(x_min_m), static_cast<float>(x_min_m + grid.size_x() * r),
+              static_cast<float>(y_min_m), static_cast<float>(y_min_m + grid.size_y() * r),
+              static_cast<float>(r));
+  if (static_cast<int>(out.getSizeX()) != grid.size_x() || static_cast<int>(out.getSizeY()) != grid.size_y() ||
+      std::abs(out.getXMin() - x_min_m) > 1e-4 * r || std::abs(out.getYMin() - y_min_m) > 1e-4 * r)
+    throw std::invalid_argument("MRPT placed the grid at (" + std::to_string(out.getXMin()) + ", " +
+                                std::to_string(out.getYMin()) + "), " + std::to_string(out.getSizeX()) + " x " +
+                                std::to_string(out.getSizeY()) + " cells, instead of (" + std::to_string(x_min_m) +
+                                ", " + std::to_string(y_min_m) + "), " + std::to_string(grid.size_x()) + " x " +
+                                std::to_string(grid.size_y()));
+  for (int ix = 0; ix < grid.size_x(); ++ix)
+    for (int iy = 0; iy < grid.size_y(); ++iy) {
+      const CellState s = grid.At(ix, iy);
+      out.setCell(ix, iy, s == CellState::kFree ? 1.0f : s == CellState::kOccupied ? 0.0f : 0.5f);
+    }
+}
+
+void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double x_min_m, double y_min_m) {
+  mrpt::maps::COccupancyGridMap2D out;
+  ToMrptGrid(grid, x_min_m, y_min_m, out);
+  const std::string temporary = path + ".partial";
+  {
+    mrpt::io::CFileGZOutputStream file;
+    if (!file.open(temporary)) throw std::runtime_error("cannot write '" + temporary + "'");
+    auto archive = mrpt::serialization::archiveFrom(file);
+    archive << out;
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+std::string DescribeMrptGridMap(const MrptGridMap& map) {
+  std::ostringstream text;
+  text << "MRPT cells are P(free): occupied if 1 - P(free) >= 0.65, free if <= 0.196, else unknown; "
+       << "MRPT world (X, Y) = map (X - " << map.x_min_m << ", Y - " << map.y_min_m << ")";
+  return text.str();
+}
+
+}  // namespace rc

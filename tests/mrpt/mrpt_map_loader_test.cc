@@ -1,0 +1,144 @@
+// MRPT .gridmap / .simplemap input: the value convention and the frame
+// offset checked against MRPT's own API, MRPT's example maps, and the bad
+// archives that must become InputErrors.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include "common/input_error.h"
+#include "delibot/synthetic_world.h"
+#include "maps/mrpt/mrpt_map_dispatch.h"
+#include "maps/mrpt/mrpt_map_loader.h"
+#include "mrpt/mrpt_test_data.h"
+
+namespace rc {
+namespace {
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("rc_mrpt_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+// A grid written by MRPT itself, through its world-coordinate API: the
+// loader must place each marked point in the matching cell of our frame.
+TEST(MrptMapLoader, ValueConventionAndFrameMatchMrptsOwnApi) {
+  mrpt::maps::COccupancyGridMap2D mrpt_grid(-2.0f, 2.0f, -1.0f, 3.0f, 0.1f);  // all 0.5: unknown
+  ASSERT_NEAR(mrpt_grid.getXMin(), -2.0, 1e-6);
+  ASSERT_NEAR(mrpt_grid.getYMin(), -1.0, 1e-6);
+  mrpt_grid.setPos(1.05f, 0.15f, 0.0f);   // P(free) 0: a wall at world (1.05, 0.15)
+  mrpt_grid.setPos(-1.55f, 2.45f, 1.0f);  // P(free) 1: free at world (-1.55, 2.45)
+  mrpt_grid.setPos(0.35f, -0.95f, 0.4f);  // in between: unknown under the ROS thresholds
+  const std::string path = TempPath("frame.gridmap.gz");
+  {
+    mrpt::io::CFileGZOutputStream file(path);
+    auto archive = mrpt::serialization::archiveFrom(file);
+    archive << mrpt_grid;
+  }
+  const MrptGridMap loaded = LoadMrptGridmap(path);
+  EXPECT_DOUBLE_EQ(loaded.x_min_m, mrpt_grid.getXMin());
+  EXPECT_DOUBLE_EQ(loaded.y_min_m, mrpt_grid.getYMin());
+  ASSERT_EQ(loaded.grid.size_x(), static_cast<int>(mrpt_grid.getSizeX()));
+  ASSERT_EQ(loaded.grid.size_y(), static_cast<int>(mrpt_grid.getSizeY()));
+  EXPECT_NEAR(loaded.grid.resolution_m(), 0.1, 1e-7);
+  // World (X, Y) is map (X - x_min, Y - y_min); cell = floor(map / r).
+  auto cell_at_world = [&](double x, double y) {
+    const double r = loaded.grid.resolution_m();
+    return loaded.grid.At(static_cast<int>(std::floor((x - loaded.x_min_m) / r)),
+                          static_cast<int>(std::floor((y - loaded.y_min_m) / r)));
+  };
+  EXPECT_EQ(cell_at_world(1.05, 0.15), CellState::kOccupied);
+  EXPECT_EQ(loaded.grid.At(30, 11), CellState::kOccupied);  // (1.05 + 2, 0.15 + 1) / 0.1
+  EXPECT_EQ(cell_at_world(-1.55, 2.45), CellState::kFree);
+  EXPECT_EQ(cell_at_world(0.35, -0.95), CellState::kUnknown);
+  EXPECT_EQ(loaded.grid.CountCells(CellState::kOccupied), 1u);
+  EXPECT_EQ(loaded.grid.CountCells(CellState::kFree), 1u);
+  std::filesystem::remove(path);
+}
+
+TEST(MrptMapLoader, SaveThenLoadKeepsCellsAndOrigin) {
+  const OccupancyGrid room = test::AsymmetricRoom();
+  const std::string path = TempPath("room.gridmap.gz");
+  SaveMrptGridmap(room, path, -3.5, 2.0);
+  const MrptGridMap loaded = LoadMrptGridmap(path);
+  EXPECT_NEAR(loaded.x_min_m, -3.5, 1e-5);
+  EXPECT_NEAR(loaded.y_min_m, 2.0, 1e-5);
+  ASSERT_EQ(loaded.grid.size_x(), room.size_x());
+  ASSERT_EQ(loaded.grid.size_y(), room.size_y());
+  EXPECT_EQ(loaded.grid.cells(), room.cells());
+  std::filesystem::remove(path);
+}
+
+TEST(MrptMapLoader, MalagaGridmap) {
+  RC_REQUIRE_MRPT_DATASET("2006-MalagaCampus.gridmap.gz");
+  const MrptGridMap map = LoadMrptGridmap(test::MrptDatasetPath("2006-MalagaCampus.gridmap.gz"));
+  EXPECT_EQ(map.grid.size_x(), 1888);
+  EXPECT_EQ(map.grid.size_y(), 2738);
+  EXPECT_NEAR(map.grid.resolution_m(), 0.08, 1e-6);
+  EXPECT_NEAR(map.x_min_m, -10.0, 1e-4);
+  EXPECT_NEAR(map.y_min_m, -127.04, 1e-3);
+  // Corridors far outnumber walls, and most of the bounding box was never seen.
+  const std::size_t free = map.grid.CountCells(CellState::kFree);
+  const std::size_t occupied = map.grid.CountCells(CellState::kOccupied);
+  const std::size_t unknown = map.grid.CountCells(CellState::kUnknown);
+  EXPECT_GT(occupied, 5000u);
+  EXPECT_GT(free, 20 * occupied);
+  EXPECT_GT(unknown, free);
+}
+
+TEST(MrptMapLoader, LocalizationDemoSimplemapBuildsAGrid) {
+  RC_REQUIRE_MRPT_DATASET("localization_demo.simplemap.gz");
+  const LoadedMapWithOrigin loaded = LoadMapWithMrpt(test::MrptDatasetPath("localization_demo.simplemap.gz"));
+  EXPECT_EQ(loaded.map.format, "simplemap");
+  EXPECT_NEAR(loaded.map.grid.resolution_m(), kSimplemapDefaultResolution_m, 1e-6);
+  const std::size_t free = loaded.map.grid.CountCells(CellState::kFree);
+  const std::size_t occupied = loaded.map.grid.CountCells(CellState::kOccupied);
+  EXPECT_GT(occupied, 1000u);
+  EXPECT_GT(free, 5 * occupied);
+  // The building spans tens of metres around the log's start.
+  EXPECT_GT(loaded.map.grid.extent_x_m(), 30.0);
+  EXPECT_LT(loaded.origin_x_m, 0.0);
+  EXPECT_LT(loaded.origin_y_m, 0.0);
+}
+
+TEST(MrptMapLoader, DispatcherRulesAndOptions) {
+  const std::string path = TempPath("d.gridmap");
+  SaveMrptGridmap(test::AsymmetricRoom(), path);
+  EXPECT_EQ(LoadMapWithMrpt(path).map.format, "gridmap");
+  MapLoadOptions options;
+  options.convention = ValueConvention::kProbabilityOccupied;
+  EXPECT_THROW(LoadMapWithMrpt(path, options), UsageError);
+  options = {};
+  options.resolution_m = 0.2;
+  EXPECT_THROW(LoadMapWithMrpt(path, options), UsageError);  // a gridmap declares its resolution
+  std::filesystem::remove(path);
+}
+
+TEST(MrptMapLoader, CorruptAndTruncatedMapsAreInputErrors) {
+  const std::string whole = TempPath("whole.gridmap");
+  SaveMrptGridmap(test::AsymmetricRoom(), whole);
+  const std::string cut = TempPath("cut.gridmap");
+  {
+    // The saved file is gzip: truncating it breaks the gzip stream or the object.
+    std::ifstream in(whole, std::ios::binary);
+    std::vector<char> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::ofstream out(cut, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  }
+  EXPECT_THROW(LoadMrptGridmap(cut), InputError);
+  {
+    std::ofstream out(cut, std::ios::binary);
+    out << "P2\n# not an MRPT archive\n";
+  }
+  EXPECT_THROW(LoadMrptGridmap(cut), InputError);
+  EXPECT_THROW(LoadMrptSimplemap(cut), InputError);
+  EXPECT_THROW(LoadMrptGridmap(TempPath("missing.gridmap")), InputError);
+  std::filesystem::remove(whole);
+  std::filesystem::remove(cut);
+}
+
+}  // namespace
+}  // namespace rc

@@ -1,0 +1,173 @@
+// MRPT .rawlog input: MRPT's own example log, both rawlog forms, and the
+// corrupt and truncated archives that must become InputErrors.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "common/input_error.h"
+#include "delibot/synthetic_world.h"
+#include "mrpt/mrpt_test_data.h"
+#include "traces/mrpt/mrpt_rawlog_reader.h"
+#include "traces/mrpt/mrpt_rawlog_writer.h"
+#include "traces/mrpt/mrpt_trace_dispatch.h"
+
+namespace rc {
+namespace {
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("rc_mrpt_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+std::vector<char> ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const std::string& path, const std::vector<char>& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+SensorTrace SmallTrace() {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  SensorTrace trace = test::DriveThrough(g, test::RoomTour(), 0.5, 0.02, 3).trace;
+  for (auto& scan : trace.scans) scan.time_s += 1.2e9;  // a realistic epoch time
+  trace.scans[2].ranges_m[7] = static_cast<float>(trace.geometry.max_range_m);  // one "no return"
+  return trace;
+}
+
+void ExpectSameTrace(const SensorTrace& expected, const SensorTrace& actual, double pose_tolerance) {
+  ASSERT_EQ(expected.scans.size(), actual.scans.size());
+  EXPECT_EQ(expected.geometry.beam_count, actual.geometry.beam_count);
+  EXPECT_NEAR(expected.geometry.angle_min_rad, actual.geometry.angle_min_rad, 1e-6);
+  EXPECT_NEAR(expected.geometry.angle_increment_rad, actual.geometry.angle_increment_rad, 1e-7);
+  EXPECT_NEAR(expected.geometry.max_range_m, actual.geometry.max_range_m, 1e-6);
+  EXPECT_NEAR(expected.geometry.offset_forward_m, actual.geometry.offset_forward_m, 1e-9);
+  for (std::size_t k = 0; k < expected.scans.size(); ++k) {
+    const LaserScan& a = expected.scans[k];
+    const LaserScan& b = actual.scans[k];
+    EXPECT_NEAR(a.time_s, b.time_s, 1e-6) << "scan " << k;
+    EXPECT_NEAR(a.odometry.x, b.odometry.x, pose_tolerance) << "scan " << k;
+    EXPECT_NEAR(a.odometry.y, b.odometry.y, pose_tolerance) << "scan " << k;
+    EXPECT_NEAR(WrapAngle(a.odometry.theta - b.odometry.theta), 0.0, pose_tolerance) << "scan " << k;
+    ASSERT_EQ(a.ranges_m, b.ranges_m) << "scan " << k;
+  }
+}
+
+TEST(MrptRawlogReader, ReadsMrptLocalizationDemoWithItsOwnGeometry) {
+  RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
+  TraceReadStats stats;
+  const SensorTrace trace = ReadMrptRawlog(test::MrptDatasetPath("localization_demo.rawlog"), {}, &stats);
+  EXPECT_EQ(trace.format, "rawlog");
+  EXPECT_EQ(trace.scans.size(), 37u);
+  EXPECT_EQ(stats.laser_records, 37);
+  EXPECT_EQ(stats.odometry_records, 37);  // one CActionRobotMovement2D per pair
+  // The log's CObservation2DRangeScan: 361 ranges over 180 deg, right to
+  // left, 80 m max range, laser 0.78 m ahead of the robot centre.
+  EXPECT_EQ(trace.geometry.beam_count, 361);
+  EXPECT_NEAR(trace.geometry.angle_min_rad, -kPi / 2, 1e-6);
+  EXPECT_NEAR(trace.geometry.angle_increment_rad, kPi / 360, 1e-7);
+  EXPECT_NEAR(trace.geometry.max_range_m, 80.0, 1e-6);
+  EXPECT_NEAR(trace.geometry.offset_forward_m, 0.78, 1e-6);
+  // The first action's odometry increment is (0.248 m, 0.019 m, 8.14 deg),
+  // applied to the origin.
+  EXPECT_NEAR(trace.scans[0].odometry.x, 0.248, 0.0005);
+  EXPECT_NEAR(trace.scans[0].odometry.y, 0.019, 0.0005);
+  EXPECT_NEAR(trace.scans[0].odometry.theta, 8.14 * kPi / 180, 0.0002);
+  EXPECT_NEAR(trace.scans[0].ranges_m[0], 2.47, 1e-5);
+  // Invalid readings (two in the first scan) become "no return".
+  int no_return = 0;
+  for (float r : trace.scans[0].ranges_m) no_return += r >= trace.geometry.max_range_m;
+  EXPECT_EQ(no_return, 2);
+  for (std::size_t k = 1; k < trace.scans.size(); ++k) EXPECT_GE(trace.scans[k].time_s, trace.scans[k - 1].time_s);
+}
+
+TEST(MrptRawlogReader, BothFormsGiveTheSameTrace) {
+  const SensorTrace trace = SmallTrace();
+  const std::string actions = TempPath("actions.rawlog");
+  const std::string observations = TempPath("observations.rawlog");
+  WriteMrptRawlog(trace, actions, RawlogForm::kActionsObservations);
+  WriteMrptRawlog(trace, observations, RawlogForm::kObservationsOnly);
+  TraceReadStats stats;
+  const SensorTrace from_observations = ReadMrptRawlog(observations, {}, &stats);
+  EXPECT_EQ(stats.odometry_records, static_cast<long>(trace.scans.size()));  // CObservationOdometry
+  ExpectSameTrace(trace, from_observations, 1e-9);  // absolute poses, double precision
+  // The actions form stores increments, composed back on reading.
+  ExpectSameTrace(trace, ReadMrptRawlog(actions), 1e-5);
+  std::filesystem::remove(actions);
+  std::filesystem::remove(observations);
+}
+
+TEST(MrptRawlogReader, DispatcherPicksRawlogByExtensionOrName) {
+  const SensorTrace trace = SmallTrace();
+  const std::string path = TempPath("dispatch.rawlog");
+  const std::string renamed = TempPath("dispatch.bin");
+  WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
+  std::filesystem::copy_file(path, renamed, std::filesystem::copy_options::overwrite_existing);
+  TraceReadOptions options;
+  EXPECT_EQ(ReadTraceWithRawlog(path, options).format, "rawlog");
+  options.format = "rawlog";
+  EXPECT_EQ(ReadTraceWithRawlog(renamed, options).scans.size(), trace.scans.size());
+  options.expected_beam_count = 361;
+  EXPECT_THROW(ReadTraceWithRawlog(path, options), InputError);  // the room trace has 180 beams
+  options.format = "nonsense";
+  EXPECT_THROW(ReadTraceWithRawlog(path, options), UsageError);
+  std::filesystem::remove(path);
+  std::filesystem::remove(renamed);
+}
+
+void ExpectInputErrorNamingFile(const std::string& path) {
+  try {
+    ReadMrptRawlog(path);
+    FAIL() << "no error for " << path;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+TEST(MrptRawlogReader, TruncatedArchivesAreInputErrors) {
+  const std::string path = TempPath("whole.rawlog");
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
+  const std::vector<char> whole = ReadBytes(path);
+  const std::string cut = TempPath("cut.rawlog");
+  // Cut inside the last object, inside the first, and after a few bytes.
+  for (std::size_t keep : {whole.size() - 10, whole.size() / 2, std::size_t{300}, std::size_t{3}}) {
+    WriteBytes(cut, std::vector<char>(whole.begin(), whole.begin() + static_cast<long>(keep)));
+    SCOPED_TRACE("kept " + std::to_string(keep) + " of " + std::to_string(whole.size()) + " bytes");
+    ExpectInputErrorNamingFile(cut);
+  }
+  std::filesystem::remove(path);
+  std::filesystem::remove(cut);
+}
+
+TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
+  RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
+  const std::vector<char> whole = ReadBytes(test::MrptDatasetPath("localization_demo.rawlog"));
+  const std::string cut = TempPath("demo_cut.rawlog");
+  WriteBytes(cut, std::vector<char>(whole.begin(), whole.begin() + static_cast<long>(whole.size() * 2 / 3)));
+  ExpectInputErrorNamingFile(cut);
+  std::filesystem::remove(cut);
+}
+
+TEST(MrptRawlogReader, CorruptAndForeignFilesAreInputErrors) {
+  const std::string path = TempPath("corrupt.rawlog");
+  WriteBytes(path, std::vector<char>{'n', 'o', 't', ' ', 'a', ' ', 'r', 'a', 'w', 'l', 'o', 'g', '\n'});
+  ExpectInputErrorNamingFile(path);
+  // A valid archive whose class names are overwritten.
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kObservationsOnly);
+  std::vector<char> bytes = ReadBytes(path);
+  for (std::size_t i = 0; i < 64 && i < bytes.size(); ++i) bytes[i] = static_cast<char>(0xA5);
+  WriteBytes(path, bytes);
+  ExpectInputErrorNamingFile(path);
+  WriteBytes(path, {});
+  ExpectInputErrorNamingFile(path);
+  ExpectInputErrorNamingFile(TempPath("missing.rawlog"));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace rc
