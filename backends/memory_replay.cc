@@ -112,40 +112,41 @@ class SmReplay {
     }
     fetches_ = total;
     cursor_.assign(step_start_.begin(), step_start_.end());
-    std::uint32_t* cursor = cursor_.data();
-    const std::uint64_t* addresses = record_.fetch_addresses.data();
     Grow(owner_, total);
-    std::uint32_t* owner = owner_.data();
     if (one_sector_nodes_) {
       Grow(sector_, total);
       std::uint32_t* sector = sector_.data();
       const std::uint64_t begin = begin_;
       const int shift = sector_shift_;
-      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
-        const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
-        const std::uint64_t* a = addresses + offsets[q];
-        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
-        for (std::uint32_t k = 0; k < nodes; ++k) {
-          const std::uint32_t at = cursor[k]++;
-          sector[at] = static_cast<std::uint32_t>((a[k] - begin) >> shift);
-          owner[at] = lane_owner;
-        }
-      }
+      Scatter([&](std::uint32_t at, std::uint64_t address) {
+        sector[at] = static_cast<std::uint32_t>((address - begin) >> shift);
+      });
     } else {
       Grow(address_, total);
       std::uint64_t* address = address_.data();
-      for (std::size_t j = 0; j < lane_query_.size(); ++j) {
-        const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
-        const std::uint64_t* a = addresses + offsets[q];
-        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
-        for (std::uint32_t k = 0; k < nodes; ++k) {
-          const std::uint32_t at = cursor[k]++;
-          address[at] = a[k];
-          owner[at] = lane_owner;
-        }
-      }
+      Scatter([&](std::uint32_t at, std::uint64_t a) { address[at] = a; });
     }
     return max_steps;
+  }
+
+  // Writes each fetch of the wave's lanes at its step's next slot: its
+  // owner, and what `write(slot, address)` keeps of its address.
+  template <class Write>
+  void Scatter(Write write) {
+    const std::uint64_t* offsets = record_.fetch_offsets.data();
+    const std::uint64_t* addresses = record_.fetch_addresses.data();
+    std::uint32_t* cursor = cursor_.data();
+    std::uint32_t* owner = owner_.data();
+    for (std::size_t j = 0; j < lane_query_.size(); ++j) {
+      const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
+      const std::uint64_t* a = addresses + offsets[q];
+      const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+      for (std::uint32_t k = 0; k < nodes; ++k) {
+        const std::uint32_t at = cursor[k]++;
+        write(at, a[k]);
+        owner[at] = lane_owner;
+      }
+    }
   }
 
   // Coalesced: one group per warp step (a warp's lanes are adjacent within

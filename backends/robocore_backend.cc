@@ -1,22 +1,16 @@
 #include "backends/robocore_backend.h"
 
+#include "backends/modelled_backend.h"
 #include "backends/rt_unit_model.h"
 
 namespace rc {
 
 RoboCoreBackend::RoboCoreBackend(const BackendParameters& params)
     : gpu_(params.gpu), robocore_(params.robocore), energy_(params.energy) {
-  specs_.name = "robocore";
-  specs_.description = "RoboCore units: TTA+ with chained SACT units, CTRL early exit";
-  specs_.has_cost_model = true;
+  specs_ = ModelledBackendSpecs("robocore", "RoboCore units: TTA+ with chained SACT units, CTRL early exit", gpu_);
   specs_.has_rt_unit = true;
   specs_.has_sact_units = true;
   specs_.early_exit = EarlyExitMode::kConditionalReturn;
-  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
-                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
-  specs_.clock_hz = gpu_.core_clock_hz;
-  specs_.sms = gpu_.sms;
 }
 
 BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {

@@ -3,12 +3,11 @@
 #include <algorithm>
 
 #include "backends/energy_model.h"
+#include "backends/modelled_backend.h"
 #include "backends/warp_schedule.h"
 
 namespace rc {
 namespace {
-
-std::uint64_t CeilDiv(std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; }
 
 // Everything a set of executions of one section cost, scaled by a count.
 struct Tally {
@@ -94,15 +93,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
     }
   }
 
-  BatchCost cost;
-  cost.backend = backend_name;
-  cost.modelled = true;
-  cost.queries = n;
-  cost.nodes = record.total_nodes();
-  cost.clock_hz = gpu.core_clock_hz;
-  cost.memory = memory->totals;
-  cost.l1_model = memory->l1_model;
-  cost.l2_model = memory->l2_model;
+  BatchCost cost = ModelledBatchCost(backend_name, record, gpu, *memory);
 
   Tally total;
   std::uint64_t busiest = 0;
@@ -139,15 +130,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
     total.micro_ops += t.micro_ops;
     total.arithmetic_joules += t.arithmetic_joules;
   }
-  const std::uint64_t dram_cycles = static_cast<std::uint64_t>(
-      static_cast<double>(memory->totals.dram_accesses) * gpu.sector_bytes / gpu.DramBytesPerCoreCycle());
-  if (dram_cycles > busiest) {
-    busiest = dram_cycles;
-    cost.bound = "DRAM bandwidth";
-  }
-  cost.launch_cycles = pricing.launch_cycles;
-  cost.cycles = pricing.launch_cycles + busiest;
-  cost.seconds = static_cast<double>(cost.cycles) / gpu.core_clock_hz;
+  FinishKernelCycles(cost, pricing.launch_cycles, busiest, gpu);
   for (int i = 0; i < kOpcodeCount; ++i) cost.micro_ops[i] = total.executed[i];
   cost.predicated_off_micro_ops = total.predicated;
   cost.interconnect_hops = total.hops;

@@ -4,12 +4,11 @@
 #include <stdexcept>
 
 #include "backends/energy_model.h"
+#include "backends/modelled_backend.h"
 #include "backends/warp_schedule.h"
 
 namespace rc {
 namespace {
-
-std::uint64_t CeilDiv(std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; }
 
 // What one thread's execution of a section does, as written in the program.
 struct SectionWork {
@@ -22,14 +21,7 @@ struct SectionWork {
 
 SimtBackend::SimtBackend(const BackendParameters& params)
     : gpu_(params.gpu), simt_(params.simt), energy_(params.energy) {
-  specs_.name = "simt";
-  specs_.description = "CUDA cores: warps of 32 queries, coalesced sectors, GTO issue";
-  specs_.has_cost_model = true;
-  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
-                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
-  specs_.clock_hz = gpu_.core_clock_hz;
-  specs_.sms = gpu_.sms;
+  specs_ = ModelledBackendSpecs("simt", "CUDA cores: warps of 32 queries, coalesced sectors, GTO issue", gpu_);
 }
 
 std::uint64_t SimtBackend::SectionInstructions(const std::vector<MicroOp>& ops, bool loop) const {
@@ -92,15 +84,7 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
                                memory->warp_memory_cycles[w]);
   }
 
-  BatchCost cost;
-  cost.backend = specs_.name;
-  cost.modelled = true;
-  cost.queries = n;
-  cost.nodes = record.total_nodes();
-  cost.clock_hz = gpu_.core_clock_hz;
-  cost.memory = memory->totals;
-  cost.l1_model = memory->l1_model;
-  cost.l2_model = memory->l2_model;
+  BatchCost cost = ModelledBatchCost(specs_.name, record, gpu_, *memory);
   std::uint64_t busiest = 0;
   const std::uint64_t issue_rate =
       static_cast<std::uint64_t>(simt_.schedulers_per_sm) * simt_.issue_per_scheduler_per_cycle;
@@ -128,15 +112,7 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
       cost.bound = bound;
     }
   }
-  const std::uint64_t dram_cycles = static_cast<std::uint64_t>(
-      static_cast<double>(memory->totals.dram_accesses) * gpu_.sector_bytes / gpu_.DramBytesPerCoreCycle());
-  if (dram_cycles > busiest) {
-    busiest = dram_cycles;
-    cost.bound = "DRAM bandwidth";
-  }
-  cost.launch_cycles = static_cast<std::uint64_t>(gpu_.kernel_launch_cycles);
-  cost.cycles = cost.launch_cycles + busiest;
-  cost.seconds = static_cast<double>(cost.cycles) / gpu_.core_clock_hz;
+  FinishKernelCycles(cost, static_cast<std::uint64_t>(gpu_.kernel_launch_cycles), busiest, gpu_);
   cost.warp_instructions = warp_instructions;
   cost.thread_instructions = thread_instructions;
   cost.simt_efficiency =

@@ -1,5 +1,6 @@
 #include "backends/ttaplus_backend.h"
 
+#include "backends/modelled_backend.h"
 #include "backends/rt_unit_model.h"
 
 namespace rc {
@@ -8,26 +9,17 @@ TtaPlusBackend::TtaPlusBackend(const BackendParameters& params, EarlyExitMode mo
     : gpu_(params.gpu), ttaplus_(params.ttaplus), energy_(params.energy), mode_(mode) {
   switch (mode) {
     case EarlyExitMode::kNone:
-      specs_.name = "ttaplus";
-      specs_.description = "TTA+ units, no early exit";
+      specs_ = ModelledBackendSpecs("ttaplus", "TTA+ units, no early exit", gpu_);
       break;
     case EarlyExitMode::kPredication:
-      specs_.name = "ttaplus-p";
-      specs_.description = "TTA+ units, early exit by predication";
+      specs_ = ModelledBackendSpecs("ttaplus-p", "TTA+ units, early exit by predication", gpu_);
       break;
     case EarlyExitMode::kConditionalReturn:
-      specs_.name = "ttaplus-cr";
-      specs_.description = "TTA+ units, early exit by conditional return";
+      specs_ = ModelledBackendSpecs("ttaplus-cr", "TTA+ units, early exit by conditional return", gpu_);
       break;
   }
-  specs_.has_cost_model = true;
   specs_.has_rt_unit = true;
   specs_.early_exit = mode;
-  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep, StepProgramKind::kSactTest,
-                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
-  specs_.clock_hz = gpu_.core_clock_hz;
-  specs_.sms = gpu_.sms;
 }
 
 BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {

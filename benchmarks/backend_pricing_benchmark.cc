@@ -82,6 +82,18 @@ bool Skip(benchmark::State& state, const Workload* w) {
   return true;
 }
 
+// The five modelled backends with default parameters, as PriceAll takes them.
+struct ModelledBackends {
+  std::vector<std::unique_ptr<Backend>> owned;
+  std::vector<const Backend*> backends;
+  ModelledBackends() {
+    for (const std::string& name : Backend::ModelledNames()) {
+      owned.push_back(Backend::Create(name, BackendParameters{}));
+      backends.push_back(owned.back().get());
+    }
+  }
+};
+
 void SetCounters(benchmark::State& state, const KernelRecord& record) {
   state.counters["rays"] = static_cast<double>(record.query_count());
   state.counters["nodes_per_ray"] =
@@ -113,13 +125,8 @@ void BM_PriceAll(benchmark::State& state) {
   const Workload* w = LoadWorkload();
   if (Skip(state, w)) return;
   const int m = static_cast<int>(state.range(0));
-  std::vector<std::unique_ptr<Backend>> owned;
-  std::vector<const Backend*> backends;
-  for (const std::string& name : Backend::ModelledNames()) {
-    owned.push_back(Backend::Create(name, BackendParameters{}));
-    backends.push_back(owned.back().get());
-  }
-  for (auto _ : state) benchmark::DoNotOptimize(PriceAll(backends, w->records[m]));
+  const ModelledBackends all;
+  for (auto _ : state) benchmark::DoNotOptimize(PriceAll(all.backends, w->records[m]));
   SetCounters(state, w->records[m]);
   state.SetLabel(ToString(kMethods[m]));
 }
@@ -143,12 +150,7 @@ void BM_Overhead(benchmark::State& state) {
   const Workload* w = LoadWorkload();
   if (Skip(state, w)) return;
   const int m = static_cast<int>(state.range(0));
-  std::vector<std::unique_ptr<Backend>> owned;
-  std::vector<const Backend*> backends;
-  for (const std::string& name : Backend::ModelledNames()) {
-    owned.push_back(Backend::Create(name, BackendParameters{}));
-    backends.push_back(owned.back().get());
-  }
+  const ModelledBackends all;
   std::vector<RayHit> hits;
   KernelRecord record;
   double kernel_s = 0, record_s = 0, price_s = 0;
@@ -160,7 +162,7 @@ void BM_Overhead(benchmark::State& state) {
     const auto t1 = Clock::now();
     CastRayBatchRecorded(*w->scenes[m], w->batch, hits, record);
     const auto t2 = Clock::now();
-    benchmark::DoNotOptimize(PriceAll(backends, record));
+    benchmark::DoNotOptimize(PriceAll(all.backends, record));
     const auto t3 = Clock::now();
     kernel_s += seconds(t0, t1);
     record_s += seconds(t1, t2);
