@@ -2,7 +2,8 @@
 // launch figures, the default SIMT instruction table):
 //   one warp with lane node counts 1,2,3,4,1,2,... all in one 32-byte sector;
 //   the SACT test exiting at axis k on RoboCore and TTA+-cr;
-//   predication vs conditional return vs none over a batch;
+//   predication vs conditional return vs none: one thread, exact cycles,
+//   and over a batch;
 //   the SACT latency and warp-buffer sweeps.
 #include <omp.h>
 
@@ -109,6 +110,32 @@ TEST(RtUnitCost, PredicationVersusConditionalReturnOverABatch) {
   // (Plain TTA+ can still beat -p: it runs no RETURN micro-op per pass.)
   // No SACT micro-ops: RoboCore times the passes as TTA+-cr does.
   EXPECT_EQ(robo.cycles - robo.launch_cycles, cr.cycles - cr.launch_cycles);
+}
+
+// One thread, two passes over nodes in one sector; the second pass fires
+// RETURN_IF #0, and two MULs follow it. Hand-computed pass costs (ADD 3,
+// MUL 5, RETURN 1, hop 1, a predicated micro-op 1 in its unit):
+//   pass without exit    plain 3 + (1 + 5) + 5 = 14 (RETURN_IF dropped);
+//                        -p and -cr 3 + (1 + 1) + (1 + 5) + 5 = 16;
+//   pass with the exit   plain 14; -p 3 + 2 + (1 + 1) + 1 = 8; -cr 3 + 2 = 5.
+// Thread: intake 1 cycle + its passes + DRAM (first fetch) + L1 (second).
+TEST(RtUnitCost, OneThreadPredicationVersusConditionalReturn) {
+  KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n  ADD.1 x, x, y\n  RETURN_IF x\n"
+                                      "  MUL m, x, y\n  MUL m, m, y\n"),
+                        StepProgramKind::kDdaStep, test::ByteRegion(kBase, 64));
+  b.AddQuery({kBase, kBase + 1}, {kNoExit, 0});
+  const KernelRecord r = b.Build();
+  const BatchCost plain = PriceOn("ttaplus", r), p = PriceOn("ttaplus-p", r), cr = PriceOn("ttaplus-cr", r);
+  const std::uint64_t memory = kDramLatency + 20;
+  EXPECT_EQ(plain.cycles - plain.launch_cycles, 1 + 14 + 14 + memory);
+  EXPECT_EQ(p.cycles - p.launch_cycles, 1 + 16 + 8 + memory);
+  EXPECT_EQ(cr.cycles - cr.launch_cycles, 1 + 16 + 5 + memory);
+  const int mul = static_cast<int>(Opcode::kMul);
+  EXPECT_EQ(plain.micro_ops[mul], 4u);
+  EXPECT_EQ(p.micro_ops[mul], 2u);
+  EXPECT_EQ(p.predicated_off_micro_ops, 2u);
+  EXPECT_EQ(cr.micro_ops[mul], 2u);
+  EXPECT_EQ(cr.predicated_off_micro_ops, 0u);
 }
 
 // The shipped SACT test on one node, exiting at axis k.
