@@ -7,8 +7,14 @@
 //       map (path lengths grow with the bucket).
 //   BM_IntelRoWildQuery/<scale>/<mode>  one query, set-up included, as
 //       RoWild's wall time is for a whole run. mode 0: point robot; 1: the
-//       footprint with a precomputed configuration space; 2: the footprint
-//       with per-expansion checks (exact rasterized checker).
+//       footprint with a precomputed configuration space (exact stencils);
+//       2: the footprint with per-expansion checks (exact rasterized
+//       checker); 3: the configuration space filled by the collision kernel
+//       (KernelFootprintChecker, one OBB query per cell and heading); 4:
+//       per-expansion checks on the collision kernel. Modes 3 and 4 run the
+//       kernel on the host and do not price it (pricing has its own
+//       benchmark); counters kernel_queries and nodes_per_query say what a
+//       backend would be asked to do.
 //
 // RoWild's query (cmu-roboarch/rowild, e2e/CarriBot/harness.cpp): Intel.map
 // scaled by 1, 2 or 4 (--scale-map; each cell becomes s x s cells), start
@@ -24,6 +30,7 @@
 // (../shared/REFERENCE.md section 3).
 //
 // Without ../shared/data the benchmarks skip with a message.
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -34,6 +41,7 @@
 #include "maps/movingai_map_loader.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/grid_upscaling.h"
+#include "workloads/carribot/kernel_footprint_checker.h"
 #include "workloads/carribot/movingai_scenario_reader.h"
 
 namespace rc {
@@ -102,17 +110,25 @@ void BM_IntelRoWildQuery(benchmark::State& state) {
   if (mode != 0) {
     const double cell = grid.resolution_m();
     options.footprint = RectangleFootprint{4 * cell, 10 * cell, 8,
-                                           mode == 1 ? FootprintCheckMode::kPrecomputed
-                                                     : FootprintCheckMode::kPerExpansion};
+                                           mode == 1 || mode == 3 ? FootprintCheckMode::kPrecomputed
+                                                                  : FootprintCheckMode::kPerExpansion};
     start = {start.x + 5, start.y + 2, 0};
     goal = {goal.x + 5, goal.y + 2, 0};
   }
+  const bool on_kernel = mode >= 3;
   PlanResult result;
   double setup_s = 0.0;
+  std::uint64_t kernel_queries = 0, node_visits = 0;
   for (auto _ : state) {
-    const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, options);
+    // The tree is built inside the loop: it is part of the kernel's set-up.
+    std::unique_ptr<KernelFootprintChecker> kernel;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (on_kernel) kernel = std::make_unique<KernelFootprintChecker>(grid);
+    const double tree_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, options, kernel.get());
     result = planner->Plan(start, goal);
-    setup_s = planner->setup_wall_s();
+    setup_s = tree_s + planner->setup_wall_s();
+    if (kernel) kernel_queries = kernel->kernel_queries(), node_visits = kernel->node_visits();
   }
   if (!result.found()) {
     state.SkipWithError((std::string("no path: ") + result.message).c_str());
@@ -125,11 +141,15 @@ void BM_IntelRoWildQuery(benchmark::State& state) {
   state.counters["collision_queries"] = static_cast<double>(result.collision_queries);
   state.counters["path_length_m"] = result.length_m;
   state.counters["cells"] = static_cast<double>(grid.cell_count());
+  if (on_kernel) {
+    state.counters["kernel_queries"] = static_cast<double>(kernel_queries);
+    state.counters["nodes_per_query"] = kernel_queries ? static_cast<double>(node_visits) / kernel_queries : 0.0;
+  }
 }
 
 BENCHMARK(BM_IntelRoWildQuery)
     ->ArgNames({"scale", "mode"})
-    ->ArgsProduct({{1, 2, 4}, {0, 1, 2}})
+    ->ArgsProduct({{1, 2, 4}, {0, 1, 2, 3, 4}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

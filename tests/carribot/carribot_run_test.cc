@@ -7,6 +7,8 @@
 
 #include <random>
 
+#include <omp.h>
+
 #include "backends/calibration/sact_kernel_record.h"
 #include "carribot/carribot_test_util.h"
 #include "workloads/carribot/kernel_footprint_checker.h"
@@ -105,6 +107,9 @@ TEST(CarribotRun, EveryBackendPolicyGivesIdenticalPathsAndPrices) {
 
 // An iteration of many launches costs the sum of its launches priced alone.
 TEST(CarribotRun, AnIterationCostsTheSumOfItsLaunches) {
+  // One thread: these launches are a warp each, and prices do not depend
+  // on the thread count (OpenMP fork/join would dominate the test's time).
+  omp_set_num_threads(1);
   const OccupancyGrid grid = test::RandomGrid(16, 12, 0.15, 4);
   KernelFootprintChecker checker(grid);
   BackendLedger ledger(BackendParameters{}, LedgerOptions{});
