@@ -113,39 +113,51 @@ class SmReplay {
     fetches_ = total;
     cursor_.assign(step_start_.begin(), step_start_.end());
     Grow(owner_, total);
+    std::uint32_t* owner = owner_.data();
     if (one_sector_nodes_) {
       Grow(sector_, total);
       std::uint32_t* sector = sector_.data();
+      const std::uint32_t* step_start = step_start_.data();
       const std::uint64_t begin = begin_;
       const int shift = sector_shift_;
-      Scatter([&](std::uint32_t at, std::uint64_t address) {
-        sector[at] = static_cast<std::uint32_t>((address - begin) >> shift);
+      const bool coalesced = coalesced_;
+      Scatter([&](std::uint32_t at, std::uint64_t address, std::uint32_t lane_owner, std::uint32_t k) {
+        const auto s = static_cast<std::uint32_t>((address - begin) >> shift);
+        // Coalesced: the previous lane of the same warp step fetched the same
+        // sector, so this one adds no request; dropping it here (most
+        // neighbouring rays share a sector) spares the walk.
+        if (coalesced && at > step_start[k] && sector[at - 1] == s && owner[at - 1] == lane_owner) return false;
+        sector[at] = s;
+        owner[at] = lane_owner;
+        return true;
       });
     } else {
       Grow(address_, total);
       std::uint64_t* address = address_.data();
-      Scatter([&](std::uint32_t at, std::uint64_t a) { address[at] = a; });
+      Scatter([&](std::uint32_t at, std::uint64_t a, std::uint32_t lane_owner, std::uint32_t) {
+        address[at] = a;
+        owner[at] = lane_owner;
+        return true;
+      });
     }
     return max_steps;
   }
 
-  // Writes each fetch of the wave's lanes at its step's next slot: its
-  // owner, and what `write(slot, address)` keeps of its address.
+  // Offers each fetch of the wave's lanes its step's next slot:
+  // write(slot, address, owner, step) fills it, or declines (false) and
+  // leaves the slot to the next fetch of that step. Afterwards step k's
+  // fetches are [step_start_[k], cursor_[k]).
   template <class Write>
   void Scatter(Write write) {
     const std::uint64_t* offsets = record_.fetch_offsets.data();
     const std::uint64_t* addresses = record_.fetch_addresses.data();
     std::uint32_t* cursor = cursor_.data();
-    std::uint32_t* owner = owner_.data();
     for (std::size_t j = 0; j < lane_query_.size(); ++j) {
       const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
       const std::uint64_t* a = addresses + offsets[q];
       const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
-      for (std::uint32_t k = 0; k < nodes; ++k) {
-        const std::uint32_t at = cursor[k]++;
-        write(at, a[k]);
-        owner[at] = lane_owner;
-      }
+      for (std::uint32_t k = 0; k < nodes; ++k)
+        if (write(cursor[k], a[k], lane_owner, k)) ++cursor[k];
     }
   }
 
@@ -171,7 +183,7 @@ class SmReplay {
       return false;
     };
     for (std::uint32_t k = 0; k < max_steps; ++k) {
-      const std::uint32_t e0 = step_start_[k], e1 = step_start_[k + 1];
+      const std::uint32_t e0 = step_start_[k], e1 = cursor_[k];
       for (std::uint32_t e = e0; e < e1; ++e) {
         const bool starts = e == e0 || owner[e] != owner[e - 1];
         if (starts) {
