@@ -11,5 +11,6 @@ void AddMakeMapCommand(CLI::App& app);
 void AddBackendsCommand(CLI::App& app);
 void AddCollideCommand(CLI::App& app);
 void AddCalibrateCommand(CLI::App& app);
+void AddMovebotCommand(CLI::App& app);
 
 }  // namespace rc

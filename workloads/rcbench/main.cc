@@ -3,7 +3,8 @@
 // Exit codes: 0 success; 1 bad input (a file, a value, or a run that cannot
 // proceed, e.g. a map with no free cell), with one message naming the file,
 // line and field; 2 bad command-line usage; 3 `carribot` found no path for
-// at least one query (after writing all its outputs).
+// at least one query, or `movebot` found no exact path (after writing all
+// their outputs).
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   rc::AddBackendsCommand(app);
   rc::AddCollideCommand(app);
   rc::AddCalibrateCommand(app);
+  rc::AddMovebotCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

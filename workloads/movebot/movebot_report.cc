@@ -1,0 +1,187 @@
+#include "workloads/movebot/movebot_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <iomanip>
+#include <ostream>
+#include <unistd.h>
+
+#include <ompl/base/PlannerStatus.h>
+#include <ompl/config.h>
+
+#include "common/atomic_file.h"
+#include "traces/csv_table.h"
+
+namespace rc {
+namespace {
+
+// "ttaplus-p" -> "ttaplus_p": column names stay identifiers.
+std::string ColumnSafe(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
+CsvCell FiniteOrEmpty(double v) { return std::isfinite(v) ? CsvCell(v) : CsvCell::Empty(); }
+
+double CostOf(const LedgerIteration& it, std::size_t b) {
+  return it.priced ? static_cast<double>(it.costs[b].cycles) : 0.0;
+}
+
+// Debian's ompl/config.h leaves OMPL_VERSION empty; the numbers are set.
+std::string OmplVersion() {
+  return std::to_string(OMPL_MAJOR_VERSION) + "." + std::to_string(OMPL_MINOR_VERSION) + "." +
+         std::to_string(OMPL_PATCH_VERSION);
+}
+
+}  // namespace
+
+void WriteMoveBotTimeline(const std::string& path, const MoveBotResult& result) {
+  std::vector<std::string> columns = {"row", "iterations", "samples", "time_s", "tree_states",
+                                      "collision_configurations", "collision_queries", "collision_nodes_per_query",
+                                      "nn_queries", "nn_nodes_per_query", "best_cost_rad"};
+  const std::vector<std::string>& backends = result.collision_pricing.backends;
+  if (result.priced) {
+    columns.push_back("backend_collision");
+    columns.push_back("backend_nn");
+    for (const std::string& b : backends) columns.push_back("cycles_" + ColumnSafe(b));
+    columns.push_back("cycles_chosen");
+    columns.push_back("energy_j");
+  }
+  CsvTable table(path, columns);
+  for (const MoveBotRow& r : result.rows) {
+    std::vector<CsvCell> cells = {
+        r.row, r.iterations, r.samples, r.time_s, r.tree_states, r.collision.configurations, r.collision.queries,
+        r.collision.queries ? CsvCell(static_cast<double>(r.collision.nodes) / r.collision.queries) : CsvCell::Empty(),
+        r.nn.queries,
+        r.nn.has_nodes && r.nn.queries ? CsvCell(static_cast<double>(r.nn.nodes_visited) / r.nn.queries) : CsvCell::Empty(),
+        FiniteOrEmpty(r.best_cost_rad)};
+    if (result.priced) {
+      cells.emplace_back(r.collision_pricing.backend);
+      cells.emplace_back(r.nn_pricing.backend);
+      for (std::size_t b = 0; b < backends.size(); ++b)
+        cells.emplace_back(CostOf(r.collision_pricing, b) + CostOf(r.nn_pricing, b));
+      cells.emplace_back(r.collision_pricing.chosen_cycles + r.nn_pricing.chosen_cycles);
+      cells.emplace_back(r.collision_pricing.chosen_energy_j + r.nn_pricing.chosen_energy_j);
+    }
+    table.AddRow(cells);
+  }
+  table.Commit();
+}
+
+void WriteAnytimeCurve(const std::string& path, const MoveBotResult& result) {
+  CsvTable table(path, {"time_s", "iterations", "best_cost_rad"});
+  for (const MoveBotRow& r : result.rows) table.AddRow({r.time_s, r.iterations, FiniteOrEmpty(r.best_cost_rad)});
+  table.Commit();
+}
+
+void WriteArmPath(const std::string& path, const MoveBotResult& result) {
+  std::vector<std::string> columns;
+  for (int j = 1; j <= kArmJoints; ++j) columns.push_back("q" + std::to_string(j) + "_rad");
+  CsvTable table(path, columns, CsvTableOptions{17});
+  for (const ArmConfiguration& q : result.path) table.AddRow(std::vector<CsvCell>(q.begin(), q.end()));
+  table.Commit();
+}
+
+void WriteOmplBenchmarkLog(const std::string& path, const MoveBotResult& result, const OmplLogContext& context) {
+  namespace ob = ompl::base;
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  out << std::setprecision(17);
+  char host[256] = "unknown";
+  gethostname(host, sizeof host - 1);
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%S", std::gmtime(&now));
+  out << "OMPL version " << OmplVersion() << "\n";
+  out << "Experiment " << context.experiment << "\n";
+  out << "Running on " << host << "\n";
+  out << "Starting at " << date << "\n";
+  out << "<<<|\n" << context.setup << "\n|>>>\n";
+  out << "<<<|\n|>>>\n";  // no CPU information
+  out << context.seed << " is the random seed\n";
+  out << context.time_limit_s << " seconds per run\n";
+  out << "-1 MB per run\n";
+  out << "1 runs per planner\n";
+  out << result.planning_s << " seconds spent to collect the data\n";
+  out << "1 enum types\nstatus";
+  for (int s = 0; s < ob::PlannerStatus::TYPE_COUNT; ++s)
+    out << '|' << ob::PlannerStatus(static_cast<ob::PlannerStatus::StatusType>(s)).asString();
+  out << "\n1 planners\ngeometric_" << result.planner_name << "\n0 common properties\n";
+
+  const bool solved = result.status != MoveBotStatus::kNone;
+  const int status = result.status == MoveBotStatus::kExact         ? ob::PlannerStatus::EXACT_SOLUTION
+                     : result.status == MoveBotStatus::kApproximate ? ob::PlannerStatus::APPROXIMATE_SOLUTION
+                                                                    : ob::PlannerStatus::TIMEOUT;
+  std::uint64_t collision_queries = 0, nn_queries = 0;
+  for (const MoveBotRow& r : result.rows) {
+    collision_queries += r.collision.queries;
+    nn_queries += r.nn.queries;
+  }
+  auto real = [](double v) { return std::isfinite(v) ? std::to_string(v) : std::string(); };
+  // Alphabetical, as ompl::tools::Benchmark writes them.
+  const std::vector<std::pair<std::string, std::string>> props = {
+      {"approximate solution BOOLEAN", std::to_string(result.status == MoveBotStatus::kApproximate)},
+      {"best cost REAL", real(result.path_cost_rad)},
+      {"collision queries INTEGER", std::to_string(collision_queries)},
+      {"correct solution BOOLEAN", std::to_string(solved && context.verified)},
+      {"iterations INTEGER", std::to_string(result.iterations)},
+      {"nn queries INTEGER", std::to_string(nn_queries)},
+      {"solution difference REAL", real(result.goal_distance_rad)},
+      {"solution length REAL", real(result.path_cost_rad)},
+      {"solution segments INTEGER", std::to_string(result.path.empty() ? 0 : result.path.size() - 1)},
+      {"solved BOOLEAN", std::to_string(result.status == MoveBotStatus::kExact)},
+      {"status ENUM", std::to_string(status)},
+      {"time REAL", real(result.planning_s)},
+  };
+  out << props.size() << " properties for each run\n";
+  for (const auto& p : props) out << p.first << "\n";
+  out << "1 runs\n";
+  for (const auto& p : props) out << p.second << "; ";
+  out << "\n3 progress properties for each run\nbest cost REAL\niterations INTEGER\ntime REAL\n1 runs\n";
+  for (const MoveBotRow& r : result.rows)
+    out << (std::isfinite(r.best_cost_rad) ? std::to_string(r.best_cost_rad) : std::string("inf")) << ','
+        << r.iterations << ',' << r.time_s << ",;";
+  out << "\n.\n";
+  file.Commit();
+}
+
+void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const MoveBotSettings& settings) {
+  out << std::setprecision(6);
+  std::uint64_t configurations = 0, queries = 0, nodes = 0, nn_queries = 0, nn_nodes = 0;
+  bool nn_has_nodes = false;
+  for (const MoveBotRow& r : result.rows) {
+    configurations += r.collision.configurations;
+    queries += r.collision.queries;
+    nodes += r.collision.nodes;
+    nn_queries += r.nn.queries;
+    nn_nodes += r.nn.nodes_visited;
+    nn_has_nodes = nn_has_nodes || r.nn.has_nodes;
+  }
+  out << "planner                 " << result.planner_name << " (OMPL " << OmplVersion() << "), seed " << settings.seed
+      << ", " << result.iterations << " iterations in " << result.planning_s << " s, " << result.rows.size()
+      << " timeline rows\n";
+  out << "result                  " << ToString(result.status);
+  if (result.status != MoveBotStatus::kNone)
+    out << ", cost " << result.path_cost_rad << " rad (joint-space length), " << result.path.size() << " states";
+  if (result.status == MoveBotStatus::kApproximate) out << ", " << result.goal_distance_rad << " rad short of the goal";
+  out << "\ncollision kernel        " << configurations << " configurations, " << queries << " link-OBB queries, "
+      << (queries ? static_cast<double>(nodes) / queries : 0.0) << " nodes per query\n";
+  out << "nearest neighbours      " << ToString(settings.nn) << ", " << nn_queries << " queries";
+  if (nn_has_nodes && nn_queries) out << ", " << static_cast<double>(nn_nodes) / nn_queries << " nodes per query";
+  out << "\n";
+  if (!result.priced) return;
+  out << "modelled cycles (collision + NN kernels; every row priced on every backend; " << ToString(settings.ledger.policy)
+      << " policy):\n";
+  const LedgerSummary& c = result.collision_pricing;
+  const LedgerSummary& n = result.nn_pricing;
+  for (std::size_t b = 0; b < c.backends.size(); ++b)
+    out << "  " << std::left << std::setw(12) << c.backends[b] << std::right << std::setw(16) << std::setprecision(10)
+        << c.static_total_cycles[b] + n.static_total_cycles[b] << "\n";
+  out << "  " << std::left << std::setw(12) << "policy" << std::right << std::setw(16)
+      << c.policy_total_cycles + n.policy_total_cycles << "  (" << c.switches + n.switches << " switches)\n";
+  out << "  " << std::left << std::setw(12) << "oracle" << std::right << std::setw(16)
+      << c.oracle_total_cycles + n.oracle_total_cycles << std::setprecision(6) << "\n";
+}
+
+}  // namespace rc
