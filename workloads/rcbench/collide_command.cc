@@ -44,7 +44,7 @@ constexpr int kArtifactNodeBytes = 432;
 struct CollideCli {
   std::string obbs_path, boxes_path, octree_path, scene;
   std::string output_path, timeline_path, scene_output_path, backend_params_path;
-  std::string precision = "double", traversal = "dfs", robot_model = "obb";
+  std::string precision = "double", traversal = "dfs", robot_model = "obb", backend = "robocore";
   int spheres_per_obb = 1;
   double parallel_epsilon = 1e-6;
   bool sphere_pretest = false;
@@ -109,11 +109,12 @@ std::vector<BatchCost> PriceOnEveryBackend(const KernelRecord& record, const Bac
 
 void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch,
                    const std::vector<BatchCost>& costs, const SphereRobotReport& spheres,
-                   const std::vector<BatchCost>& sphere_costs) {
+                   const std::vector<BatchCost>& sphere_costs, const std::string& backend) {
   CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "section,key,value\n" << std::setprecision(10);
+  out << "summary,backend," << backend << '\n';
   out << "summary,queries," << s.queries << "\nsummary,collisions," << s.collisions
       << "\nsummary,node_visits," << s.node_visits << "\nsummary,nodes_per_query_mean," << s.nodes_per_query_mean
       << "\nsummary,nodes_per_query_max," << s.nodes_max << "\nsummary,tree_nodes," << batch.node_count
@@ -140,9 +141,10 @@ void WriteTimeline(const std::string& path, const CollisionSummary& s, const Col
   file.Commit();
 }
 
-void PrintCosts(std::ostream& out, const std::vector<BatchCost>& costs) {
+// `ran` marks the backend that ran the batch (--backend).
+void PrintCosts(std::ostream& out, const std::vector<BatchCost>& costs, const std::string& ran) {
   for (const BatchCost& c : costs)
-    out << "  " << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
+    out << (c.backend == ran ? "* " : "  ") << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
         << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules << " uJ\n";
 }
 
@@ -201,7 +203,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   // Outputs only after the whole run succeeded.
   if (!cli.output_path.empty())
     WriteOutput(cli.output_path, cli.robot_model == "spheres" ? SphereResults(sphere_batch) : results);
-  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs, spheres, sphere_costs);
+  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs, spheres, sphere_costs, cli.backend);
 
   std::cout << "scene: " << ToString(tree.kind) << ", " << tree.boxes.size() << " boxes, " << flat.nodes().size()
             << " nodes of " << flat.node_bytes() << " B (" << flat.bytes() << " B; the artifact's node is "
@@ -209,11 +211,13 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   std::cout << "kernel: " << cli.precision << " SACT, epsilon " << cli.parallel_epsilon << ", "
             << (cli.sphere_pretest ? "sphere pre-tests, " : "") << ToString(options.order) << " traversal\n";
   PrintSummary(std::cout, summary);
+  std::cout << "backend                 " << cli.backend
+            << (cli.backend == "cpu" ? " (the host reference: no cost model)" : " (marked *)") << '\n';
   if (options.sact.sphere_pretests) {
     std::cout << "backend pricing         skipped: sphere pre-tests have no section in the SACT program\n";
   } else {
     std::cout << "modelled cost of the batch (every backend prices the same traversal):\n";
-    PrintCosts(std::cout, costs);
+    PrintCosts(std::cout, costs, cli.backend);
   }
 
   std::cout << "sphere robot            " << cli.spheres_per_obb << " sphere(s) per OBB: " << spheres.sphere_collisions
@@ -223,7 +227,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
             << " vs " << spheres.obb_nodes << " for OBBs\n";
   if (!sphere_costs.empty()) {
     std::cout << "modelled cost of the sphere robot (programs/sphere_aabb.asm, same tree):\n";
-    PrintCosts(std::cout, sphere_costs);
+    PrintCosts(std::cout, sphere_costs, cli.backend);
   }
   CollisionOptions<Scalar> artifact = options;
   artifact.sact.convention = TranslationConvention::kArtifactRows;
@@ -297,6 +301,12 @@ void AddCollideCommand(CLI::App& app) {
       ->check(CLI::IsMember({"dfs", "bfs"}))
       ->capture_default_str();
   cmd->add_option("--epsilon", cli->parallel_epsilon, "Added to |R_ij| against near-parallel edges (unitless)")
+      ->capture_default_str();
+  cmd->add_option("--backend", cli->backend,
+                  "The backend that runs the batch (marked * and named in the timeline); every backend gives the "
+                  "same answers and every modelled one prices the batch: cpu | simt | ttaplus | ttaplus-p | "
+                  "ttaplus-cr | robocore")
+      ->check(CLI::IsMember(Backend::Names()))
       ->capture_default_str();
   cmd->add_option("--robot-model", cli->robot_model,
                   "Whose answers --output gets: obb (the exact SACT) | spheres (the sphere robot, "
