@@ -14,6 +14,7 @@
 #include "robocore/collision/box_csv.h"
 #include "robocore/collision/collision_summary.h"
 #include "robocore/collision/shelf_scene.h"
+#include "robocore/collision/sphere_robot.h"
 #include "robocore/ray_batch_recorded.h"
 
 namespace rc {
@@ -113,6 +114,10 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   const CollisionBatch collisions = CollideBatch(tree, obbs_f, CollisionOptions<float>{});
   const CollisionSummary summary = Summarize(collisions);
   w.sact = SactKernelRecord(collisions);
+  w.spheres = SphereKernelRecord(CollideSphereBatch(tree, obbs_f, 1, TraversalOrder::kDepthFirst).spheres);
+  const SphereRobotReport spheres = CompareSphereRobot(tree, obbs_f, CollisionOptions<float>{}, 1);
+  w.sphere_false_collisions = spheres.false_collisions;
+  w.sphere_obb_collisions = spheres.obb_collisions;
   w.collision_description =
       std::string("SACT: ") +
       (have_robot ? "mpnet_master robot-link OBBs (" + robot_path + ")"

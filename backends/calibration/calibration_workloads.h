@@ -44,6 +44,12 @@ struct CalibrationWorkloads {
   std::vector<RayCasterRecord> rays;  // march, dda, rm
   std::string collision_description;  // which OBBs, the scene, nodes per query, collisions
   KernelRecord sact;                  // the shipped SACT program's record
+  // The same OBBs as the sphere robot (one bounding sphere each,
+  // programs/sphere_aabb.asm) on the same tree, and its false collisions
+  // against the SACT's answers (robocore/collision/sphere_robot.h).
+  KernelRecord spheres;
+  std::uint64_t sphere_false_collisions = 0;  // count of OBBs
+  std::uint64_t sphere_obb_collisions = 0;    // count of OBBs the SACT finds colliding
 };
 
 // Throws UsageError for invalid options, InputError for unreadable data.

@@ -10,6 +10,8 @@
 //     relative to the given parameters) -> total time change
 //   the fully parallel SACT and two of each SACT unit
 //     (sact_datapath_variants.h) -> total time change
+//   the sphere robot (workloads.spheres, programs/sphere_aabb.asm) on
+//     RoboCore vs the OBB SACT on CUDA, with its false-collision rate
 // Times other than the "incl. launch" row exclude the kernel launch, a
 // fixed cost a batch of a few dozen queries cannot amortize; they compare
 // what the queries themselves cost.

@@ -66,6 +66,7 @@ const char* const kHalf = "SACT unit latency x0.5, RoboCore total time";
 const char* const kDouble = "SACT unit latency x2, RoboCore total time";
 const char* const kParallel = "Fully parallel SACT (6 box + 9 edge units), RoboCore total time";
 const char* const kTwo = "Two of each SACT unit, RoboCore";
+const char* const kSpheres = "Sphere robot on RoboCore vs OBB SACT on CUDA";
 
 std::vector<std::string> ExpectedRows() {
   std::vector<std::string> rows;
@@ -74,7 +75,7 @@ std::vector<std::string> ExpectedRows() {
     rows.push_back(std::string("DeliBot MCL (") + m + "), RoboCore vs TTA+");
   }
   for (const char* r : {kVsCuda, kVsCudaLaunch, kCrVsTta, kRoboVsCr, kPredication, kEnergy, kEarlyExit, kHalf,
-                        kDouble, kParallel, kTwo})
+                        kDouble, kParallel, kTwo, kSpheres})
     rows.push_back(r);
   return rows;
 }
@@ -105,11 +106,11 @@ TEST_F(CalibrationTest, EveryOursMovesWithTheParametersItIsPricedFrom) {
   const std::map<std::string, std::vector<std::string>> moves = {
       {R"({"simt": {"alu_initiation_cycles": 6, "instructions_per_element": {"DOT": 4, "CMP": 3}}})",
        {"DeliBot MCL (march), RoboCore vs CUDA", "DeliBot MCL (dda), RoboCore vs CUDA",
-        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy}},
+        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres}},
       {R"({"robocore": {"cmp_cycles": 4, "return_cycles": 3, "box_normal_cycles": 20, "edge_edge_cycles": 18,
                         "pre_process_cycles": 30}})",
        {"DeliBot MCL (march), RoboCore vs TTA+", "DeliBot MCL (dda), RoboCore vs TTA+",
-        "DeliBot MCL (rm), RoboCore vs TTA+", kRoboVsCr, kEarlyExit, kHalf, kDouble, kParallel, kTwo}},
+        "DeliBot MCL (rm), RoboCore vs TTA+", kRoboVsCr, kEarlyExit, kHalf, kDouble, kParallel, kTwo, kSpheres}},
       {R"({"ttaplus": {"predicated_op_cycles": 4, "addsub_cycles": 6}})", {kCrVsTta, kPredication}},
       {R"({"robocore": {"sact_latency_scale": 2.0}})", {kHalf, kDouble}},
   };
