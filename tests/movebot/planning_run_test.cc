@@ -227,3 +227,37 @@ TEST(MoveBotPlanning, PricedRowsCarryEveryBackendsCycles) {
 
 }  // namespace
 }  // namespace rc
+
+namespace rc {
+namespace {
+
+// The backend ball-query structures are exact, so stock RRTstar + GNAT and
+// ours with P-Ray / P-Sphere grow the same tree on the same seed (the cost
+// distributions over seeds are then equal; scripts/movebot_cost_study.py).
+TEST(MoveBotPlanning, BackendNearestNeighboursGiveStockGnatsPath) {
+  const ArmScene scene = ArmScene::FromObstacles(BlockScene());
+  const LocobotArm arm;
+  for (std::uint32_t seed : {1u, 4u}) {
+    ArmCollisionChecker gnat_checker(arm, scene);
+    const MoveBotResult gnat = RunMoveBot(gnat_checker, FastSettings(300, seed));
+    for (NnKind kind : {NnKind::kPRay, NnKind::kPSphere}) {
+      ArmCollisionChecker checker(arm, scene);
+      MoveBotSettings s = FastSettings(300, seed);
+      s.nn = kind;
+      s.price_backends = true;
+      const MoveBotResult r = RunMoveBot(checker, s);
+      ASSERT_EQ(r.path.size(), gnat.path.size()) << ToString(kind) << " seed " << seed;
+      for (std::size_t i = 0; i < r.path.size(); ++i) EXPECT_EQ(r.path[i], gnat.path[i]);
+      EXPECT_EQ(checker.totals().queries, gnat_checker.totals().queries);
+      for (const MoveBotRow& row : r.rows) {
+        EXPECT_TRUE(row.nn.has_nodes);
+        EXPECT_GT(row.nn.nodes_visited, 0u);
+        ASSERT_TRUE(row.nn_pricing.priced);  // the NN kernel's record was priced
+        EXPECT_EQ(row.nn_pricing.costs.front().queries, row.nn.queries);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rc

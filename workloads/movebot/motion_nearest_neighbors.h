@@ -18,6 +18,7 @@
 #include <ompl/tools/config/SelfConfig.h>
 
 #include "robocore/kernel_record.h"
+#include "workloads/movebot/backend_nearest_neighbors.h"
 #include "workloads/movebot/counting_nearest_neighbors.h"
 
 namespace rc {
@@ -59,11 +60,25 @@ struct NnHandle {
 template <typename T>
 NnHandle<T> MakeNearestNeighbors(NnKind kind, const ompl::base::Planner* planner,
                                  std::function<const double*(const T&)> coordinates, unsigned dimension) {
-  (void)coordinates;
-  (void)dimension;
-  if (kind != NnKind::kGnat)
-    throw std::invalid_argument(std::string("--nn ") + ToString(kind) +
-                                ": the backend ball-query structure is not in this build yet; use --nn gnat");
+  if (kind != NnKind::kGnat) {
+    BallQueryConfig config;  // ball_query_config.h defaults (first-pass radius 0.5 rad, early exit on)
+    config.formulation = kind == NnKind::kPRay ? BallQueryFormulation::kPRay : BallQueryFormulation::kPSphere;
+    auto backend = std::make_shared<BackendNearestNeighbors<T>>(config, std::move(coordinates), dimension);
+    NnHandle<T> handle;
+    handle.nn = backend;
+    handle.take = [backend] {
+      NnWork work;
+      const BallQueryCounters c = backend->counters();
+      backend->ResetCounters();
+      work.queries = c.queries;
+      work.has_nodes = true;
+      work.nodes_visited = c.nodes_visited;
+      KernelRecord record = backend->TakeKernelRecord();
+      if (record.query_count() > 0) work.record = std::move(record);
+      return work;
+    };
+    return handle;
+  }
   auto counting = std::make_shared<CountingNearestNeighbors<T>>(std::shared_ptr<ompl::NearestNeighbors<T>>(
       ompl::tools::SelfConfig::getDefaultNearestNeighbors<T>(planner)));
   NnHandle<T> handle;

@@ -86,7 +86,7 @@ int Run(MovebotCli& cli) {
   SeedOmplOnce(s.seed);
   ompl::msg::setLogLevel(cli.ompl_verbose ? ompl::msg::LOG_INFO : ompl::msg::LOG_WARN);
   if (cli.iterations > 0 && cli.time_s > 0) throw UsageError("give --iterations N or --time S, not both");
-  if (cli.iterations == 0 && cli.time_s <= 0) cli.iterations = 2000;
+  if (cli.iterations == 0 && cli.time_s <= 0) cli.iterations = 5000;
   s.iterations = cli.iterations;
   s.time_limit_s = cli.time_s;
   s.start = ToConfiguration(cli.start, kRowildStart);
@@ -189,7 +189,7 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--goal", cli->goal, "Goal q1,...,q5 (rad); default RoWild's 0,1.04719755,-1.30899694,-1.30899694,0")
       ->expected(kArmJoints)
       ->delimiter(',');
-  cmd->add_option("--iterations", cli->iterations, "RRTstar iterations (default 2000 when --time is not given)");
+  cmd->add_option("--iterations", cli->iterations, "RRTstar iterations (default 5000 when --time is not given)");
   cmd->add_option("--time", cli->time_s, "Planning time budget (s), instead of --iterations (not repeatable)");
   cmd->add_option("--batch", s.batch_iterations, "Iterations per timeline row")->capture_default_str();
   cmd->add_option("--resolution", s.motion_resolution_rad,
