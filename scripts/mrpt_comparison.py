@@ -94,7 +94,11 @@ def markdown(rows, with_truth):
 
 
 def plot(rows, path, title):
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:
+        print(f"matplotlib not installed: {path} not drawn (the table and CSV are complete)")
+        return
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5.5))
@@ -204,7 +208,7 @@ def main():
     png_path = os.path.join(args.out, "mrpt_comparison.png")
     plot(rows, png_path, f"DeliBot vs MRPT CMonteCarloLocalization2D ({mode}); labels = particles\n{where}")
     print("\n".join(md))
-    print(f"wrote {md_path}, {csv_path} and {png_path}")
+    print(f"wrote {md_path} and {csv_path}" + (f" and {png_path}" if os.path.exists(png_path) else ""))
 
 
 if __name__ == "__main__":

@@ -45,7 +45,7 @@ void ReadWholeArchive(const std::string& path, const std::string& what, T& objec
     archive >> object;
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
-                                      " bytes uncompressed): " + FirstLine(e.what()));
+                                      " bytes uncompressed): " + MrptMessage(e.what()));
   }
   if (memory.getPosition() != bytes.size())
     throw InputError(path, 0, "", std::to_string(bytes.size() - memory.getPosition()) +
@@ -75,7 +75,7 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m) {
   try {
     grid.loadFromSimpleMap(simple);
   } catch (const std::exception& e) {
-    throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + FirstLine(e.what()));
+    throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + MrptMessage(e.what()));
   }
   return FromMrpt(grid, path);
 }
@@ -117,7 +117,8 @@ void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double 
 std::string DescribeMrptGridMap(const MrptGridMap& map) {
   std::ostringstream text;
   text << "MRPT cells are P(free): occupied if 1 - P(free) >= 0.65, free if <= 0.196, else unknown; "
-       << "MRPT world (X, Y) = map (X - " << map.x_min_m << ", Y - " << map.y_min_m << ")";
+       << "map (x, y) = MRPT world (X, Y) - (x_min, y_min) = (X, Y) - (" << map.x_min_m << ", " << map.y_min_m
+       << ") m";
   return text.str();
 }
 

@@ -13,8 +13,8 @@ namespace rc {
 // the kind of file in messages ("rawlog", "gridmap").
 std::vector<unsigned char> ReadArchiveBytes(const std::string& path, const std::string& what);
 
-// MRPT's exception texts carry a multi-line call trace; the first line that
-// says something is the message a user needs.
-std::string FirstLine(const std::string& text);
+// MRPT's exception texts nest exceptions and call traces over many lines;
+// returns the innermost "Message:" text, the one a user needs.
+std::string MrptMessage(const std::string& text);
 
 }  // namespace rc

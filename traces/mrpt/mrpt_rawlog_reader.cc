@@ -239,7 +239,7 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
     } catch (const std::exception& e) {
       throw InputError(path, 0, Entry(entry),
                        "corrupt or truncated rawlog at byte " + std::to_string(offset) + " of " +
-                           std::to_string(bytes.size()) + " (uncompressed): " + FirstLine(e.what()));
+                           std::to_string(bytes.size()) + " (uncompressed): " + MrptMessage(e.what()));
     }
     if (!object) parser.Fail("object", "a null object in the archive");
     parser.Handle(object, entry);
