@@ -135,7 +135,9 @@ class RawlogParser {
       CheckSameGeometry(geometry);
     }
     LaserScan out;
-    out.time_s = mrpt::Clock::toDouble(scan->timestamp);
+    const double epoch_s = mrpt::Clock::toDouble(scan->timestamp);
+    if (trace_.scans.empty()) first_epoch_s_ = epoch_s;
+    out.time_s = epoch_s - first_epoch_s_;
     if (!trace_.scans.empty() && out.time_s < trace_.scans.back().time_s)
       Fail("timestamp", "scan time goes backwards (" + std::to_string(out.time_s) + " s after " +
                             std::to_string(trace_.scans.back().time_s) + " s)");
@@ -204,6 +206,7 @@ class RawlogParser {
   std::optional<Pose2> odometry_;  // unset until the observations-only form sees odometry
   std::optional<std::string> label_;
   std::size_t entry_ = 0;
+  double first_epoch_s_ = 0.0;
 };
 
 }  // namespace

@@ -30,7 +30,8 @@
 // read; empty means the label of the first 2D scan in the file. Scans of
 // other lasers and all other observations are counted as skipped.
 //
-// Time: each scan's timestamp as MRPT's Clock::toDouble (s since 1970).
+// Time: seconds since the first scan read (MRPT stores epoch times, about
+// 1e9 s, whose sub-second part a timeline's significant digits would lose).
 //
 // Errors: every problem, including MRPT's own exceptions on a corrupt or
 // truncated archive, is an InputError naming the file and the rawlog entry
