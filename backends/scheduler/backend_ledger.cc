@@ -85,18 +85,10 @@ const std::string& BackendLedger::BeginIteration() {
 
 void BackendLedger::AddLaunch(const KernelRecord& record) {
   if (record.query_count() == 0) return;
-  if (!threshold_known_) {
-    // First priced launch: derive the crossover for batches like this one.
-    const CrossoverResult crossing =
-        DeriveCrossoverThreshold(*backends_[IndexOf(options_.policy.high_backend)],
-                                 *backends_[IndexOf(options_.policy.low_backend)], record, record.query_count());
-    options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
-    threshold_has_crossing_ = crossing.has_crossing;
-    threshold_known_ = true;
-    // Until now no counter was seen, so the policy is still on its
-    // initial choice; a fresh one with the threshold continues from there.
-    online_ = MakeOnline(options_.policy);
-  }
+  // The first priced launch derives the crossover for batches like this
+  // one. No counter was seen before it, so the policy is still on its
+  // initial choice and the fresh one PrepareThreshold makes continues there.
+  PrepareThreshold(record, record.query_count());
   std::vector<BatchCost> costs = PriceAll(backend_ptrs_, record);
   if (open_costs_.empty()) open_costs_ = std::move(costs);
   else
