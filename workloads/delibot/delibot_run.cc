@@ -104,6 +104,19 @@ DelibotSummary SummarizeDelibot(const std::vector<DelibotRow>& rows, const Delib
   return Summarize(rows, settings);
 }
 
+bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, const LaserGeometry& geometry,
+                     const DelibotSettings& settings, const Pose2* truth, DelibotRow& row) {
+  row.consistency = MeasureScanConsistency(exact_scene, row.estimate, scan, geometry, settings.beam.max_range_m,
+                                           settings.consistency_sigmas * settings.beam.sigma_hit_m)
+                        .Fraction();
+  if (truth) {
+    row.has_ground_truth = true;
+    row.err_xy_m = std::hypot(row.estimate.x - truth->x, row.estimate.y - truth->y);
+    row.err_theta_rad = std::abs(WrapAngle(row.estimate.theta - truth->theta));
+  }
+  return std::isfinite(row.ess) && std::isfinite(row.estimate.x) && std::isfinite(row.estimate.y);
+}
+
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
                          const ProgressCallback& progress) {
@@ -181,17 +194,8 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     }
     row.spread_m = estimate.spread_m;
     row.mode_weight = estimate.mode_weight;
-    row.consistency = MeasureScanConsistency(exact_scene, estimate.pose, scan, trace.geometry,
-                                             settings.beam.max_range_m,
-                                             settings.consistency_sigmas * settings.beam.sigma_hit_m)
-                          .Fraction();
-    if (ground_truth) {
-      const Pose2& truth = (*ground_truth)[k];
-      row.has_ground_truth = true;
-      row.err_xy_m = std::hypot(estimate.pose.x - truth.x, estimate.pose.y - truth.y);
-      row.err_theta_rad = std::abs(WrapAngle(estimate.pose.theta - truth.theta));
-    }
-    if (!std::isfinite(row.ess) || !std::isfinite(row.estimate.x) || !std::isfinite(row.estimate.y))
+    if (!JudgeDelibotRow(exact_scene, scan, trace.geometry, settings,
+                         ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
     if (progress) progress(k + 1, count);

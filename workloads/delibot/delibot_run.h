@@ -112,6 +112,14 @@ using ProgressCallback = std::function<void(std::size_t done, std::size_t total)
 // other engines (workloads/delibot/mrpt) so every engine is judged alike.
 DelibotSummary SummarizeDelibot(const std::vector<DelibotRow>& rows, const DelibotSettings& settings);
 
+// Judges one row whose estimate and ess are set: its scan consistency
+// (beams within consistency_sigmas x sigma_hit of the range ray-cast from the
+// estimate on `exact_scene`) and, with `truth`, its errors. Returns false if
+// the row holds a non-finite ess or estimate. Shared with other engines
+// (workloads/delibot/mrpt) so every engine's rows are judged alike.
+bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, const LaserGeometry& geometry,
+                     const DelibotSettings& settings, const Pose2* truth, DelibotRow& row);
+
 // ground_truth: one pose per laser record of the trace (map frame), or null.
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,

@@ -209,17 +209,8 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
     row.ess = last_ess;
     row.spread_m = last_estimate.spread_m;
     row.mode_weight = last_estimate.mode_weight;
-    row.consistency = MeasureScanConsistency(exact_scene, row.estimate, scan, trace.geometry,
-                                             settings.beam.max_range_m,
-                                             settings.consistency_sigmas * settings.beam.sigma_hit_m)
-                          .Fraction();
-    if (ground_truth) {
-      const Pose2& truth = (*ground_truth)[k];
-      row.has_ground_truth = true;
-      row.err_xy_m = std::hypot(row.estimate.x - truth.x, row.estimate.y - truth.y);
-      row.err_theta_rad = std::abs(WrapAngle(row.estimate.theta - truth.theta));
-    }
-    if (!std::isfinite(row.ess) || !std::isfinite(row.estimate.x) || !std::isfinite(row.estimate.y))
+    if (!JudgeDelibotRow(exact_scene, scan, trace.geometry, settings,
+                         ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
     if (progress) progress(k + 1, count);
