@@ -10,6 +10,8 @@
 #include "common/log_domain.h"
 #include "workloads/delibot/beam_sensor_model.h"
 #include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/likelihood_field_model.h"
+#include "workloads/delibot/monte_carlo_localizer.h"
 #include "workloads/delibot/motion_model.h"
 #include "workloads/delibot/pose_estimate.h"
 #include "workloads/delibot/resampling.h"
@@ -51,6 +53,93 @@ TEST(ResamplingTest, CopiesAreWithinOneOfTheExpectedCount) {
   std::vector<int> copies(n, 0);
   for (std::size_t a : SystematicResample(lw, 0.37)) ++copies[a];
   for (int i = 0; i < n; ++i) EXPECT_LE(std::abs(copies[i] - n * std::exp(lw[i])), 1.0 + 1e-9);
+}
+
+TEST(ResamplingTest, ReducesALargeSetToTheRequestedCountInProportionToWeight) {
+  // 1000 particles of weights 1..7 (repeating) drawn down to 100 slots: each
+  // particle gets its expected share of the 100 slots, within one.
+  const int n = 1000, slots = 100;
+  std::vector<double> lw(n);
+  for (int i = 0; i < n; ++i) lw[i] = std::log(1.0 + (i % 7));
+  NormalizeLogWeights(lw);
+  const std::vector<std::size_t> ancestors = SystematicResample(lw, 0.61, slots);
+  ASSERT_EQ(ancestors.size(), static_cast<std::size_t>(slots));
+  std::vector<int> copies(n, 0);
+  for (std::size_t a : ancestors) ++copies[a];
+  for (int i = 0; i < n; ++i) EXPECT_LE(std::abs(copies[i] - slots * std::exp(lw[i])), 1.0 + 1e-9);
+}
+
+TEST(MclOptionsTest, RefusesAnInitialSetSmallerThanTheWorkingSet) {
+  MclOptions o;
+  std::string error;
+  o.initial_particle_count = o.particle_count - 1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("initial particles"), std::string::npos);
+  o.initial_particle_count = 10000001;
+  EXPECT_FALSE(o.IsValid(&error));
+  o.initial_particle_count = 0;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.initial_particle_count = 10 * o.particle_count;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+}
+
+TEST(MclInitialSetTest, FirstSensorUpdateShrinksTheInitialSetToTheWorkingSize) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 21);
+  MclOptions o;
+  o.particle_count = 300;
+  o.initial_particle_count = 6000;
+  o.beams.beam_step = 6;
+  BeamModelParams beam;
+  beam.max_range_m = 12.0;
+  MonteCarloLocalizer mcl(g, std::make_unique<BeamSensorModel>(
+                                 std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), beam),
+                          o);
+  mcl.InitializeUniform();
+  EXPECT_EQ(mcl.particles().size(), 6000u);
+  const MclStepResult first = mcl.Update(run.trace.scans[0], run.trace.geometry, 0);
+  EXPECT_TRUE(first.resampled);
+  EXPECT_EQ(first.work->rays, 6000u * o.beams.Count(run.trace.geometry.beam_count));
+  EXPECT_EQ(mcl.particles().size(), 300u);
+  EXPECT_EQ(mcl.log_weights().size(), 300u);
+  const MclStepResult second = mcl.Update(run.trace.scans[1], run.trace.geometry, 1);
+  EXPECT_EQ(mcl.particles().size(), 300u);
+  if (second.sensor_updated) EXPECT_EQ(second.work->rays, 300u * o.beams.Count(run.trace.geometry.beam_count));
+}
+
+TEST(MclFreeSpaceTest, ParticlesMovedOutOfFreeSpaceGetZeroWeight) {
+  // Uniform particles (all in free cells), then an odometry step of 1.5 m
+  // carries some of them into walls or off the map. With the rule on, those
+  // and only those get zero weight; with it off, every weight stays positive.
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 23);
+  for (bool reject : {true, false}) {
+    MclOptions o;
+    o.particle_count = 400;
+    o.beams.beam_step = 6;
+    o.motion = {0, 0, 0, 0};
+    o.resample_ess_fraction = 1e-9;  // keep the weights to inspect them
+    o.reject_poses_in_obstacles = reject;
+    MonteCarloLocalizer mcl(g, std::make_unique<LikelihoodFieldModel>(g, LikelihoodFieldParams{}), o);
+    mcl.InitializeUniform();
+    LaserScan first = run.trace.scans[0];
+    first.odometry = {0, 0, 0};
+    LaserScan moved = first;
+    moved.odometry = {1.5, 0, 0};
+    mcl.Update(first, run.trace.geometry, 0);
+    mcl.Update(moved, run.trace.geometry, 1);
+    int outside = 0;
+    for (std::size_t i = 0; i < mcl.particles().size(); ++i) {
+      const Pose2& p = mcl.particles()[i];
+      const bool free = g.IsFreePoint(p.x, p.y);
+      outside += free ? 0 : 1;
+      const double w = std::exp(mcl.log_weights()[i]);
+      if (reject && !free) EXPECT_EQ(w, 0.0) << i;
+      else EXPECT_GT(w, 0.0) << i;
+    }
+    EXPECT_GT(outside, 0);
+    EXPECT_LT(outside, o.particle_count);
+  }
 }
 
 TEST(MotionModelTest, NoiselessMotionReplaysTheOdometryDeltaInTheMapFrame) {

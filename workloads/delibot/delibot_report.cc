@@ -103,6 +103,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"map", {{"path", p.map_path}, {"format", p.map_format}, {"value_convention", p.map_convention}}},
       {"trace", {{"path", p.trace_path}, {"format", p.trace_format}, {"ground_truth", p.ground_truth_path}}},
       {"particles", s.mcl.particle_count},
+      {"initial_particles", std::max(s.mcl.particle_count, s.mcl.initial_particle_count)},
       {"seed", s.mcl.seed},
       {"beam_step", s.mcl.beams.beam_step},
       {"ray_caster", ToString(s.ray_caster)},
@@ -146,7 +147,8 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                    {"non_finite_weights", m.any_non_finite_weight},
                    {"criterion",
                     p.ground_truth_path.empty()
-                        ? "mode weight >= " + std::to_string(s.converged_mode_weight) + " for 10 records"
+                        ? "mode weight >= " + std::to_string(s.converged_mode_weight) + " and consistency >= " +
+                              std::to_string(s.converged_consistency) + " for 10 sensor updates"
                         : "error < " + std::to_string(s.converged_xy_m) + " m and < " +
                               std::to_string(s.converged_theta_rad) + " rad for 10 records"}};
   if (!p.ground_truth_path.empty()) {

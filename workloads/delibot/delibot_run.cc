@@ -49,13 +49,23 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   const bool gt = !rows.empty() && rows.front().has_ground_truth;
   auto localized = [&](const DelibotRow& r) {
     return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad)
-              : r.mode_weight >= s.converged_mode_weight;
+              : r.mode_weight >= s.converged_mode_weight && r.consistency >= s.converged_consistency;
   };
+  // With ground truth every record is a check against the truth. Without,
+  // only a sensor update adds evidence: a robot standing still for the first
+  // 20 records of a log (robotdata1 does) would otherwise "converge" on the
+  // weights of its very first scan.
   int run = 0;
+  long run_start = -1;
   for (const auto& r : rows) {
-    run = localized(r) ? run + 1 : 0;
+    if (!gt && !r.sensor_updated) continue;
+    if (!localized(r)) {
+      run = 0;
+      continue;
+    }
+    if (run++ == 0) run_start = r.iteration;
     if (run == kSustainRecords) {
-      sum.convergence_iteration = r.iteration - kSustainRecords + 1;
+      sum.convergence_iteration = run_start;
       break;
     }
   }

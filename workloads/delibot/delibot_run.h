@@ -39,8 +39,12 @@ struct DelibotSettings {
   double converged_xy_m = 0.2;
   double converged_theta_rad = 5.0 * 3.14159265358979323846 / 180.0;
   // Ground-truth-free: the estimate's mode holds at least this share of the
-  // weight (the rest may be recovery particles or a fading second mode).
+  // weight (the rest may be recovery particles or a fading second mode), and
+  // at least this fraction of the scan's beams is consistent with the map
+  // at the estimate, for 10 consecutive sensor updates (records without a
+  // sensor update bring no new evidence and do not count).
   double converged_mode_weight = 0.8;
+  double converged_consistency = 0.5;
   // An estimate moving farther than this between two records is a jump:
   // the filter switched hypotheses (a robot does not teleport).
   double jump_threshold_m = 1.0;

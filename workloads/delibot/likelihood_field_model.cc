@@ -36,6 +36,14 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   const double u = x_m / r - 0.5, v = y_m / r - 0.5;
   if (!(x_m >= 0 && y_m >= 0 && x_m < grid_->extent_x_m() && y_m < grid_->extent_y_m()))
     return params_.max_occ_dist_m;
+  // An end point in an unknown cell is as far from evidence as one off the
+  // map (AMCL scores those at the cap). The field measures distance to
+  // occupied cells only, so without this an end point in the unmapped space
+  // behind a wall scores as if it hit the wall: in Wean Hall a particle in a
+  // doorway pocket, 2.6 m beside the robot's corridor, then explains the
+  // scan better than the true pose.
+  if (grid_->At(static_cast<int>(x_m / r), static_cast<int>(y_m / r)) == CellState::kUnknown)
+    return params_.max_occ_dist_m;
   const double fu = std::floor(u), fv = std::floor(v);
   const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
   const double tu = u - fu, tv = v - fv;

@@ -8,6 +8,9 @@ bool MclOptions::IsValid(std::string* error) const {
     return false;
   };
   if (particle_count < 1 || particle_count > 10000000) return fail("particles must be in [1, 10^7]");
+  if (initial_particle_count != 0 &&
+      (initial_particle_count < particle_count || initial_particle_count > 10000000))
+    return fail("initial particles must be 0 or in [particles, 10^7]");
   if (beams.beam_step < 1) return fail("beam step must be >= 1");
   if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
     return fail("resample ESS fraction must be in (0, 1]");

@@ -11,9 +11,25 @@ namespace rc {
 
 struct MclOptions {
   int particle_count = 2000;          // [1, 10^7]
+  // Global localization starts from this many uniform particles (0: the
+  // particle count) and the first sensor update resamples them down to
+  // particle_count. In a building of look-alike corridors the uniform set
+  // must be dense enough that some particle starts within the sensor
+  // model's reach of the true pose (~0.2 m, ~5 deg); 2000 particles over
+  // Wean Hall's free space leave the nearest one metres away, and the filter
+  // then locks onto whichever corridor the first scans happen to favour.
+  int initial_particle_count = 0;     // 0 or [particle_count, 10^7]
   std::uint64_t seed = 1;
   OdometryMotionNoise motion;
   BeamSelection beams{6};             // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
+  // A particle whose robot centre is not in a free cell (occupied, unknown,
+  // or off the map) gets zero weight: the same free space that global
+  // localization samples from. The likelihood field needs this most. It
+  // scores only beam endpoints, and in a map with thick walls and unmapped
+  // space behind them (Wean Hall has metres of both) a particle inside a
+  // wall sees every endpoint land "on an obstacle" and outscores the true
+  // pose; MRPT's likelihood-field filter drifts into Wean's walls that way.
+  bool reject_poses_in_obstacles = true;
   double resample_ess_fraction = 0.5; // resample when ESS < fraction * N; (0, 1]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
   // injected when the short-term average likelihood falls below the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/log_domain.h"
@@ -32,7 +33,7 @@ Pose2 MonteCarloLocalizer::RandomFreePose(RandomStream& stream) const {
 }
 
 void MonteCarloLocalizer::InitializeUniform() {
-  const auto n = static_cast<std::size_t>(options_.particle_count);
+  const auto n = static_cast<std::size_t>(std::max(options_.particle_count, options_.initial_particle_count));
   particles_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     RandomStream stream(options_.seed, StreamPurpose::kInitialization, 0, i);
@@ -88,6 +89,7 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   moved_d_m_ = moved_a_rad_ = 0.0;
 
   sensor_model_->LogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
+  if (options_.reject_poses_in_obstacles) RejectPosesInObstacles(log_likelihoods_);
   for (std::size_t i = 0; i < particles_.size(); ++i) log_weights_[i] += log_likelihoods_[i];
   // With normalized prior weights, the normalizer is the weighted mean
   // likelihood of the scan: augmented MCL's w_avg, kept in the log domain.
@@ -118,15 +120,33 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }
   result.ess = EffectiveSampleSize(log_weights_);
-  if (result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
+  const bool oversized = particles_.size() != static_cast<std::size_t>(options_.particle_count);
+  if (oversized || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
     Resample(iteration, result);
   return result;
 }
 
+void MonteCarloLocalizer::RejectPosesInObstacles(std::vector<double>& log_likelihoods) const {
+  const double r = grid_.resolution_m();
+  auto inside_obstacle = [&](const Pose2& p) {
+    const int ix = static_cast<int>(std::floor(p.x / r));
+    const int iy = static_cast<int>(std::floor(p.y / r));
+    return !grid_.IsFree(ix, iy);
+  };
+  std::size_t rejected = 0;
+  for (const Pose2& p : particles_) rejected += inside_obstacle(p) ? 1 : 0;
+  // If every particle is inside an obstacle, zero weights everywhere would
+  // leave nothing to normalize; the scan alone then decides.
+  if (rejected == 0 || rejected == particles_.size()) return;
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    if (inside_obstacle(particles_[i])) log_likelihoods[i] = -std::numeric_limits<double>::infinity();
+}
+
 void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& result) {
   RandomStream pointer_stream(options_.seed, StreamPurpose::kResample, iteration, 0);
-  const std::vector<std::size_t> ancestors = SystematicResample(log_weights_, pointer_stream.Uniform());
-  std::vector<Pose2> next(particles_.size());
+  const std::vector<std::size_t> ancestors = SystematicResample(
+      log_weights_, pointer_stream.Uniform(), static_cast<std::size_t>(options_.particle_count));
+  std::vector<Pose2> next(ancestors.size());
   int injected = 0;
   for (std::size_t slot = 0; slot < next.size(); ++slot) {
     next[slot] = particles_[ancestors[slot]];

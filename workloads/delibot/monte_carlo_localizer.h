@@ -50,6 +50,8 @@ class MonteCarloLocalizer {
  private:
   Pose2 RandomFreePose(RandomStream& stream) const;
   void Resample(std::uint64_t iteration, MclStepResult& result);
+  // Sets -inf for particles outside free space (see MclOptions).
+  void RejectPosesInObstacles(std::vector<double>& log_likelihoods) const;
 
   const OccupancyGrid& grid_;
   std::unique_ptr<SensorModel> sensor_model_;

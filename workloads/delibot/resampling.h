@@ -15,8 +15,10 @@ double NormalizeLogWeights(std::vector<double>& log_weights);
 double EffectiveSampleSize(const std::vector<double>& normalized_log_weights);
 
 // Systematic resampling: one uniform offset u in [0, 1/N) and N equally spaced
-// pointers; returns the chosen ancestor index for each of the N slots.
+// pointers; returns the chosen ancestor index for each of the N slots. N is
+// the input size unless `output_count` is given (a large initial set for
+// global localization is reduced to the working size this way).
 std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights,
-                                            double u01);
+                                            double u01, std::size_t output_count = 0);
 
 }  // namespace rc

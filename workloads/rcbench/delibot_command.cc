@@ -161,6 +161,10 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--ground-truth", cli->ground_truth_path,
                   "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
   cmd->add_option("--particles", s.mcl.particle_count, "Number of particles [1, 1e7]")->capture_default_str();
+  cmd->add_option("--initial-particles", s.mcl.initial_particle_count,
+                  "Global localization: uniform particles before the first sensor update, which resamples "
+                  "them down to --particles (0 = --particles; count)")
+      ->capture_default_str();
   cmd->add_option("--beam-step", s.mcl.beams.beam_step, "Use every K-th beam (K >= 1; 6 of 180 gives 30 beams)")
       ->capture_default_str();
   cmd->add_option("--raycaster", cli->ray_caster, "march (fixed 1-cell step) | dda (exact) | rm (distance field)")
