@@ -90,7 +90,7 @@ struct DelibotSummary {
   // -1 when never reached. With ground truth: error below both thresholds for
   // 10 consecutive records; without: mode weight above its threshold likewise.
   long convergence_iteration = -1;
-  bool converged = false;        // also true at the end of the run
+  bool converged = false;        // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
   double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
   double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
   double median_consistency = 0.0;       // after convergence

@@ -1,0 +1,160 @@
+// Localization on the real CMU Wean Hall logs (../shared/data/wean), checked
+// against a reference that does not come from the filter: the scan-matching
+// trajectory of scripts/scan_match_reference.py (windows of 100 scans placed
+// rigidly in the map by exhaustive correlation, chained by odometry). The
+// checkpoint poses below are copied from its output; each is good to about
+// 0.2 m (map cell plus odometry drift inside a window).
+//
+// What is pinned, and why:
+// - Tracking from the reference start with the default beam model (recovery
+//   off) stays within 1 m of the reference at every checkpoint.
+// - Global localization with the real-log recipe (likelihood field, 500,000
+//   initial particles, no random injection) is within 1 m of the reference
+//   at every checkpoint of the second half of robotdata3 and robotdata4, and
+//   converges with consistent scans and no jump on robotdata2. robotdata2's reference is aliased by one door spacing (~6 m
+//   along the corridor; its scans at the corridor's east end fall 6 m short
+//   of the junction), so it gives no position check there.
+// - Every beam at beam step 1 keeps every weight finite on all four logs.
+// robotdata1 is left out of the global check: two of three seeds lock onto
+// the door 6 m west of the truth (README, "DeliBot on the real Wean logs").
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "maps/map_loader.h"
+#include "test_data.h"
+#include "traces/trace_reader.h"
+#include "workloads/delibot/delibot_run.h"
+
+namespace rc {
+namespace {
+
+struct Checkpoint {
+  long record;
+  Pose2 reference;
+};
+
+struct RealLog {
+  std::string name;
+  std::vector<Checkpoint> checkpoints;  // from out/reference/<name>.ref.txt
+};
+
+std::string PrintName(const ::testing::TestParamInfo<RealLog>& info) { return info.param.name; }
+
+const RealLog kRobotdata1{"robotdata1",
+                          {{0, {40.016, 41.471, -1.658}},
+                           {150, {47.109, 39.311, -0.039}},
+                           {300, {48.136, 38.798, 3.126}},
+                           {450, {38.181, 39.814, 3.002}},
+                           {600, {33.635, 40.516, 0.211}},
+                           {712, {39.810, 41.448, 1.316}}}};
+const RealLog kRobotdata3{"robotdata3",
+                          {{0, {39.937, 41.565, -1.759}},
+                           {300, {46.097, 39.381, -0.277}},
+                           {600, {37.847, 40.043, 2.901}},
+                           {900, {30.166, 41.113, -2.804}},
+                           {1200, {39.208, 39.899, -0.017}},
+                           {1240, {39.616, 39.889, -0.099}}}};
+const RealLog kRobotdata4{"robotdata4",
+                          {{0, {46.363, 39.648, -1.611}},
+                           {150, {51.401, 38.948, -0.316}},
+                           {300, {50.418, 39.447, 2.878}},
+                           {450, {44.179, 39.912, 3.094}},
+                           {599, {39.840, 41.135, 1.402}}}};
+
+struct WeanInputs {
+  LoadedMap map;
+  SensorTrace trace;
+};
+
+WeanInputs Load(const std::string& log) {
+  TraceReadOptions options;
+  return {LoadMap(test::SharedDataPath("wean/wean.dat")),
+          ReadTrace(test::SharedDataPath("wean/" + log + ".log"), options)};
+}
+
+double PositionError(const DelibotRow& row, const Pose2& reference) {
+  return std::hypot(row.estimate.x - reference.x, row.estimate.y - reference.y);
+}
+
+class RealLogTracking : public ::testing::TestWithParam<RealLog> {};
+
+TEST_P(RealLogTracking, BeamModelFollowsTheScanMatchingReference) {
+  RC_REQUIRE_SHARED_DATA("wean/" + GetParam().name + ".log");
+  const WeanInputs in = Load(GetParam().name);
+  DelibotSettings s;
+  s.mcl.particle_count = 500;
+  s.mcl.alpha_slow = 0.0;  // injection makes a tracked filter jump to look-alike corridors
+  s.initial_pose = GetParam().checkpoints.front().reference;
+  const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
+  ASSERT_EQ(r.rows.size(), in.trace.scans.size());
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  for (const Checkpoint& c : GetParam().checkpoints)
+    EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
+}
+
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking, ::testing::Values(kRobotdata1, kRobotdata4), PrintName);
+
+DelibotSettings RealLogRecipe() {
+  DelibotSettings s;
+  s.sensor_model = SensorModelKind::kLikelihoodField;
+  s.mcl.initial_particle_count = 500000;
+  s.mcl.alpha_slow = 0.0;
+  return s;
+}
+
+class RealLogGlobalLocalization : public ::testing::TestWithParam<RealLog> {};
+
+TEST_P(RealLogGlobalLocalization, LikelihoodFieldRecipeEndsAtTheReference) {
+  RC_REQUIRE_SHARED_DATA("wean/" + GetParam().name + ".log");
+  const WeanInputs in = Load(GetParam().name);
+  const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, RealLogRecipe());
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  EXPECT_GE(r.summary.convergence_iteration, 0);
+  EXPECT_GE(r.summary.median_consistency, 0.75);
+  // The first half may still hold two look-alike doors 6 m apart (the
+  // estimate then switches between them); by the second half it must not.
+  const long half = static_cast<long>(r.rows.size()) / 2;
+  for (const Checkpoint& c : GetParam().checkpoints)
+    if (c.record >= half) EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
+}
+
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogGlobalLocalization, ::testing::Values(kRobotdata3, kRobotdata4),
+                         PrintName);
+
+TEST(RealLogGlobalLocalization, Robotdata2ConvergesWithConsistentScans) {
+  RC_REQUIRE_SHARED_DATA("wean/robotdata2.log");
+  const WeanInputs in = Load("robotdata2");
+  const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, RealLogRecipe());
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  EXPECT_GE(r.summary.convergence_iteration, 0);
+  EXPECT_GE(r.summary.median_consistency, 0.75);
+  EXPECT_EQ(r.summary.jumps_after_convergence, 0);
+}
+
+class RealLogEveryBeam : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RealLogEveryBeam, AllBeamsKeepEveryWeightFinite) {
+  // 180 beams per scan: a log-likelihood sum 6x longer than the default's,
+  // over the first 150 records (people, max readings and the start-up pause).
+  RC_REQUIRE_SHARED_DATA("wean/" + GetParam() + ".log");
+  const WeanInputs in = Load(GetParam());
+  DelibotSettings s;
+  s.mcl.particle_count = 300;
+  s.mcl.beams.beam_step = 1;
+  s.max_records = 150;
+  const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  for (const DelibotRow& row : r.rows) {
+    ASSERT_TRUE(std::isfinite(row.ess) && row.ess >= 1.0 - 1e-9) << "record " << row.iteration;
+    ASSERT_TRUE(std::isfinite(row.estimate.x) && std::isfinite(row.estimate.theta)) << row.iteration;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogEveryBeam,
+                         ::testing::Values("robotdata1", "robotdata2", "robotdata3", "robotdata4"));
+
+}  // namespace
+}  // namespace rc
