@@ -26,7 +26,8 @@ cloud in the map is a 3-DOF search:
   3. Wean's doors repeat about every 6 m, so the first window can fit two
      places almost equally. The chain is therefore run from each of the
      --hypotheses best mutually distinct starts, and the start whose chain has
-     the best mean window score over the whole log wins;
+     the best mean window objective (score - see-through fraction - prior
+     penalty) over the whole log wins;
   4. the pose of record k inside a window is the window's rigid placement of
      odometry; where windows overlap, the poses are averaged with weights
      that fall linearly towards each window's ends (headings as unit vectors).
@@ -61,7 +62,8 @@ Outputs, per log <name>.log, written only after every log succeeded:
                                 "alternative_chain_N": the others. Columns:
                                 records, points, score, runner-up score (best
                                 grid score > 0.5 m or 5 deg away: how sharp the
-                                peak is), see-through, pose of the first
+                                peak is), see-through, objective (score -
+                                see-through - prior penalty), pose of the first
                                 record, correction against the odometry
                                 prediction, flags
   --figure FILE                 map + scan endpoints at the reference poses,
@@ -435,18 +437,27 @@ def build_reference(log, field, args):
     rows.append(window_row("global", 0, g_end, len(pts), best, runner, None, [], see))
     # The first window alone may be ambiguous (Wean's doors repeat every ~6 m),
     # so the whole log decides: chain from each of the --hypotheses best
-    # mutually distinct starts and keep the chain with the best mean window score.
+    # mutually distinct starts and keep the chain with the best mean window
+    # objective: score - see-through fraction - odometry prior penalty. Both
+    # terms matter: a chain from a wrong start stays in the map only by
+    # sliding metres per window, or by seeing through walls (robotdata2 from
+    # (52, 41) with --prior-sigma-xy 0.5 slides and sees through the end wall;
+    # on score alone it would win).
     starts = [best]
     for c in refined[1:]:
         if len(starts) < args.hypotheses and all(distinct(c, h, DISTINCT_XY_M, DISTINCT_THETA_RAD) for h in starts):
             starts.append(c)
     chains = [chain(log, field, args, np.array(h[1:])) for h in starts]
-    means = [chain_mean(c_rows, "score") for _, c_rows in chains]
-    chosen = int(np.nanargmax(means))
-    for h, (poses, c_rows), mean in zip(starts, chains, means):
+    objectives = [chain_mean(c_rows, "objective") for _, c_rows in chains]
+    chosen = int(np.nanargmax(objectives))
+    for h, (poses, c_rows), objective in zip(starts, chains, objectives):
         row = window_row("start_hypothesis", 0, g_end, len(pts), h, None, None, [], [float("nan")] * 2)
+        row["objective"] = objective
         row["flags"] = ("chosen; " if h is starts[chosen] else "") + \
-            f"whole-log mean window score {mean:.3f}, see-through {chain_mean(c_rows, 'see_through'):.3f}"
+            f"whole-log mean window objective {objective:.3f} (score {chain_mean(c_rows, 'score'):.3f}), " \
+            f"see-through {chain_mean(c_rows, 'see_through'):.3f}, " \
+            f"{sum(1 for r in c_rows if r['correction_xy_m'] > args.max_correction)} corrections > " \
+            f"{args.max_correction:g} m"
         rows.append(row)
     for i, (poses, c_rows) in enumerate(chains):
         for r in c_rows:
@@ -499,11 +510,16 @@ def chain(log, field, args, placement):
                 flags.append("runner-up within %.3f" % args.ambiguity_margin)
             if score < args.low_score:
                 flags.append("score below %.2f" % args.low_score)
+            if math.hypot(pose[0] - predicted[0], pose[1] - predicted[1]) > args.max_correction:
+                flags.append("correction > %g m (more than odometry drifts)" % args.max_correction)
         rel = relative_odometry(log.odometry[s:e], 0)
         poses = compose(np.asarray(pose), rel)
         see = [see_through_fraction(field.occupied, field.res, log, s, compose(np.asarray(c[1:]), rel), args.max_range)
                if c is not None else float("nan") for c in (chosen, runner_c)]
         rows.append(window_row("chain", s, e, len(pts), chosen, runner_c, predicted, flags, see))
+        # matched endpoints - contradicted beams - odometry penalty (all fractions/score units)
+        rows[-1]["objective"] = chosen[0] - see[0] - prior(pose[0] - predicted[0], pose[1] - predicted[1],
+                                                           float(wrap(pose[2] - predicted[2])))
         poses_per_window.append((s, e, poses))
         prev_start, prev_placement = s, np.asarray(pose)
 
@@ -527,6 +543,7 @@ def window_row(kind, s, e, npts, best, runner, predicted, flags, see_through):
            "runner_up_x_m": runner[1] if runner else float("nan"),
            "runner_up_y_m": runner[2] if runner else float("nan"),
            "runner_up_theta_rad": runner[3] if runner else float("nan"),
+           "objective": float("nan"),
            "correction_xy_m": float("nan"), "correction_theta_rad": float("nan"), "flags": "; ".join(flags)}
     if predicted is not None:
         row["correction_xy_m"] = math.hypot(best[1] - predicted[0], best[2] - predicted[1])
@@ -573,7 +590,7 @@ def draw_figure(path, occupied, res, results, max_range_m):
     n = len(results)
     cols = 2 if n > 1 else 1
     rowsn = (n + cols - 1) // cols
-    fig, axes = plt.subplots(rowsn, cols, figsize=(6.5 * cols, 6.0 * rowsn), squeeze=False)
+    fig, axes = plt.subplots(rowsn, cols, figsize=(6.5 * cols, 4.0 * rowsn), squeeze=False)
     angles = -np.pi / 2 + np.arange(BEAMS) * np.pi / 180
     ext = [0, occupied.shape[0] * res, 0, occupied.shape[1] * res]
     for ax, (name, log, ref, rows) in zip(axes.ravel(), results):
@@ -595,11 +612,11 @@ def draw_figure(path, occupied, res, results, max_range_m):
         flagged = sum(1 for r in local if r["flags"])
         g = rows[0]
         hyp = [r for r in rows if r["kind"] == "start_hypothesis"]
-        whole = ", ".join(f"{r['flags'].split('score ')[1].split(',')[0]}{'*' if r['flags'].startswith('chosen') else ''}"
+        whole = ", ".join(f"{r['objective']:.3f}{'*' if r['flags'].startswith('chosen') else ''}"
                           f" from ({r['x_m']:.0f}, {r['y_m']:.0f})" for r in hyp)
         ax.set_title(f"{name}: start ({ref[0, 0]:.2f}, {ref[0, 1]:.2f}) m, "
                      f"{math.degrees(ref[0, 2]) % 360:.0f} deg; first window {g['score']:.3f} vs runner-up "
-                     f"{g['runner_up_score']:.3f}\nwhole-log mean score {whole}; {flagged} of {len(local)} "
+                     f"{g['runner_up_score']:.3f}\nwhole-log mean objective {whole}; {flagged} of {len(local)} "
                      f"windows flagged", fontsize=8)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
@@ -643,6 +660,8 @@ def main():
     ap.add_argument("--prior-sigma-deg", type=float, default=3.0, help="odometry prior heading sigma (deg)")
     ap.add_argument("--ambiguity-margin", type=float, default=0.01,
                     help="flag a window whose runner-up scores within this of its best (score units)")
+    ap.add_argument("--max-correction", type=float, default=1.0,
+                    help="flag a window moved this far from its odometry prediction (m)")
     ap.add_argument("--low-score", type=float, default=0.5, help="flag a window scoring below this (score units)")
     args = ap.parse_args()
     if min(args.window, args.stride, args.global_window, args.decimate, args.refine_top, args.hypotheses) < 1 or args.stride > args.window:
