@@ -1,0 +1,281 @@
+#!/usr/bin/python3
+"""DeliBot on the real CMU Wean Hall logs, judged against a scan-matching reference.
+
+Runs `rcbench delibot` (global localization, or with --track-from-reference
+tracking from the reference's first pose) on robotdata1..4 for several
+seeds, with --ground-truth set to the reference trajectory of
+scripts/scan_match_reference.py when <reference-dir>/robotdataN.ref.txt
+exists (the reference is an estimate, not ground truth: its own error is
+about 0.1-1 m, larger along featureless corridors; see that script). Every
+run uses --quiet --no-pricing --threads 1 plus the arguments after `--`;
+two runs at a time (--jobs). Reads each run's --summary JSON and --timeline
+CSV and writes
+  <out>/real_logs_study.csv   one row per (log, seed)
+  <out>/real_logs_study.md    one Markdown table per log, one row per seed
+  --figure FILE               position error against the reference vs record,
+                              one panel per log, one line per seed
+Columns: the record where the filter declared convergence (-1 = never),
+whether it is still converged at the end, median scan consistency and jumps
+after convergence (rcbench's ground-truth-free measures), and against the
+reference: the fraction of records from convergence on (every record when
+tracking) with error < 1 m,
+the median error from convergence on and over all records, the final error
+(m), plus whether any non-finite value appeared (weights, estimates).
+rcbench's own err_xy_m timeline column must agree with the error computed
+here (a check that the reference pairs with the right records).
+
+Usage: scripts/real_logs_study.py [--rcbench build/rcbench] [--data-dir DIR]
+       [--reference-dir out/reference] [--seeds 5] [--out out/real_logs]
+       [--figure docs/figures/real_logs_error.png] [--track-from-reference]
+       [-- EXTRA RCBENCH ARGS]
+"""
+import argparse
+import concurrent.futures
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+GOOD_ERROR_M = 1.0
+
+
+def fail(message):
+    sys.exit(f"real_logs_study: {message}")
+
+
+def read_reference(path):
+    """(t_s, x_m, y_m) arrays from a ground-truth file; '#' lines are comments."""
+    rows = []
+    with open(path) as f:
+        for line_no, line in enumerate(f, 1):
+            fields = line.split()
+            if not fields or fields[0].startswith("#"):
+                continue
+            if len(fields) != 4:
+                fail(f"{path}:{line_no}: {len(fields)} fields, expected 4 (t_s x_m y_m theta_rad)")
+            try:
+                rows.append([float(v) for v in fields])
+            except ValueError:
+                fail(f"{path}:{line_no}: a field is not a number")
+    if not rows:
+        fail(f"{path}: no poses")
+    return np.array(rows)
+
+
+def read_timeline(path):
+    """(record index, estimates [n, 3], rcbench's err_xy_m column or None)."""
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        fail(f"{path}: empty timeline")
+    for column in ("iteration", "est_x_m", "est_y_m", "est_theta_rad"):
+        if column not in rows[0]:
+            fail(f"{path}: no '{column}' column (has {', '.join(rows[0])})")
+    it = np.array([int(r["iteration"]) for r in rows])
+    est = np.array([[float(r["est_x_m"]), float(r["est_y_m"]), float(r["est_theta_rad"])] for r in rows])
+    err = np.array([float(r["err_xy_m"]) for r in rows]) if "err_xy_m" in rows[0] else None
+    return it, est, err
+
+
+def run_one(job):
+    cmd, log_name, seed = job
+    result = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        return log_name, seed, f"exit {result.returncode}: {' '.join(cmd)}\n{result.stderr.strip()}"
+    return log_name, seed, None
+
+
+def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
+    with open(summary_path) as f:
+        s = json.load(f)
+    a = s["accuracy"]
+    it, est, rc_err = read_timeline(timeline_path)
+    conv = int(a["convergence_iteration"])
+    row = {"log": log_name, "seed": seed, "records": len(it), "converged_record": conv,
+           "converged_at_end": int(bool(a["converged_at_end"])),
+           "median_consistency": a["median_consistency_after_convergence"],
+           "jumps_after_convergence": a["jumps_after_convergence"],
+           "fraction_err_below_1m": float("nan"), "median_err_xy_m": float("nan"),
+           "median_err_xy_all_m": float("nan"), "final_err_xy_m": float("nan"),
+           "non_finite": int(bool(a.get("non_finite_weights", False)) or not np.isfinite(est).all())}
+    err = None
+    if reference is not None:
+        if it.max() >= len(reference):
+            fail(f"{timeline_path}: record {it.max()} but the reference has {len(reference)} poses")
+        err = np.hypot(est[:, 0] - reference[it, 1], est[:, 1] - reference[it, 2])
+        # rcbench pairs the reference with the records itself; both must agree
+        if rc_err is not None and np.nanmax(np.abs(rc_err - err)) > 1e-3:
+            fail(f"{timeline_path}: rcbench's err_xy_m differs from the reference by up to "
+                 f"{np.nanmax(np.abs(rc_err - err)):.3g} m (wrong reference file?)")
+        row["median_err_xy_all_m"] = float(np.median(err))
+        # tracking starts localized: judge every record; global: from convergence on
+        first = 0 if tracking else conv
+        after = err[it >= first] if first >= 0 else np.array([])
+        row["fraction_err_below_1m"] = float((after < GOOD_ERROR_M).mean()) if len(after) else 0.0
+        row["median_err_xy_m"] = float(np.median(after)) if len(after) else float("nan")
+        row["final_err_xy_m"] = float(err[-1])
+    return row, it, err
+
+
+def fmt(v, digits=2):
+    if isinstance(v, float):
+        return "-" if math.isnan(v) else f"{v:.{digits}f}"
+    return str(v)
+
+
+def markdown(rows, logs, extra, tracking):
+    out = [f"rcbench delibot {' '.join(extra) if extra else '(default options)'}"
+           f"{', tracking from the reference start' if tracking else ', global localization'}; error = distance to the "
+           f"scan-matching reference (not ground truth), "
+           f"{'over every record' if tracking else 'from the convergence record on'}.", ""]
+    for log in logs:
+        mine = [r for r in rows if r["log"] == log]
+        out.append(f"### {log}")
+        out.append("")
+        out.append("| seed | converged at record | converged at end | median consistency | jumps "
+                   "| records with error < 1 m | median error (m) | median error, all records (m) "
+                   "| final error (m) | non-finite |")
+        out.append("|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
+        for r in mine:
+            out.append(f"| {r['seed']} | {r['converged_record']} | {'yes' if r['converged_at_end'] else 'no'} "
+                       f"| {fmt(r['median_consistency'])} | {r['jumps_after_convergence']} "
+                       f"| {fmt(100 * r['fraction_err_below_1m'], 0)}{'' if math.isnan(r['fraction_err_below_1m']) else ' %'} "
+                       f"| {fmt(r['median_err_xy_m'])} | {fmt(r['median_err_xy_all_m'])} | {fmt(r['final_err_xy_m'])} "
+                       f"| {'yes' if r['non_finite'] else 'no'} |")
+        out.append("")
+    return "\n".join(out)
+
+
+def write_atomic(path, text):
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def plot(path, logs, curves, rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cols = 2 if len(logs) > 1 else 1
+    nrows = (len(logs) + cols - 1) // cols
+    fig, axes = plt.subplots(nrows, cols, figsize=(6.5 * cols, 3.6 * nrows), squeeze=False)
+    for ax, log in zip(axes.ravel(), logs):
+        for (name, seed), (it, err) in sorted(curves.items()):
+            if name != log or err is None:
+                continue
+            line, = ax.plot(it, np.maximum(err, 0.03), lw=0.9, label=f"seed {seed}")  # log axis floor
+            conv = next(r["converged_record"] for r in rows if r["log"] == name and r["seed"] == seed)
+            if conv >= 0:
+                ax.axvline(conv, color=line.get_color(), ls=":", lw=0.8)
+        ax.axhline(GOOD_ERROR_M, color="k", lw=0.6, ls="--")
+        ax.set_yscale("log")
+        ax.set_ylim(0.03, 100.0)
+        ax.set_title(f"{log} (dotted: declared convergence; dashed: 1 m)", fontsize=9)
+        ax.set_xlabel("laser record")
+        ax.set_ylabel("error vs reference (m)")
+        ax.legend(fontsize=7)
+    for ax in axes.ravel()[len(logs):]:
+        ax.axis("off")
+    fig.tight_layout()
+    d = os.path.dirname(os.path.abspath(path))
+    os.makedirs(d, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=".png")
+    os.close(fd)
+    fig.savefig(tmp, dpi=80)
+    os.replace(tmp, path)
+
+
+def main():
+    argv = sys.argv[1:]
+    extra = []
+    if "--" in argv:
+        extra = argv[argv.index("--") + 1:]
+        argv = argv[:argv.index("--")]
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--rcbench", default="build/rcbench")
+    ap.add_argument("--data-dir", default="/work/shared/data/wean", help="holds wean.dat and robotdataN.log")
+    ap.add_argument("--logs", default="1,2,3,4", help="which robotdataN.log (comma-separated N)")
+    ap.add_argument("--reference-dir", default="out/reference", help="holds robotdataN.ref.txt (optional)")
+    ap.add_argument("--seeds", type=int, default=5, help="seeds 1..S per log (count)")
+    ap.add_argument("--jobs", type=int, default=2, help="runs at a time (count)")
+    ap.add_argument("--track-from-reference", action="store_true",
+                    help="tracking mode: --initial-pose at the reference's first pose (needs the reference)")
+    ap.add_argument("--out", default="out/real_logs")
+    ap.add_argument("--figure", default="docs/figures/real_logs_error.png")
+    args = ap.parse_args(argv)
+    if args.seeds < 1 or args.jobs < 1:
+        fail("--seeds and --jobs must be >= 1")
+    if not (os.path.isfile(args.rcbench) and os.access(args.rcbench, os.X_OK)):
+        fail(f"rcbench not found or not executable at '{args.rcbench}' (build it, or pass --rcbench)")
+    map_path = os.path.join(args.data_dir, "wean.dat")
+    try:
+        numbers = [int(v) for v in args.logs.split(",")]
+    except ValueError:
+        fail(f"--logs '{args.logs}' is not a comma-separated list of integers")
+    logs = [f"robotdata{n}" for n in numbers]
+    for p in [map_path] + [os.path.join(args.data_dir, log + ".log") for log in logs]:
+        if not os.path.isfile(p):
+            fail(f"data file '{p}' is missing (see --data-dir)")
+
+    references, jobs = {}, []
+    run_dir = os.path.join(args.out, "runs")
+    os.makedirs(run_dir, exist_ok=True)
+    for log in logs:
+        ref_path = os.path.join(args.reference_dir, log + ".ref.txt")
+        references[log] = (ref_path, read_reference(ref_path)) if os.path.isfile(ref_path) else (None, None)
+        if references[log][0] is None:
+            print(f"real_logs_study: no reference {ref_path}; {log} gets no error columns", file=sys.stderr)
+        for seed in range(1, args.seeds + 1):
+            stem = os.path.join(run_dir, f"{log}_seed{seed}")
+            cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", os.path.join(args.data_dir, log + ".log"),
+                   "--seed", str(seed), "--quiet", "--no-pricing", "--threads", "1",
+                   "--summary", stem + ".json", "--timeline", stem + ".csv", *extra]
+            if references[log][0]:
+                cmd += ["--ground-truth", references[log][0]]
+                if args.track_from_reference:
+                    x, y, theta = references[log][1][0, 1:]
+                    cmd += ["--initial-pose", f"{x!r},{y!r},{theta!r}"]
+            elif args.track_from_reference:
+                fail(f"--track-from-reference needs {ref_path}")
+            jobs.append((cmd, log, seed))
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        failures = [f"{log} seed {seed}: {msg}" for log, seed, msg in pool.map(run_one, jobs) if msg]
+    if failures:
+        fail("rcbench failed:\n" + "\n".join(failures))
+
+    rows, curves = [], {}
+    for _, log, seed in jobs:
+        stem = os.path.join(run_dir, f"{log}_seed{seed}")
+        row, it, err = judge(log, seed, stem + ".json", stem + ".csv", references[log][1],
+                             args.track_from_reference)
+        rows.append(row)
+        curves[(log, seed)] = (it, err)
+
+    import io
+    text = io.StringIO()
+    w = csv.DictWriter(text, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    write_atomic(os.path.join(args.out, "real_logs_study.csv"), text.getvalue())
+    md = markdown(rows, logs, extra, args.track_from_reference)
+    write_atomic(os.path.join(args.out, "real_logs_study.md"), md + "\n")
+    figure = args.figure if args.figure and any(e is not None for _, e in curves.values()) else ""
+    if figure:
+        plot(figure, logs, curves, rows)
+    print(md)
+    print(f"wrote {os.path.join(args.out, 'real_logs_study.csv')}, real_logs_study.md"
+          f"{', ' + figure if figure else ' (no figure: no reference)'}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
