@@ -3,7 +3,9 @@
 
 Sweeps particles x beam step x ray caster x sensor model on simulated traces
 with ground truth (made by `rcbench simulate`), runs `rcbench delibot` for
-each configuration, and writes
+each configuration, plus MRPT's CMonteCarloLocalization2D (`--engine mrpt`)
+at the same particle counts and beam steps as a reference curve (leave it
+out with --no-mrpt), and writes
   <out>/speed_vs_error.csv   one row per run (time per update in s, errors in m)
   <out>/speed_vs_error.png   localization error against time per update
 Tracking mode (the filter starts around the true first pose) isolates the
@@ -11,7 +13,9 @@ per-update cost/accuracy trade-off from the luck of global convergence; pass
 --global for global localization instead.
 
 Usage: scripts/speed_vs_error.py [--rcbench build/rcbench] [--out out/study]
-       [--map FILE] [--quick] [--global] [--threads N]
+       [--map FILE] [--quick] [--global] [--threads N] [--no-mrpt]
+MRPT's filter runs on one thread whatever --threads says; pass --threads 1
+to compare the engines at equal hardware.
 """
 import argparse
 import csv
@@ -60,6 +64,7 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--quick", action="store_true", help="a small sweep (for a smoke test)")
     ap.add_argument("--global", dest="global_loc", action="store_true", help="global localization, not tracking")
+    ap.add_argument("--no-mrpt", action="store_true", help="leave out MRPT's localizer (the reference curve)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
 
@@ -84,6 +89,8 @@ def main():
         for caster in (["dda"] if args.quick else ["march", "dda", "rm"]):
             configs.append((p, k, "beam", caster))
         configs.append((p, k, "likelihood", "-"))
+        if not args.no_mrpt:
+            configs += [(p, k, "beam", "mrpt"), (p, k, "likelihood", "mrpt")]
 
     rows = []
     for i, (p, k, model, caster) in enumerate(configs):
@@ -91,7 +98,9 @@ def main():
         cmd = [args.rcbench, "delibot", *map_args, "--trace", trace, "--ground-truth", gt, "--particles", str(p),
                "--beam-step", str(k), "--sensor-model", model, "--seed", str(args.seed), "--summary", summary_path,
                "--threads", str(args.threads), "--quiet", "--no-pricing"]
-        if caster != "-":
+        if caster == "mrpt":
+            cmd += ["--engine", "mrpt"]
+        elif caster != "-":
             cmd += ["--raycaster", caster]
         if not args.global_loc:
             cmd += ["--initial-pose", first_pose(gt)]
@@ -100,6 +109,7 @@ def main():
             s = json.load(f)
         t, a = s["totals"], s["accuracy"]
         rows.append({
+            "engine": "mrpt" if caster == "mrpt" else "ours",
             "particles": p, "beam_step": k, "sensor_model": model, "ray_caster": caster,
             "time_per_update_s": t["wall_per_update_s"], "rays_per_s": t["rays_per_s"],
             "nodes_per_ray": t["nodes_per_ray"],
@@ -123,21 +133,22 @@ def main():
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5.5))
     styles = {("beam", "march"): ("tab:red", "o"), ("beam", "dda"): ("tab:blue", "s"),
-              ("beam", "rm"): ("tab:green", "^"), ("likelihood", "-"): ("tab:purple", "D")}
+              ("beam", "rm"): ("tab:green", "^"), ("likelihood", "-"): ("tab:purple", "D"),
+              ("beam", "mrpt"): ("black", "v"), ("likelihood", "mrpt"): ("tab:orange", "P")}
     for (model, caster), (color, marker) in styles.items():
         sel = [r for r in rows if r["sensor_model"] == model and r["ray_caster"] == caster and r["median_err_xy_m"] >= 0]
         if not sel:
             continue
         ax.scatter([1e3 * r["time_per_update_s"] for r in sel], [r["median_err_xy_m"] for r in sel],
                    s=[12 + r["particles"] / 40 for r in sel], c=color, marker=marker, alpha=0.75,
-                   label=f"{model}" + (f" / {caster}" if caster != "-" else " field"))
+                   label=(f"MRPT {model}" if caster == "mrpt" else f"{model}" + (f" / {caster}" if caster != "-" else " field")))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("host time per filter update (ms, log)")
     ax.set_ylabel("median position error after convergence (m, log)")
     mode = "global localization" if args.global_loc else "tracking"
     ax.set_title(f"DeliBot speed vs error ({mode}); marker size = particles\n{cpu_name()}, "
-                 f"{args.threads or os.cpu_count()} thread(s)", fontsize=9)
+                 f"ours on {args.threads or os.cpu_count()} thread(s), MRPT on 1", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     png_path = os.path.join(args.out, "speed_vs_error.png")

@@ -83,6 +83,20 @@ TEST(MclOptionsTest, RefusesAnInitialSetSmallerThanTheWorkingSet) {
   EXPECT_TRUE(o.IsValid(&error)) << error;
 }
 
+TEST(MclOptionsTest, RefusesAnInjectionCheckWindowOutOfRange) {
+  MclOptions o;
+  std::string error;
+  o.injection_check_updates = -1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("injection check"), std::string::npos);
+  o.injection_check_updates = 1001;
+  EXPECT_FALSE(o.IsValid(&error));
+  o.injection_check_updates = 0;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.injection_check_updates = 10;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+}
+
 TEST(MclInitialSetTest, FirstSensorUpdateShrinksTheInitialSetToTheWorkingSize) {
   const OccupancyGrid g = test::AsymmetricRoom();
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 21);

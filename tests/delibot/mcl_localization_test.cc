@@ -52,11 +52,12 @@ TEST(MclLocalizationTest, TrackingFromAKnownStartKeepsMedianErrorBelowTenCentime
   }
 }
 
-TEST(MclLocalizationTest, RecoversFromAKidnap) {
+// A tour of the room, then the robot is carried elsewhere and drives on; its
+// odometry continues smoothly from where it was, so only the scans reveal
+// the kidnap. Returns the trace and the index of the first kidnapped record.
+std::pair<test::SyntheticRun, std::size_t> KidnappedRun() {
   const OccupancyGrid g = test::AsymmetricRoom();
   test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 13);
-  // Second half: the robot is carried to another place; odometry continues
-  // smoothly from where it was, so only the scans reveal the kidnap.
   const test::SyntheticRun second =
       test::DriveThrough(g, {{6.0, 3.0, 0}, {6.0, 1.0, 0}, {11.0, 1.0, 0}, {11.0, 4.0, 0}, {8.0, 4.0, 0}, {8.0, 7.5, 0}}, 0.15, 0.03, 14);
   const std::size_t kidnap_at = run.trace.scans.size();
@@ -72,13 +73,40 @@ TEST(MclLocalizationTest, RecoversFromAKidnap) {
     run.trace.scans.push_back(scan);
     run.truth.push_back(second.truth[i]);
   }
-  DelibotSettings s = Settings(3000, 21);
+  return {run, kidnap_at};
+}
+
+TEST(MclLocalizationTest, RecoversFromAKidnap) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const auto [run, kidnap_at] = KidnappedRun();
+  for (int check : {0, 10}) {
+    DelibotSettings s = Settings(3000, 21);
+    s.initial_pose = run.truth.front();
+    s.mcl.injection_check_updates = check;
+    const DelibotResult r = RunDelibot(g, run.trace, &run.truth, s);
+    EXPECT_LT(r.rows[kidnap_at - 1].err_xy_m, 0.2) << "tracked before the kidnap; check " << check;
+    EXPECT_GT(r.rows[kidnap_at + 1].err_xy_m, 1.0) << "the kidnap displaced the robot; check " << check;
+    EXPECT_GT(r.summary.injected, 0) << "augmented MCL must inject particles; check " << check;
+    EXPECT_LT(r.rows.back().err_xy_m, 0.2) << "recovered after the kidnap; check " << check;
+  }
+}
+
+TEST(MclLocalizationTest, InjectionCheckRefusesPosesThatFitOnlyTheOccludedScans) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 16);
+  // A person steps in front of the laser for eight scans: the middle third
+  // of the beams reads 15 cm. The true pose explains those scans badly for
+  // a moment, augmented MCL starts drawing random poses, and without a
+  // check one that faces a nearby wall can outscore the whole true cloud.
+  for (std::size_t i = 40; i < 48; ++i)
+    for (std::size_t b = 60; b < 120; ++b) run.trace.scans[i].ranges_m[b] = 0.15f;
+  DelibotSettings s = Settings(500, 5);
   s.initial_pose = run.truth.front();
+  s.mcl.injection_check_updates = 10;
   const DelibotResult r = RunDelibot(g, run.trace, &run.truth, s);
-  EXPECT_LT(r.rows[kidnap_at - 1].err_xy_m, 0.2) << "tracked before the kidnap";
-  EXPECT_GT(r.rows[kidnap_at + 1].err_xy_m, 1.0) << "the kidnap displaced the robot";
-  EXPECT_GT(r.summary.injected, 0) << "augmented MCL must inject particles";
-  EXPECT_LT(r.rows.back().err_xy_m, 0.2) << "recovered after the kidnap";
+  EXPECT_GT(r.summary.injection_rejected, 0) << "the occlusion must make augmented MCL draw random poses";
+  for (const DelibotRow& row : r.rows) EXPECT_LT(row.err_xy_m, 0.3) << "record " << row.iteration;
+  EXPECT_EQ(r.summary.convergence_iteration, 0);
 }
 
 TEST(MclLocalizationTest, ScansOfOnlyOutliersKeepEveryWeightFinite) {

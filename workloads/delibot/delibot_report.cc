@@ -121,6 +121,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"resample_ess_fraction", s.mcl.resample_ess_fraction},
       {"recovery_alpha_slow", s.mcl.alpha_slow},
       {"recovery_alpha_fast", s.mcl.alpha_fast},
+      {"injection_check_updates", s.mcl.injection_check_updates},
       {"update_min_d_m", s.mcl.update_min_d_m},
       {"update_min_a_rad", s.mcl.update_min_a_rad},
       {"max_records", s.max_records},
@@ -136,7 +137,8 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                  {"wall_s", m.wall_s},
                  {"wall_per_update_s", m.sensor_updates ? m.wall_s / m.sensor_updates : 0.0},
                  {"rays_per_s", m.wall_s > 0 ? m.rays / m.wall_s : 0.0},
-                 {"resamples", m.resamples},   {"injected", m.injected}};
+                 {"resamples", m.resamples},   {"injected", m.injected},
+                 {"injection_rejected", m.injection_rejected}};
   if (!result.work_counted)
     for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
   json accuracy = {{"convergence_iteration", m.convergence_iteration},
@@ -195,8 +197,13 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     std::snprintf(line, sizeof line, fmt, args...);
     out << line << "\n";
   };
-  emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
-       m.sensor_updates, m.resamples, m.injected);
+  if (s.mcl.injection_check_updates > 0)
+    emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected, %ld refused "
+         "by the injection check)",
+         m.records, m.sensor_updates, m.resamples, m.injected, m.injection_rejected);
+  else
+    emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
+         m.sensor_updates, m.resamples, m.injected);
   if (result.work_counted) {
     emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
          m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);

@@ -59,6 +59,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.wall_s += r.wall_s;
     sum.resamples += r.resampled;
     sum.injected += r.injected;
+    sum.injection_rejected += r.injection_rejected;
   }
   const bool gt = !rows.empty() && rows.front().has_ground_truth;
   auto localized = [&](const DelibotRow& r) {
@@ -203,6 +204,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     row.sensor_updated = step.sensor_updated;
     row.resampled = step.resampled;
     row.injected = step.injected;
+    row.injection_rejected = step.injection_rejected;
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

@@ -68,6 +68,7 @@ struct DelibotRow {
   bool sensor_updated = false;
   bool resampled = false;
   int injected = 0;
+  int injection_rejected = 0;    // random poses refused by the injection check
   double spread_m = 0.0;
   double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate
@@ -87,6 +88,7 @@ struct DelibotSummary {
   double wall_s = 0.0;
   long resamples = 0;
   long injected = 0;
+  long injection_rejected = 0;
   // -1 when never reached. With ground truth: error below both thresholds for
   // 10 consecutive records; without: mode weight above its threshold likewise.
   long convergence_iteration = -1;

@@ -18,6 +18,8 @@ bool MclOptions::IsValid(std::string* error) const {
     return fail("recovery alphas must be in [0, 1]");
   if (alpha_slow > 0.0 && !(alpha_fast > alpha_slow))
     return fail("alpha_fast must exceed alpha_slow for recovery to mean anything");
+  if (injection_check_updates < 0 || injection_check_updates > 1000)
+    return fail("injection check window must be in [0, 1000] sensor updates");
   if (!(update_min_d_m >= 0.0 && update_min_a_rad >= 0.0)) return fail("update thresholds must be >= 0");
   if (!(estimate_kernel_radius_m > 0.0)) return fail("estimate kernel radius must be > 0 m");
   const auto& m = motion;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/log_domain.h"
+#include "common/pose_algebra.h"
 #include "common/random_stream.h"
 #include "workloads/delibot/motion_model.h"
 #include "workloads/delibot/resampling.h"
@@ -119,6 +120,11 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
     }
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }
+  if (options_.injection_check_updates > 0) {
+    recent_scans_.push_back({scan, geometry});
+    while (recent_scans_.size() > static_cast<std::size_t>(options_.injection_check_updates))
+      recent_scans_.pop_front();
+  }
   result.ess = EffectiveSampleSize(log_weights_);
   const bool oversized = particles_.size() != static_cast<std::size_t>(options_.particle_count);
   if (oversized || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
@@ -147,16 +153,41 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
   const std::vector<std::size_t> ancestors = SystematicResample(
       log_weights_, pointer_stream.Uniform(), static_cast<std::size_t>(options_.particle_count));
   std::vector<Pose2> next(ancestors.size());
-  int injected = 0;
+  // Draw the random poses first (each slot keeps its own stream, so the
+  // draws do not depend on the check), then admit those that pass it.
+  std::vector<std::size_t> candidate_slots;
+  std::vector<Pose2> candidates;
   for (std::size_t slot = 0; slot < next.size(); ++slot) {
     next[slot] = particles_[ancestors[slot]];
     if (result.injection_probability > 0.0) {
       RandomStream stream(options_.seed, StreamPurpose::kInjection, iteration, slot);
       if (stream.Uniform() < result.injection_probability) {
-        next[slot] = RandomFreePose(stream);
-        ++injected;
+        candidate_slots.push_back(slot);
+        candidates.push_back(RandomFreePose(stream));
       }
     }
+  }
+  std::vector<bool> admitted(candidates.size(), true);
+  if (options_.injection_check_updates > 0 && !candidates.empty()) {
+    // Each random pose must beat the particle it would replace, scored on
+    // the same scans. Not the estimate: a random pose is never as finely
+    // placed as a refined estimate, so after a wrong global convergence no
+    // random pose near the truth would pass, while a particle of the wrong
+    // cloud is beaten by one that is merely near the truth.
+    const std::size_t m = candidates.size();
+    std::vector<Pose2> poses = candidates;
+    for (std::size_t k = 0; k < m; ++k) poses.push_back(next[candidate_slots[k]]);
+    const std::vector<double> scores = RecentScansLogLikelihood(poses);
+    for (std::size_t k = 0; k < m; ++k) admitted[k] = scores[k] > scores[m + k];
+  }
+  int injected = 0;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    if (!admitted[k]) {
+      ++result.injection_rejected;
+      continue;
+    }
+    next[candidate_slots[k]] = candidates[k];
+    ++injected;
   }
   particles_.swap(next);
   log_weights_.assign(particles_.size(), -std::log(static_cast<double>(particles_.size())));
@@ -167,6 +198,23 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
   // few random particles rarely land near the truth. We keep Thrun's
   // original rule: injection continues until the short-term average
   // likelihood has recovered.
+}
+
+std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vector<Pose2>& poses_now) {
+  std::vector<double> total(poses_now.size(), 0.0);
+  if (recent_scans_.empty()) return total;
+  const Pose2& odometry_now = recent_scans_.back().scan.odometry;
+  std::vector<Pose2> poses_then(poses_now.size());
+  std::vector<double> log_likelihoods;
+  for (const RememberedScan& remembered : recent_scans_) {
+    // Where each pose was at that scan if the odometry since then is right.
+    const Pose2 back = Between(odometry_now, remembered.scan.odometry);
+    for (std::size_t i = 0; i < poses_now.size(); ++i) poses_then[i] = Compose(poses_now[i], back);
+    sensor_model_->LogLikelihoods(poses_then, remembered.scan, remembered.geometry, options_.beams,
+                                  log_likelihoods, check_work_);
+    for (std::size_t i = 0; i < poses_now.size(); ++i) total[i] += log_likelihoods[i];
+  }
+  return total;
 }
 
 PoseEstimate MonteCarloLocalizer::Estimate() const {

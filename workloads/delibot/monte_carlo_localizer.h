@@ -5,6 +5,7 @@
 // keyed by (seed, purpose, iteration, particle), so the result is identical
 // at any thread count.
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -19,6 +20,7 @@ struct MclStepResult {
   bool sensor_updated = false;
   bool resampled = false;
   int injected = 0;              // particles replaced by random free-space poses
+  int injection_rejected = 0;    // random poses drawn but refused by the injection check
   double ess = 0.0;              // effective sample size after the update, before resampling
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
   double injection_probability = 0.0;
@@ -50,6 +52,9 @@ class MonteCarloLocalizer {
  private:
   Pose2 RandomFreePose(RandomStream& stream) const;
   void Resample(std::uint64_t iteration, MclStepResult& result);
+  // Log-likelihood of each pose (a pose now) over the remembered scans, each
+  // scored at the pose replayed back through the odometry since that scan.
+  std::vector<double> RecentScansLogLikelihood(const std::vector<Pose2>& poses_now);
   // Sets -inf for particles outside free space (see MclOptions).
   void RejectPosesInObstacles(std::vector<double>& log_likelihoods) const;
 
@@ -67,6 +72,13 @@ class MonteCarloLocalizer {
   bool first_sensor_update_done_ = false;
   bool have_recovery_averages_ = false;
   double log_w_slow_ = 0.0, log_w_fast_ = 0.0;
+  // The last injection_check_updates sensor updates, oldest first.
+  struct RememberedScan {
+    LaserScan scan;
+    LaserGeometry geometry;
+  };
+  std::deque<RememberedScan> recent_scans_;
+  SensorUpdateWork check_work_;  // the injection check's rays (not priced)
 };
 
 }  // namespace rc

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/pose_algebra.h"
 #include "common/random_stream.h"
 #include "robocore/ray_cast.h"
 #include "workloads/delibot/sensor_model.h"
@@ -39,19 +40,6 @@ constexpr int kKidnapDraws = 64;
 // Goals that coincide with the current position are skipped; this many in a
 // row means the reachable space is degenerate (a bug upstream).
 constexpr int kMaxSkippedGoals = 10000;
-
-// a (+) b: b expressed in a's frame, composed onto a.
-Pose2 Compose(const Pose2& a, const Pose2& b) {
-  const double c = std::cos(a.theta), s = std::sin(a.theta);
-  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, WrapAngle(a.theta + b.theta)};
-}
-
-// a^-1 (+) b: the motion from a to b in a's frame.
-Pose2 Between(const Pose2& a, const Pose2& b) {
-  const double c = std::cos(a.theta), s = std::sin(a.theta);
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  return {c * dx + s * dy, -s * dx + c * dy, WrapAngle(b.theta - a.theta)};
-}
 
 // Drives a disc along collision-free legs to a sequence of goals: turn in
 // place towards the next vertex, then drive straight to it. Time is consumed

@@ -199,6 +199,11 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (0 = no recovery)")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate")->capture_default_str();
+  cmd->add_option("--injection-check", s.mcl.injection_check_updates,
+                  "A random particle is injected only if it explains the scans of the last N sensor updates "
+                  "(replayed through the odometry) better than the particle it would replace (updates; 0 = augmented MCL as "
+                  "published)")
+      ->capture_default_str();
   cmd->add_option("--initial-pose", cli->initial_pose, "Track from X,Y,THETA (m, m, rad) instead of global localization")
       ->expected(3)
       ->delimiter(',');
