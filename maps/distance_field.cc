@@ -19,8 +19,12 @@ DistanceField DistanceField::Build(const OccupancyGrid& grid, DistanceTarget tar
     auto* row = source.ptr<std::uint8_t>(ix + pad);
     for (int iy = 0; iy < grid.size_y(); ++iy) {
       const CellState s = grid.At(ix, iy);
-      const bool is_target =
-          target == DistanceTarget::kBlocking ? s != CellState::kFree : s == CellState::kOccupied;
+      bool is_target = false;
+      switch (target) {
+        case DistanceTarget::kBlocking: is_target = s != CellState::kFree; break;
+        case DistanceTarget::kOccupied: is_target = s == CellState::kOccupied; break;
+        case DistanceTarget::kFree: is_target = s == CellState::kFree; break;
+      }
       row[iy + pad] = is_target ? 0 : 1;
       any_target = any_target || is_target;
     }

@@ -5,7 +5,8 @@
 //
 // Built only on demand: by the `rm` ray caster (targets = every cell that
 // stops a ray, with the outside of the map counted as blocking) and by the
-// likelihood-field sensor model (targets = occupied cells only, as in AMCL).
+// likelihood-field sensor model (targets = occupied cells only, as in AMCL;
+// plus free cells, for the depth of an end point inside a wall).
 // Memory: 4 bytes per cell. Build time: linear in the cell count.
 #include <cstddef>
 #include <vector>
@@ -17,6 +18,7 @@ namespace rc {
 enum class DistanceTarget {
   kBlocking,  // occupied, unknown, and the outside of the map (ray stoppers)
   kOccupied,  // occupied cells only
+  kFree,      // free cells only (depth inside walls, for a signed distance)
 };
 
 class DistanceField {
@@ -27,8 +29,8 @@ class DistanceField {
   int size_x() const { return size_x_; }
   int size_y() const { return size_y_; }
   // Distance in metres at cell (ix, iy), x-major like the grid. If the grid
-  // has no target cell at all, every value is +inf (kOccupied only; with
-  // kBlocking the map border is always a target).
+  // has no target cell at all, every value is +inf (kOccupied and kFree;
+  // with kBlocking the map border is always a target).
   float At(int ix, int iy) const {
     return distances_m_[static_cast<std::size_t>(ix) * size_y_ + iy];
   }

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Speed-vs-error study for DeliBot.
 
-Sweeps particles x beam step x ray caster x sensor model on simulated traces
+Sweeps particles x beam step x ray caster x sensor model (the likelihood
+field with AMCL's unsigned distance and with the signed one) on simulated traces
 with ground truth (made by `rcbench simulate`), runs `rcbench delibot` for
 each configuration, plus MRPT's CMonteCarloLocalization2D (`--engine mrpt`)
 at the same particle counts and beam steps as a reference curve (leave it
@@ -89,6 +90,7 @@ def main():
         for caster in (["dda"] if args.quick else ["march", "dda", "rm"]):
             configs.append((p, k, "beam", caster))
         configs.append((p, k, "likelihood", "-"))
+        configs.append((p, k, "likelihood", "signed"))
         if not args.no_mrpt:
             configs += [(p, k, "beam", "mrpt"), (p, k, "likelihood", "mrpt")]
 
@@ -100,6 +102,8 @@ def main():
                "--threads", str(args.threads), "--quiet", "--no-pricing"]
         if caster == "mrpt":
             cmd += ["--engine", "mrpt"]
+        elif caster == "signed":
+            cmd += ["--lf-distance", "signed"]
         elif caster != "-":
             cmd += ["--raycaster", caster]
         if not args.global_loc:
@@ -110,7 +114,9 @@ def main():
         t, a = s["totals"], s["accuracy"]
         rows.append({
             "engine": "mrpt" if caster == "mrpt" else "ours",
-            "particles": p, "beam_step": k, "sensor_model": model, "ray_caster": caster,
+            "particles": p, "beam_step": k, "sensor_model": model,
+            "ray_caster": caster if model == "beam" and caster != "mrpt" else "-",
+            "lf_distance": ("signed" if caster == "signed" else "unsigned") if model == "likelihood" else "-",
             "time_per_update_s": t["wall_per_update_s"], "rays_per_s": t["rays_per_s"],
             "nodes_per_ray": t["nodes_per_ray"],
             "median_err_xy_m": a.get("median_err_xy_m", -1), "p95_err_xy_m": a.get("p95_err_xy_m", -1),
@@ -132,16 +138,21 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    styles = {("beam", "march"): ("tab:red", "o"), ("beam", "dda"): ("tab:blue", "s"),
-              ("beam", "rm"): ("tab:green", "^"), ("likelihood", "-"): ("tab:purple", "D"),
-              ("beam", "mrpt"): ("black", "v"), ("likelihood", "mrpt"): ("tab:orange", "P")}
-    for (model, caster), (color, marker) in styles.items():
-        sel = [r for r in rows if r["sensor_model"] == model and r["ray_caster"] == caster and r["median_err_xy_m"] >= 0]
+    # (engine, model, ray caster, field distance) -> colour, marker, label
+    styles = {("ours", "beam", "march", "-"): ("tab:red", "o", "beam / march"),
+              ("ours", "beam", "dda", "-"): ("tab:blue", "s", "beam / dda"),
+              ("ours", "beam", "rm", "-"): ("tab:green", "^", "beam / rm"),
+              ("ours", "likelihood", "-", "unsigned"): ("tab:purple", "D", "likelihood field (unsigned, AMCL)"),
+              ("ours", "likelihood", "-", "signed"): ("tab:pink", "d", "likelihood field (signed)"),
+              ("mrpt", "beam", "-", "-"): ("black", "v", "MRPT beam"),
+              ("mrpt", "likelihood", "-", "unsigned"): ("tab:orange", "P", "MRPT likelihood field")}
+    for key, (color, marker, label) in styles.items():
+        sel = [r for r in rows if (r["engine"], r["sensor_model"], r["ray_caster"], r["lf_distance"]) == key
+               and r["median_err_xy_m"] >= 0]
         if not sel:
             continue
         ax.scatter([1e3 * r["time_per_update_s"] for r in sel], [r["median_err_xy_m"] for r in sel],
-                   s=[12 + r["particles"] / 40 for r in sel], c=color, marker=marker, alpha=0.75,
-                   label=(f"MRPT {model}" if caster == "mrpt" else f"{model}" + (f" / {caster}" if caster != "-" else " field")))
+                   s=[12 + r["particles"] / 40 for r in sel], c=color, marker=marker, alpha=0.75, label=label)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("host time per filter update (ms, log)")
@@ -150,7 +161,7 @@ def main():
     ax.set_title(f"DeliBot speed vs error ({mode}); marker size = particles\n{cpu_name()}, "
                  f"ours on {args.threads or os.cpu_count()} thread(s), MRPT on 1", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=8)
     png_path = os.path.join(args.out, "speed_vs_error.png")
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)

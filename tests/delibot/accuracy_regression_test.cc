@@ -65,6 +65,28 @@ TEST(AccuracyRegressionTest, TrackingOnTheOfficeMapKeepsMedianErrorBelowTenCenti
   EXPECT_TRUE(r.summary.converged);
 }
 
+// The likelihood field with AMCL's unsigned distance (0 inside walls) lets
+// end points pass through a wall's face for free, so a forward-looking laser
+// pulls the estimate forward: about 10 cm median on this trace, against
+// 1 cm for the beam model. The signed field removes the bias.
+TEST(AccuracyRegressionTest, SignedLikelihoodFieldTracksWithoutTheForwardBias) {
+  const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
+  const Simulated sim = Simulate(grid, 7, 300);
+  double median_m[2] = {0.0, 0.0};
+  for (bool signed_distance : {false, true}) {
+    DelibotSettings s;
+    s.sensor_model = SensorModelKind::kLikelihoodField;
+    s.likelihood.signed_distance = signed_distance;
+    s.mcl.particle_count = 500;
+    s.initial_pose = sim.truth.front();
+    const DelibotResult r = RunDelibot(grid, sim.trace, &sim.truth, s);
+    EXPECT_TRUE(r.summary.converged);
+    median_m[signed_distance] = r.summary.median_err_xy_m;
+  }
+  EXPECT_LT(median_m[1], 0.03);
+  EXPECT_GT(median_m[0], 2.0 * median_m[1]) << "unsigned " << median_m[0] << " m, signed " << median_m[1] << " m";
+}
+
 // Seed 12 of the accuracy study: 177 records in, a walking person blocks
 // most of the scan, published augmented MCL injects random poses, one of
 // them outscores the whole 500-particle cloud and the estimate jumps 6.7 m.

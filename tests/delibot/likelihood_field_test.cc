@@ -2,7 +2,9 @@
 // to the wall's face, in the map frame of occupancy_grid.h (origin at the
 // outer corner of cell (0, 0), cell centres at (i + 0.5) * r). A lookup of
 // the centre-to-centre distance at the end point's cell is off by half a
-// cell, and the filter then tracks half a cell behind the truth.
+// cell, and the filter then tracks half a cell behind the truth. Inside a
+// wall it scores the depth below the face (signed), unless asked for AMCL's
+// unsigned field.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -32,7 +34,32 @@ TEST(LikelihoodFieldTest, DistanceIsMeasuredToTheWallFace) {
       EXPECT_NEAR(model.DistanceAt(x, y), 2.0 - x, 1e-6) << "x " << x << " y " << y;
     }
   }
-  EXPECT_DOUBLE_EQ(model.DistanceAt(2.3, 1.0), 0.0);  // inside the wall
+}
+
+// Inside a wall the signed field measures the depth below the face; AMCL's
+// unsigned field is 0 there, so pushing an end point through a wall is free.
+TEST(LikelihoodFieldTest, InsideAWallTheDistanceIsTheDepthUnlessUnsigned) {
+  const OccupancyGrid g = HalfWall();
+  LikelihoodFieldParams signed_params;
+  signed_params.signed_distance = true;
+  const LikelihoodFieldModel signed_model(g, signed_params);
+  const LikelihoodFieldModel unsigned_model(g, LikelihoodFieldParams{});
+  for (double x = 2.0; x <= 3.0 + 1e-9; x += 0.01) {
+    for (double y : {1.0, 1.05, 1.333}) {
+      EXPECT_NEAR(signed_model.DistanceAt(x, y), x - 2.0, 1e-6) << "x " << x << " y " << y;
+      EXPECT_NEAR(unsigned_model.DistanceAt(x, y), 0.0, 1e-6) << "x " << x << " y " << y;
+    }
+  }
+  // Deeper than the cap: the cap, as in front of the wall.
+  EXPECT_DOUBLE_EQ(signed_model.DistanceAt(3.95, 1.0), 1.95);
+  LikelihoodFieldParams capped = signed_params;
+  capped.max_occ_dist_m = 0.5;
+  EXPECT_DOUBLE_EQ(LikelihoodFieldModel(g, capped).DistanceAt(3.0, 1.0), 0.5);
+  // A map made only of walls: no free cell to measure depth to, so the cap.
+  OccupancyGrid solid(10, 10, kResolution);
+  for (int ix = 0; ix < 10; ++ix)
+    for (int iy = 0; iy < 10; ++iy) solid.Set(ix, iy, CellState::kOccupied);
+  EXPECT_DOUBLE_EQ(LikelihoodFieldModel(solid, capped).DistanceAt(0.55, 0.55), 0.5);
 }
 
 TEST(LikelihoodFieldTest, DistanceIsCappedAndOutsideTheMapIsFar) {
@@ -56,33 +83,42 @@ TEST(LikelihoodFieldTest, ExactScanOfAWallScoresBestAtItsOwnPose) {
   const OccupancyGrid g = HalfWall();
   LaserGeometry geometry;
   geometry.max_range_m = 3.0;
-  LikelihoodFieldParams p;
-  p.sigma_hit_m = 0.05;  // sharp enough that a 1 cm shift changes the score
-  p.max_range_m = geometry.max_range_m;
-  LikelihoodFieldModel model(g, p);
-  for (const Pose2& truth : {Pose2{1.03, 2.01, 0.0}, Pose2{1.27, 1.55, 0.4}, Pose2{0.86, 2.3, -0.3}}) {
-    // Beams that meet the wall face x = 2 m within range; the others read
-    // "no return" and the likelihood field skips them.
-    LaserScan scan;
-    const Pose2 sensor = SensorPose(truth, geometry);
-    for (int i = 0; i < geometry.beam_count; ++i) {
-      const double a = sensor.theta + geometry.BeamAngle(i);
-      const double range = std::cos(a) > 0 ? (2.0 - sensor.x) / std::cos(a) : geometry.max_range_m;
-      scan.ranges_m.push_back(static_cast<float>(std::min(range, geometry.max_range_m)));
+  for (bool signed_distance : {false, true}) {
+    LikelihoodFieldParams p;
+    p.sigma_hit_m = 0.05;  // sharp enough that a 1 cm shift changes the score
+    p.max_range_m = geometry.max_range_m;
+    p.signed_distance = signed_distance;
+    LikelihoodFieldModel model(g, p);
+    for (const Pose2& truth : {Pose2{1.03, 2.01, 0.0}, Pose2{1.27, 1.55, 0.4}, Pose2{0.86, 2.3, -0.3}}) {
+      // Beams that meet the wall face x = 2 m within range; the others read
+      // "no return" and the likelihood field skips them.
+      LaserScan scan;
+      const Pose2 sensor = SensorPose(truth, geometry);
+      for (int i = 0; i < geometry.beam_count; ++i) {
+        const double a = sensor.theta + geometry.BeamAngle(i);
+        const double range = std::cos(a) > 0 ? (2.0 - sensor.x) / std::cos(a) : geometry.max_range_m;
+        scan.ranges_m.push_back(static_cast<float>(std::min(range, geometry.max_range_m)));
+      }
+      std::vector<Pose2> candidates;
+      for (int k = -10; k <= 10; ++k) candidates.push_back({truth.x + 0.01 * k, truth.y, truth.theta});
+      std::vector<double> log_likelihoods;
+      SensorUpdateWork work;
+      model.LogLikelihoods(candidates, scan, geometry, BeamSelection{1}, log_likelihoods, work);
+      // Index 10 is the truth. Approaching the wall from 10 cm in front, the
+      // score rises with every centimetre (a per-cell lookup is flat over
+      // each cell); past the truth the end points are inside the wall, where
+      // the signed field makes the score fall again and AMCL's unsigned one
+      // (distance 0) leaves it level: the flat side that biases AMCL forward.
+      for (int k = 1; k <= 10; ++k)
+        EXPECT_GT(log_likelihoods[k], log_likelihoods[k - 1]) << "shift " << 0.01 * (k - 10) << " m";
+      for (int k = 11; k <= 20; ++k) {
+        if (signed_distance) {
+          EXPECT_LT(log_likelihoods[k], log_likelihoods[k - 1]) << "shift " << 0.01 * (k - 10) << " m";
+        } else {
+          EXPECT_LE(log_likelihoods[k], log_likelihoods[10] + 1e-9) << "shift " << 0.01 * (k - 10) << " m";
+        }
+      }
     }
-    std::vector<Pose2> candidates;
-    for (int k = -10; k <= 10; ++k) candidates.push_back({truth.x + 0.01 * k, truth.y, truth.theta});
-    std::vector<double> log_likelihoods;
-    SensorUpdateWork work;
-    model.LogLikelihoods(candidates, scan, geometry, BeamSelection{1}, log_likelihoods, work);
-    // Index 10 is the truth. Approaching the wall from 10 cm in front, the
-    // score rises with every centimetre (a per-cell lookup is flat over
-    // each cell); past the truth the end points are inside the wall, where
-    // the distance is 0, so the score can only stay level.
-    for (int k = 1; k <= 10; ++k)
-      EXPECT_GT(log_likelihoods[k], log_likelihoods[k - 1]) << "shift " << 0.01 * (k - 10) << " m";
-    for (int k = 11; k <= 20; ++k)
-      EXPECT_LE(log_likelihoods[k], log_likelihoods[10] + 1e-9) << "shift " << 0.01 * (k - 10) << " m";
   }
 }
 

@@ -21,7 +21,27 @@ bool LikelihoodFieldParams::IsValid(std::string* error) const {
 }
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid, LikelihoodFieldParams params)
-    : grid_(&grid), field_(DistanceField::Build(grid, DistanceTarget::kOccupied)), params_(params) {}
+    : grid_(&grid), field_(DistanceField::Build(grid, DistanceTarget::kOccupied)), params_(params) {
+  if (params_.signed_distance) depth_field_ = DistanceField::Build(grid, DistanceTarget::kFree);
+}
+
+double LikelihoodFieldModel::FaceDistance(const DistanceField& field, double u, double v) const {
+  const double r = grid_->resolution_m();
+  const double fu = std::floor(u), fv = std::floor(v);
+  const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
+  const double tu = u - fu, tv = v - fv;
+  // Capping each sample (the field is +inf on a map with no target cell)
+  // half a cell above the cap keeps the far field at exactly the cap.
+  const double sample_cap = params_.max_occ_dist_m + 0.5 * r;
+  auto capped = [&](int i, int j) {
+    i = std::clamp(i, 0, grid_->size_x() - 1);
+    j = std::clamp(j, 0, grid_->size_y() - 1);
+    return std::min<double>(field.At(i, j), sample_cap);
+  };
+  const double d = (1 - tu) * ((1 - tv) * capped(i0, j0) + tv * capped(i0, j0 + 1)) +
+                   tu * ((1 - tv) * capped(i0 + 1, j0) + tv * capped(i0 + 1, j0 + 1));
+  return std::clamp(d - 0.5 * r, 0.0, params_.max_occ_dist_m);
+}
 
 double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   // The field holds centre-to-centre distances at cell centres ((i + 0.5) r).
@@ -33,7 +53,6 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   // subtracting half a cell gives the distance to the wall's face instead:
   // 0 on the face, growing one-for-one away from it.
   const double r = grid_->resolution_m();
-  const double u = x_m / r - 0.5, v = y_m / r - 0.5;
   if (!(x_m >= 0 && y_m >= 0 && x_m < grid_->extent_x_m() && y_m < grid_->extent_y_m()))
     return params_.max_occ_dist_m;
   // An end point in an unknown cell is as far from evidence as one off the
@@ -44,20 +63,17 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   // scan better than the true pose.
   if (grid_->At(static_cast<int>(x_m / r), static_cast<int>(y_m / r)) == CellState::kUnknown)
     return params_.max_occ_dist_m;
-  const double fu = std::floor(u), fv = std::floor(v);
-  const int i0 = static_cast<int>(fu), j0 = static_cast<int>(fv);
-  const double tu = u - fu, tv = v - fv;
-  // Capping each sample (the field is +inf on a map with no occupied cell)
-  // half a cell above the cap keeps the far field at exactly the cap.
-  const double sample_cap = params_.max_occ_dist_m + 0.5 * r;
-  auto capped = [&](int i, int j) {
-    i = std::clamp(i, 0, grid_->size_x() - 1);
-    j = std::clamp(j, 0, grid_->size_y() - 1);
-    return std::min<double>(field_.At(i, j), sample_cap);
-  };
-  const double d = (1 - tu) * ((1 - tv) * capped(i0, j0) + tv * capped(i0, j0 + 1)) +
-                   tu * ((1 - tv) * capped(i0 + 1, j0) + tv * capped(i0 + 1, j0 + 1));
-  return std::clamp(d - 0.5 * r, 0.0, params_.max_occ_dist_m);
+  const double u = x_m / r - 0.5, v = y_m / r - 0.5;
+  const double outside = FaceDistance(field_, u, v);
+  // Unsigned (AMCL), the distance is 0 throughout a wall, so an end point
+  // that goes through a wall's face costs nothing while one short of it
+  // costs: with range noise and a laser that looks forward, the
+  // best-scoring pose sits forward of the truth (6.6 cm on the simulated
+  // office trace at sigma_hit 0.05 m, 10 cm at 0.2 m, with our field and
+  // with MRPT's, against 1 cm for the beam model). Scoring the depth below
+  // the face too makes the score symmetric about the face.
+  if (!params_.signed_distance || outside > 0) return outside;
+  return FaceDistance(depth_field_, u, v);
 }
 
 void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
