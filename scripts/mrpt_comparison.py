@@ -197,7 +197,8 @@ def main():
           f"{where}.", "", markdown(rows, True)]
     if wean_rows:
         md += ["", f"Real Wean logs, global localization, {args.wean_particles} particles, no ground truth: "
-               "record where the estimate's mode held >= 0.8 of the weight for 10 records, median scan "
+               "first record of 10 sensor updates in a row with the estimate's mode holding >= 0.8 of the weight "
+               "and scan consistency >= 0.5 (rcbench's ground-truth-free criterion), median scan "
                "consistency after it, and estimate jumps > 1 m after it.", "", markdown(wean_rows, False)]
     md_path = os.path.join(args.out, "mrpt_comparison.md")
     with open(md_path + ".tmp", "w") as f:
