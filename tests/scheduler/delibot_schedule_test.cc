@@ -59,5 +59,35 @@ TEST(DelibotScheduleTest, AdaptiveOnASimulatedTrace) {
   }
 }
 
+// The injection check replays recent scans for every random pose; those
+// casts run on the device too, so the ledger must price exactly the queries
+// the timeline reports, update and check together.
+TEST(DelibotScheduleTest, InjectionCheckCastsArePriced) {
+  const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
+  SimulationOptions sim;
+  sim.record_count = 120;
+  sim.kidnap_record = 40;  // makes augmented MCL inject, so the check runs
+  const SimulatedTrace trace = SimulateTrace(grid, sim);
+  DelibotSettings s = PricedSettings();
+  s.max_records = 120;
+  s.mcl.injection_check_updates = 10;
+  const DelibotResult r = RunDelibot(grid, trace.trace, nullptr, s);
+  ASSERT_TRUE(r.priced);
+  const std::uint64_t update_rays = static_cast<std::uint64_t>(s.mcl.particle_count) *
+                                    s.mcl.beams.Count(trace.trace.geometry.beam_count);
+  int checked_rows = 0;
+  for (const DelibotRow& row : r.rows) {
+    if (row.rays == 0) continue;
+    ASSERT_TRUE(row.pricing.priced) << "record " << row.iteration;
+    EXPECT_NEAR(row.pricing.nodes_per_query, static_cast<double>(row.nodes) / row.rays, 1e-9)
+        << "record " << row.iteration;
+    if (row.injected + row.injection_rejected > 0) {
+      ++checked_rows;
+      EXPECT_GT(row.rays, update_rays) << "record " << row.iteration;
+    }
+  }
+  EXPECT_GT(checked_rows, 0) << "no random pose was drawn: the scenario no longer exercises the check";
+}
+
 }  // namespace
 }  // namespace rc

@@ -24,7 +24,8 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
-                                      "sensor_updated", "resampled", "injected", "spread_m", "mode_weight", "consistency"};
+                                      "sensor_updated", "resampled", "injected", "injection_rejected",
+                                      "spread_m", "mode_weight", "consistency"};
   if (gt) {
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
@@ -56,6 +57,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   static_cast<int>(r.sensor_updated),
                                   static_cast<int>(r.resampled),
                                   r.injected,
+                                  r.injection_rejected,
                                   r.spread_m,
                                   r.mode_weight,
                                   r.consistency};

@@ -209,10 +209,15 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;
     }
+    // The injection check's casts are part of the record's work.
+    row.rays += step.check_rays;
+    row.nodes += step.check_nodes;
     row.wall_s = wall;
     if (ledger) {
       const auto pricing_start = std::chrono::steady_clock::now();
       const bool ran = step.sensor_updated && step.work && step.work->rays > 0;
+      if (step.check_records)
+        for (const KernelRecord& check : *step.check_records) ledger->AddLaunch(check);
       row.pricing = ledger->EndIteration(ran ? &step.work->record : nullptr);
       row.priced = true;
       row.pricing_wall_s =

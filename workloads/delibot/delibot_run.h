@@ -62,8 +62,8 @@ struct DelibotRow {
   double time_s = 0.0;
   Pose2 estimate;
   double ess = 0.0;
-  std::uint64_t rays = 0;
-  std::uint64_t nodes = 0;
+  std::uint64_t rays = 0;        // the update's queries plus the injection check's
+  std::uint64_t nodes = 0;       // the same queries' node fetches
   double wall_s = 0.0;           // host time of the filter update
   bool sensor_updated = false;
   bool resampled = false;

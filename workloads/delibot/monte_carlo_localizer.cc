@@ -21,6 +21,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
   if (!options_.IsValid(&error)) throw std::invalid_argument(error);
   free_cells_ = grid_.FreeCellIndices();
   work_.record_kernel = options_.record_kernel;
+  check_work_.record_kernel = options_.record_kernel;
   if (free_cells_.empty())
     throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }
@@ -64,6 +65,8 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
                                           std::uint64_t iteration) {
   if (particles_.empty()) throw std::logic_error("MonteCarloLocalizer::Update before initialization");
   MclStepResult result;
+  check_records_.clear();
+  result.check_records = &check_records_;
   if (have_odometry_) {
     const OdometryDelta delta = ComputeOdometryDelta(last_odometry_, scan.odometry);
     if (!delta.IsZero()) {
@@ -177,7 +180,7 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
     const std::size_t m = candidates.size();
     std::vector<Pose2> poses = candidates;
     for (std::size_t k = 0; k < m; ++k) poses.push_back(next[candidate_slots[k]]);
-    const std::vector<double> scores = RecentScansLogLikelihood(poses);
+    const std::vector<double> scores = RecentScansLogLikelihood(poses, result);
     for (std::size_t k = 0; k < m; ++k) admitted[k] = scores[k] > scores[m + k];
   }
   int injected = 0;
@@ -200,7 +203,8 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
   // likelihood has recovered.
 }
 
-std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vector<Pose2>& poses_now) {
+std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vector<Pose2>& poses_now,
+                                                                  MclStepResult& result) {
   std::vector<double> total(poses_now.size(), 0.0);
   if (recent_scans_.empty()) return total;
   const Pose2& odometry_now = recent_scans_.back().scan.odometry;
@@ -213,6 +217,14 @@ std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vec
     sensor_model_->LogLikelihoods(poses_then, remembered.scan, remembered.geometry, options_.beams,
                                   log_likelihoods, check_work_);
     for (std::size_t i = 0; i < poses_now.size(); ++i) total[i] += log_likelihoods[i];
+    // These casts run on the same device as the update's, so they are
+    // priced with it: one launch per replayed scan.
+    result.check_rays += check_work_.rays;
+    result.check_nodes += check_work_.nodes;
+    if (check_work_.record_kernel) {
+      check_records_.push_back(std::move(check_work_.record));
+      check_work_.record = KernelRecord{};
+    }
   }
   return total;
 }

@@ -25,6 +25,12 @@ struct MclStepResult {
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
   double injection_probability = 0.0;
   const SensorUpdateWork* work = nullptr;  // valid until the next Update()
+  // The injection check's work this record: its queries and node fetches,
+  // and with record_kernel one kernel record per replayed scan (each a
+  // launch of the same kernel), valid until the next Update().
+  std::uint64_t check_rays = 0;
+  std::uint64_t check_nodes = 0;
+  const std::vector<KernelRecord>* check_records = nullptr;
 };
 
 class MonteCarloLocalizer {
@@ -54,7 +60,8 @@ class MonteCarloLocalizer {
   void Resample(std::uint64_t iteration, MclStepResult& result);
   // Log-likelihood of each pose (a pose now) over the remembered scans, each
   // scored at the pose replayed back through the odometry since that scan.
-  std::vector<double> RecentScansLogLikelihood(const std::vector<Pose2>& poses_now);
+  // Adds the casts' work (and kernel records) to `result`.
+  std::vector<double> RecentScansLogLikelihood(const std::vector<Pose2>& poses_now, MclStepResult& result);
   // Sets -inf for particles outside free space (see MclOptions).
   void RejectPosesInObstacles(std::vector<double>& log_likelihoods) const;
 
@@ -78,7 +85,8 @@ class MonteCarloLocalizer {
     LaserGeometry geometry;
   };
   std::deque<RememberedScan> recent_scans_;
-  SensorUpdateWork check_work_;  // the injection check's rays (not priced)
+  SensorUpdateWork check_work_;  // scratch for the injection check's casts
+  std::vector<KernelRecord> check_records_;  // this record's, when record_kernel
 };
 
 }  // namespace rc
