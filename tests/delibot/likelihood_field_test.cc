@@ -6,6 +6,7 @@
 // wall it scores the depth below the face (signed), unless asked for AMCL's
 // unsigned field.
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -120,6 +121,66 @@ TEST(LikelihoodFieldTest, ExactScanOfAWallScoresBestAtItsOwnPose) {
       }
     }
   }
+}
+
+// nav2 AMCL's combination, worked by hand: each beam contributes pz^3 with
+// pz = z_hit exp(-d^2 / 2 sigma^2) + z_rand / max_range, and the scan's
+// likelihood is 1 + their sum, so it is bounded by 1 + n pz_max^3 however
+// well the scan fits. The product instead gains a constant per beam.
+TEST(LikelihoodFieldTest, AmclCubeSumMatchesItsFormula) {
+  const OccupancyGrid g = HalfWall();
+  LaserGeometry geometry;
+  geometry.max_range_m = 3.0;
+  LikelihoodFieldParams p;
+  p.max_range_m = geometry.max_range_m;
+  p.combination = BeamCombination::kAmclCubeSum;
+  LikelihoodFieldModel cube(g, p);
+  // Facing the wall: the sensor (0.25 m ahead of the robot) sits 0.5 m in
+  // front of the face x = 2 m.
+  const Pose2 pose{1.25, 2.0, 0.0};
+  const Pose2 sensor = SensorPose(pose, geometry);
+  ASSERT_NEAR(sensor.x, 1.5, 1e-12);
+  // Scan 1: every beam within 72 deg of straight ahead ends on the face
+  // (inside the map: |y - 2| <= 0.5 tan 72 deg = 1.54 m); the rest read "no
+  // return", which the likelihood field skips.
+  LaserScan on_face;
+  int n_on_face = 0;
+  for (int i = 0; i < geometry.beam_count; ++i) {
+    const double c = std::cos(geometry.BeamAngle(i));
+    const bool on = c > 0.3;
+    on_face.ranges_m.push_back(static_cast<float>(on ? 0.5 / c : geometry.max_range_m));
+    n_on_face += on;
+  }
+  ASSERT_GT(n_on_face, 100);
+  // Scan 2: one beam, the first (pointing along -y), ending at (1.5, 1.5) m,
+  // 0.5 m in front of the face.
+  LaserScan one_beam;
+  one_beam.ranges_m.assign(static_cast<std::size_t>(geometry.beam_count), static_cast<float>(geometry.max_range_m));
+  one_beam.ranges_m[0] = 0.5f;
+  std::vector<double> log_likelihoods;
+  SensorUpdateWork work;
+  const std::vector<Pose2> particles{pose};
+  const double floor = p.z_rand / p.max_range_m;
+  cube.LogLikelihoods(particles, on_face, geometry, BeamSelection{1}, log_likelihoods, work);
+  // float ranges put the end points up to ~1e-7 m off the face
+  EXPECT_NEAR(log_likelihoods[0], std::log(1.0 + n_on_face * std::pow(p.z_hit + floor, 3)), 1e-6);
+  cube.LogLikelihoods(particles, one_beam, geometry, BeamSelection{1}, log_likelihoods, work);
+  const double pz = p.z_hit * std::exp(-0.5 * std::pow(0.5 / p.sigma_hit_m, 2)) + floor;
+  EXPECT_NEAR(log_likelihoods[0], std::log(1.0 + std::pow(pz, 3)), 1e-6);
+  // The product of the same on-face beams: n log(z_hit / (sigma sqrt(2 pi)) + floor).
+  p.combination = BeamCombination::kProduct;
+  LikelihoodFieldModel product(g, p);
+  product.LogLikelihoods(particles, on_face, geometry, BeamSelection{1}, log_likelihoods, work);
+  EXPECT_NEAR(log_likelihoods[0], n_on_face * std::log(p.z_hit / (p.sigma_hit_m * std::sqrt(2 * M_PI)) + floor), 1e-4);
+
+  // Cutting a dense initial set down, the cube-sum model scores as the product.
+  cube.SelectionLogLikelihoods(particles, on_face, geometry, BeamSelection{1}, log_likelihoods, work);
+  EXPECT_NEAR(log_likelihoods[0], n_on_face * std::log(p.z_hit / (p.sigma_hit_m * std::sqrt(2 * M_PI)) + floor), 1e-4);
+
+  EXPECT_EQ(ParseBeamCombination("amcl-cube"), BeamCombination::kAmclCubeSum);
+  EXPECT_EQ(ParseBeamCombination("product"), BeamCombination::kProduct);
+  EXPECT_STREQ(ToString(BeamCombination::kAmclCubeSum), "amcl-cube");
+  EXPECT_THROW(ParseBeamCombination("cube"), std::invalid_argument);
 }
 
 }  // namespace

@@ -118,7 +118,51 @@ TEST(MclInitialSetTest, FirstSensorUpdateShrinksTheInitialSetToTheWorkingSize) {
   EXPECT_EQ(mcl.log_weights().size(), 300u);
   const MclStepResult second = mcl.Update(run.trace.scans[1], run.trace.geometry, 1);
   EXPECT_EQ(mcl.particles().size(), 300u);
-  if (second.sensor_updated) EXPECT_EQ(second.work->rays, 300u * o.beams.Count(run.trace.geometry.beam_count));
+  if (second.sensor_updated) {
+    EXPECT_EQ(second.work->rays, 300u * o.beams.Count(run.trace.geometry.beam_count));
+  }
+}
+
+// The update that cuts the dense initial set down is the only one scored
+// by SelectionLogLikelihoods; every later update uses LogLikelihoods.
+class CallCountingModel final : public SensorModel {
+ public:
+  std::string name() const override { return "counting"; }
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
+                      const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+    ++ordinary;
+    log_likelihoods.assign(particles.size(), 0.0);
+  }
+  void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
+                               const BeamSelection&, std::vector<double>& log_likelihoods,
+                               SensorUpdateWork&) override {
+    ++selection;
+    selection_set_size = particles.size();
+    log_likelihoods.assign(particles.size(), 0.0);
+  }
+  int ordinary = 0, selection = 0;
+  std::size_t selection_set_size = 0;
+};
+
+TEST(MclInitialSetTest, OnlyTheDenseFirstUpdateIsScoredAsASelection) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 21);
+  for (int initial : {0, 3000}) {
+    MclOptions o;
+    o.particle_count = 300;
+    o.initial_particle_count = initial;
+    o.update_min_d_m = o.update_min_a_rad = 0.0;  // a sensor update on every record
+    auto owned = std::make_unique<CallCountingModel>();
+    CallCountingModel* model = owned.get();
+    MonteCarloLocalizer mcl(g, std::move(owned), o);
+    mcl.InitializeUniform();
+    for (int k = 0; k < 5; ++k) mcl.Update(run.trace.scans[k], run.trace.geometry, k);
+    EXPECT_EQ(model->selection, initial > 0 ? 1 : 0) << "initial " << initial;
+    EXPECT_EQ(model->ordinary, initial > 0 ? 4 : 5) << "initial " << initial;
+    if (initial > 0) {
+      EXPECT_EQ(model->selection_set_size, 3000u);
+    }
+  }
 }
 
 TEST(MclFreeSpaceTest, ParticlesMovedOutOfFreeSpaceGetZeroWeight) {

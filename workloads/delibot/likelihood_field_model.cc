@@ -2,10 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace rc {
 namespace {
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+}
+
+const char* ToString(BeamCombination combination) {
+  return combination == BeamCombination::kAmclCubeSum ? "amcl-cube" : "product";
+}
+
+BeamCombination ParseBeamCombination(const std::string& name) {
+  if (name == "product") return BeamCombination::kProduct;
+  if (name == "amcl-cube") return BeamCombination::kAmclCubeSum;
+  throw std::invalid_argument("unknown beam combination '" + name + "' (product | amcl-cube)");
 }
 
 bool LikelihoodFieldParams::IsValid(std::string* error) const {
@@ -78,29 +89,49 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
 
 void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                           const LaserGeometry& geometry, const BeamSelection& beams,
-                                          std::vector<double>& log_likelihoods,
-                                          SensorUpdateWork& work) {
+                                          std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+  Score(particles, scan, geometry, beams, params_.combination, log_likelihoods, work);
+}
+
+void LikelihoodFieldModel::SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                                   const LaserGeometry& geometry, const BeamSelection& beams,
+                                                   std::vector<double>& log_likelihoods,
+                                                   SensorUpdateWork& work) {
+  Score(particles, scan, geometry, beams, BeamCombination::kProduct, log_likelihoods, work);
+}
+
+void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                 const LaserGeometry& geometry, const BeamSelection& beams,
+                                 BeamCombination combination, std::vector<double>& log_likelihoods,
+                                 SensorUpdateWork& work) const {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   const long n = static_cast<long>(particles.size());
   log_likelihoods.resize(particles.size());
   const double gauss_norm = params_.z_hit * kInvSqrt2Pi / params_.sigma_hit_m;
   const double floor_density = params_.z_rand / params_.max_range_m;
+  const bool cube_sum = combination == BeamCombination::kAmclCubeSum;
   long used_beams = 0;
   for (int k = 0; k < beams_per_particle; ++k)
     used_beams += scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step] < params_.max_range_m;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Pose2 sensor = SensorPose(particles[i], geometry);
-    double sum = 0.0;
+    double log_product = 0.0, cube_sum_p = 1.0;
     for (int k = 0; k < beams_per_particle; ++k) {
       const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
       if (z >= params_.max_range_m) continue;
       const double a = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
       const double d = DistanceAt(sensor.x + z * std::cos(a), sensor.y + z * std::sin(a));
       const double e = d / params_.sigma_hit_m;
-      sum += std::log(gauss_norm * std::exp(-0.5 * e * e) + floor_density);
+      const double gauss = std::exp(-0.5 * e * e);
+      if (cube_sum) {
+        const double pz = params_.z_hit * gauss + floor_density;
+        cube_sum_p += pz * pz * pz;
+      } else {
+        log_product += std::log(gauss_norm * gauss + floor_density);
+      }
     }
-    log_likelihoods[i] = sum;
+    log_likelihoods[i] = cube_sum ? std::log(cube_sum_p) : log_product;
   }
   work.batch.queries.clear();
   work.hits.clear();

@@ -92,7 +92,10 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   first_sensor_update_done_ = true;
   moved_d_m_ = moved_a_rad_ = 0.0;
 
-  sensor_model_->LogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
+  if (static_cast<long>(particles_.size()) > options_.particle_count)
+    sensor_model_->SelectionLogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
+  else
+    sensor_model_->LogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
   if (options_.reject_poses_in_obstacles) RejectPosesInObstacles(log_likelihoods_);
   for (std::size_t i = 0; i < particles_.size(); ++i) log_weights_[i] += log_likelihoods_[i];
   // With normalized prior weights, the normalizer is the weighted mean

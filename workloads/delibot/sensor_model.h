@@ -44,6 +44,15 @@ class SensorModel {
   virtual void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                               const LaserGeometry& geometry, const BeamSelection& beams,
                               std::vector<double>& log_likelihoods, SensorUpdateWork& work) = 0;
+  // The same, for the update that cuts a dense initial set
+  // (--initial-particles) down to the working set: it must pick a few
+  // thousand particles out of hundreds of thousands, so a model whose scan
+  // likelihood is deliberately flat scores this update its sharp way.
+  virtual void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                       const LaserGeometry& geometry, const BeamSelection& beams,
+                                       std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+    LogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+  }
 };
 
 // Sensor origin (m) and beam angle (rad) in the map frame for a robot pose.

@@ -34,6 +34,7 @@ struct DelibotCli {
   std::string trace_path, trace_format = "auto", ground_truth_path;
   std::string sensor_model = "beam", ray_caster = "rm";
   std::string lf_distance = "unsigned";
+  std::string lf_combine = "product";
   std::vector<double> initial_pose;
   std::string timeline_path, summary_path;
   int threads = 0;
@@ -50,6 +51,7 @@ void Run(DelibotCli& cli) {
   s.sensor_model = ParseSensorModelKind(cli.sensor_model);
   s.ray_caster = ParseRayCastMethod(cli.ray_caster);
   s.likelihood.signed_distance = cli.lf_distance == "signed";
+  s.likelihood.combination = ParseBeamCombination(cli.lf_combine);
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
   const DelibotEngine engine = ParseDelibotEngine(cli.engine);
@@ -192,6 +194,13 @@ void AddDelibotCommand(CLI::App& app) {
                   "maps that match the world), 'signed' scores an end point's depth below the wall face "
                   "(unbiased, but worse on maps that draw open doors as walls; see README)")
       ->check(CLI::IsMember({"signed", "unsigned"}))
+      ->capture_default_str();
+  cmd->add_option("--lf-combine", cli->lf_combine,
+                  "Likelihood field, how a scan's beams combine: 'product' of the per-beam densities (log "
+                  "domain, beams independent; MRPT), or 'amcl-cube', nav2 AMCL's and Beluga's 1 + sum of cubed "
+                  "per-beam probabilities (far flatter: one scan of n beams changes a weight by at most a "
+                  "factor 1 + n (z_hit + z_rand / max_range)^3)")
+      ->check(CLI::IsMember({"product", "amcl-cube"}))
       ->capture_default_str();
   cmd->add_option("--alpha1", s.mcl.motion.alpha1, "Rotation noise from rotation (rad^2/rad^2)")->capture_default_str();
   cmd->add_option("--alpha2", s.mcl.motion.alpha2, "Rotation noise from translation (rad^2/m^2)")->capture_default_str();
