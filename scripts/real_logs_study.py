@@ -26,7 +26,7 @@ here (a check that the reference pairs with the right records).
 
 Usage: scripts/real_logs_study.py [--rcbench build/rcbench] [--data-dir DIR]
        [--reference-dir out/reference] [--seeds 5] [--out out/real_logs]
-       [--figure docs/figures/real_logs_error.png] [--track-from-reference]
+       [--figure F.png (default <out>/real_logs_error.png)] [--track-from-reference]
        [-- EXTRA RCBENCH ARGS]
 """
 import argparse
@@ -209,7 +209,8 @@ def main():
     ap.add_argument("--track-from-reference", action="store_true",
                     help="tracking mode: --initial-pose at the reference's first pose (needs the reference)")
     ap.add_argument("--out", default="out/real_logs")
-    ap.add_argument("--figure", default="docs/figures/real_logs_error.png")
+    # Default inside --out: a study run must not overwrite the committed figures.
+    ap.add_argument("--figure", default="", help="PNG of error against record (default <out>/real_logs_error.png)")
     args = ap.parse_args(argv)
     if args.seeds < 1 or args.jobs < 1:
         fail("--seeds and --jobs must be >= 1")
@@ -269,7 +270,8 @@ def main():
     write_atomic(os.path.join(args.out, "real_logs_study.csv"), text.getvalue())
     md = markdown(rows, logs, extra, args.track_from_reference)
     write_atomic(os.path.join(args.out, "real_logs_study.md"), md + "\n")
-    figure = args.figure if args.figure and any(e is not None for _, e in curves.values()) else ""
+    figure = args.figure or os.path.join(args.out, "real_logs_error.png")
+    figure = figure if any(e is not None for _, e in curves.values()) else ""
     if figure:
         plot(figure, logs, curves, rows)
     print(md)
