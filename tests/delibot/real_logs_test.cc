@@ -117,25 +117,31 @@ DelibotSettings RealLogRecipe() {
   return s;
 }
 
+// Global localization: converged, consistent, finite, and within 1 m of the
+// reference at every checkpoint of the log's second half. The first half may
+// still hold two look-alike doors 6 m apart (the estimate then switches
+// between them); by the second half it must not.
+void ExpectLocalizedThroughTheSecondHalf(const DelibotResult& r, const RealLog& log) {
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  EXPECT_GE(r.summary.convergence_iteration, 0);
+  EXPECT_GE(r.summary.median_consistency, 0.75);
+  const long half = static_cast<long>(r.rows.size()) / 2;
+  for (const Checkpoint& c : log.checkpoints)
+    if (c.record >= half) {
+      EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << log.name << " record " << c.record;
+    }
+}
+
 class RealLogGlobalLocalization : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogGlobalLocalization, LikelihoodFieldRecipeEndsAtTheReference) {
   RC_REQUIRE_SHARED_DATA("wean/" + GetParam().name + ".log");
   const WeanInputs in = Load(GetParam().name);
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, RealLogRecipe());
-  EXPECT_FALSE(r.summary.any_non_finite_weight);
-  EXPECT_GE(r.summary.convergence_iteration, 0);
-  EXPECT_GE(r.summary.median_consistency, 0.75);
+  ExpectLocalizedThroughTheSecondHalf(r, GetParam());
   if (GetParam().name == "robotdata2") {
     EXPECT_EQ(r.summary.jumps_after_convergence, 0);
   }
-  // The first half may still hold two look-alike doors 6 m apart (the
-  // estimate then switches between them); by the second half it must not.
-  const long half = static_cast<long>(r.rows.size()) / 2;
-  for (const Checkpoint& c : GetParam().checkpoints)
-    if (c.record >= half) {
-      EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
-    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Wean, RealLogGlobalLocalization, ::testing::Values(kRobotdata2, kRobotdata3, kRobotdata4),
@@ -150,14 +156,7 @@ TEST(RealLogGlobalLocalization, GatedRecipeLocalizesRobotdata1) {
   s.mcl.update_min_d_m = 0.25;
   s.mcl.update_min_a_rad = 0.2;
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
-  EXPECT_FALSE(r.summary.any_non_finite_weight);
-  EXPECT_GE(r.summary.convergence_iteration, 0);
-  EXPECT_GE(r.summary.median_consistency, 0.75);
-  const long half = static_cast<long>(r.rows.size()) / 2;
-  for (const Checkpoint& c : kRobotdata1.checkpoints)
-    if (c.record >= half) {
-      EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
-    }
+  ExpectLocalizedThroughTheSecondHalf(r, kRobotdata1);
 }
 
 // nav2 AMCL's flat cube-sum combination (after the product picks the
@@ -169,14 +168,7 @@ TEST(RealLogGlobalLocalization, CubeSumRecipeLocalizesRobotdata1) {
   DelibotSettings s = RealLogRecipe();
   s.likelihood.combination = BeamCombination::kAmclCubeSum;
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
-  EXPECT_FALSE(r.summary.any_non_finite_weight);
-  EXPECT_GE(r.summary.convergence_iteration, 0);
-  EXPECT_GE(r.summary.median_consistency, 0.75);
-  const long half = static_cast<long>(r.rows.size()) / 2;
-  for (const Checkpoint& c : kRobotdata1.checkpoints)
-    if (c.record >= half) {
-      EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
-    }
+  ExpectLocalizedThroughTheSecondHalf(r, kRobotdata1);
   // The product (the recipe) with this seed settles one door west.
   const DelibotResult product = RunDelibot(in.map.grid, in.trace, nullptr, RealLogRecipe());
   EXPECT_GT(PositionError(product.rows.back(), kRobotdata1.checkpoints.back().reference), 3.0);

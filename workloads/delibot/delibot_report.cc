@@ -147,6 +147,8 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
     for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
   json accuracy = {{"convergence_iteration", m.convergence_iteration},
                    {"converged_at_end", m.converged},
+                   {"end_median_mode_weight", m.end_mode_weight},
+                   {"end_median_consistency", m.end_consistency},
                    {"median_consistency_after_convergence", m.median_consistency},
                    {"fraction_consistent_after_convergence", m.fraction_consistent},
                    {"jumps_after_convergence", m.jumps_after_convergence},
@@ -217,9 +219,18 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     emit("host time               %.3f s total, %.2f ms per update", m.wall_s,
          m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0);
   }
-  if (m.convergence_iteration >= 0)
-    emit("converged at record     %ld (%s)", m.convergence_iteration, m.converged ? "still localized at the end" : "LOST by the end");
-  else
+  const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
+  if (m.convergence_iteration >= 0 && (m.converged || gt)) {
+    emit("converged at record     %ld (%s)", m.convergence_iteration,
+         m.converged ? "still localized at the end" : "LOST by the end: error above the thresholds");
+  } else if (m.convergence_iteration >= 0) {
+    // Without ground truth a failed end test is not proof of being lost.
+    emit("converged at record     %ld (not confirmed at the end: last 10 updates' median mode weight %.2f, "
+         "consistency %.2f; %s)",
+         m.convergence_iteration, m.end_mode_weight, m.end_consistency,
+         m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
+                                                     : "scans disagree with the map: wrong pose or wrong map");
+  } else
     emit("converged at record     never");
   emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
        m.median_consistency, s.consistency_sigmas);

@@ -35,18 +35,23 @@ std::unique_ptr<SensorModel> MakeSensorModel(const OccupancyGrid& grid, const De
   return std::make_unique<LikelihoodFieldModel>(grid, lf);
 }
 
+// The last kSustainRecords sensor-updated rows, newest first.
+std::vector<const DelibotRow*> LastUpdates(const std::vector<DelibotRow>& rows) {
+  std::vector<const DelibotRow*> last;
+  for (auto it = rows.rbegin(); it != rows.rend() && static_cast<int>(last.size()) < kSustainRecords; ++it)
+    if (it->sensor_updated) last.push_back(&*it);
+  return last;
+}
+
 // Without ground truth one scan's consistency is noisy (a person in front of
 // the robot, a doorway), so "still localized at the end" asks that most of
 // the last kSustainRecords sensor updates pass, not only the very last one.
 template <typename Localized>
 bool MostOfTheLastUpdatesLocalized(const std::vector<DelibotRow>& rows, const Localized& localized) {
-  int seen = 0, passed = 0;
-  for (auto it = rows.rbegin(); it != rows.rend() && seen < kSustainRecords; ++it) {
-    if (!it->sensor_updated) continue;
-    ++seen;
-    passed += localized(*it) ? 1 : 0;
-  }
-  return seen > 0 && 2 * passed > seen;
+  const std::vector<const DelibotRow*> last = LastUpdates(rows);
+  int passed = 0;
+  for (const DelibotRow* r : last) passed += localized(*r) ? 1 : 0;
+  return !last.empty() && 2 * passed > static_cast<int>(last.size());
 }
 
 DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSettings& s) {
@@ -107,6 +112,17 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.median_consistency = Median(cons);
     sum.fraction_consistent = cons.empty() ? 0.0 : static_cast<double>(consistent) / cons.size();
     sum.converged = gt ? localized(rows.back()) : MostOfTheLastUpdatesLocalized(rows, localized);
+  }
+  {
+    std::vector<double> mode, cons;
+    for (const DelibotRow* r : LastUpdates(rows)) {
+      mode.push_back(r->mode_weight);
+      cons.push_back(r->consistency);
+    }
+    if (!mode.empty()) {
+      sum.end_mode_weight = Median(mode);
+      sum.end_consistency = Median(cons);
+    }
   }
   if (gt && !rows.empty()) {
     sum.final_err_xy_m = rows.back().err_xy_m;

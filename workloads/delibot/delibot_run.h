@@ -93,6 +93,13 @@ struct DelibotSummary {
   // 10 consecutive records; without: mode weight above its threshold likewise.
   long convergence_iteration = -1;
   bool converged = false;        // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
+  // Medians over the last 10 sensor updates, which the ground-truth-free
+  // verdict at the end rests on: a low mode weight means the belief is
+  // split; a high one with low consistency means the scans disagree with
+  // the map there (a wrong pose, or a map that is wrong where the robot
+  // is; without ground truth the two cannot be told apart). -1 if none.
+  double end_mode_weight = -1.0;
+  double end_consistency = -1.0;
   double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
   double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
   double median_consistency = 0.0;       // after convergence

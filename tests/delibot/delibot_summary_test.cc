@@ -1,0 +1,67 @@
+// The run summary's ground-truth-free verdicts, on hand-made timelines: when
+// a run counts as converged, whether it still is at the end, and the
+// last-updates medians that say why not (a split belief, or scans that
+// disagree with the map).
+#include <gtest/gtest.h>
+
+#include "workloads/delibot/delibot_run.h"
+
+namespace rc {
+namespace {
+
+DelibotRow Row(long iteration, bool sensor_updated, double mode_weight, double consistency) {
+  DelibotRow r;
+  r.iteration = iteration;
+  r.sensor_updated = sensor_updated;
+  r.mode_weight = mode_weight;
+  r.consistency = consistency;
+  return r;
+}
+
+// 20 good sensor updates, then `tail` as given.
+std::vector<DelibotRow> GoodThen(const std::vector<std::pair<double, double>>& tail) {
+  std::vector<DelibotRow> rows;
+  for (long k = 0; k < 20; ++k) rows.push_back(Row(k, true, 0.95, 0.9));
+  for (const auto& [mode, cons] : tail) rows.push_back(Row(static_cast<long>(rows.size()), true, mode, cons));
+  return rows;
+}
+
+TEST(DelibotSummaryTest, EndMediansSayWhyTheEndIsNotConfirmed) {
+  const DelibotSettings s;
+  // Scans disagree with the map at the end: confident, inconsistent.
+  const DelibotSummary map_disagrees =
+      SummarizeDelibot(GoodThen(std::vector<std::pair<double, double>>(10, {1.0, 0.4})), s);
+  EXPECT_EQ(map_disagrees.convergence_iteration, 0);
+  EXPECT_FALSE(map_disagrees.converged);
+  EXPECT_DOUBLE_EQ(map_disagrees.end_mode_weight, 1.0);
+  EXPECT_DOUBLE_EQ(map_disagrees.end_consistency, 0.4);
+  // A split belief: consistent at the mode, but the mode holds half the weight.
+  const DelibotSummary split = SummarizeDelibot(GoodThen(std::vector<std::pair<double, double>>(10, {0.5, 0.9})), s);
+  EXPECT_FALSE(split.converged);
+  EXPECT_DOUBLE_EQ(split.end_mode_weight, 0.5);
+  EXPECT_DOUBLE_EQ(split.end_consistency, 0.9);
+  // Four bad updates among the last ten: most pass, still localized; the
+  // medians come from the last ten sensor updates only.
+  std::vector<std::pair<double, double>> mixed(6, {0.9, 0.8});
+  for (int k = 0; k < 4; ++k) mixed.push_back({0.9, 0.1});
+  const DelibotSummary mostly = SummarizeDelibot(GoodThen(mixed), s);
+  EXPECT_TRUE(mostly.converged);
+  EXPECT_DOUBLE_EQ(mostly.end_consistency, 0.8);
+}
+
+TEST(DelibotSummaryTest, RecordsWithoutASensorUpdateAreNotEvidence) {
+  const DelibotSettings s;
+  // A robot standing still: 30 records, one sensor update. It has not
+  // converged (10 updates needed), and the end medians come from that one.
+  std::vector<DelibotRow> rows;
+  for (long k = 0; k < 30; ++k) rows.push_back(Row(k, k == 0, 1.0, 0.95));
+  const DelibotSummary still = SummarizeDelibot(rows, s);
+  EXPECT_EQ(still.convergence_iteration, -1);
+  EXPECT_DOUBLE_EQ(still.end_mode_weight, 1.0);
+  // No sensor update at all: no end medians.
+  for (auto& r : rows) r.sensor_updated = false;
+  EXPECT_DOUBLE_EQ(SummarizeDelibot(rows, s).end_consistency, -1.0);
+}
+
+}  // namespace
+}  // namespace rc
