@@ -7,7 +7,8 @@
 //
 // What is pinned, and why:
 // - Tracking from the reference start with the default beam model (recovery
-//   off) stays within 1 m of the reference at every checkpoint.
+//   off) stays within 1 m of the reference at every checkpoint of
+//   robotdata1, 2 and 4 (on robotdata3 it drifts to about 1 m; README).
 // - Global localization with the real-log recipe (likelihood field, 500,000
 //   initial particles, no random injection) is within 1 m of the reference
 //   at every checkpoint of the second half of robotdata2, 3 and 4, with
@@ -107,7 +108,7 @@ TEST_P(RealLogTracking, BeamModelFollowsTheScanMatchingReference) {
     EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
 }
 
-INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking, ::testing::Values(kRobotdata1, kRobotdata4), PrintName);
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking, ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata4), PrintName);
 
 DelibotSettings RealLogRecipe() {
   DelibotSettings s;
