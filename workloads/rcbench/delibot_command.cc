@@ -164,7 +164,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth_path,
                   "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
-  cmd->add_option("--particles", s.mcl.particle_count, "Number of particles [1, 1e7]")->capture_default_str();
+  cmd->add_option("--particles", s.mcl.particle_count, "Number of particles (count, 1 to 1e7)")->capture_default_str();
   cmd->add_option("--initial-particles", s.mcl.initial_particle_count,
                   "Global localization: uniform particles before the first sensor update, which resamples "
                   "them down to --particles (0 = --particles; count)")
@@ -176,7 +176,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--sensor-model", cli->sensor_model, "beam (ray casting) | likelihood (likelihood field)")
       ->capture_default_str();
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
-  cmd->add_option("--max-records", s.max_records, "Process at most N laser records (0 = all)")->capture_default_str();
+  cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")->capture_default_str();
   cmd->add_option("--max-range", s.beam.max_range_m, "Model max range (m); readings at or beyond are 'no return'")
       ->capture_default_str();
   cmd->add_option("--sigma-hit", s.beam.sigma_hit_m, "Beam model hit sigma (m)")->capture_default_str();
@@ -213,9 +213,9 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (0, 1]")
       ->capture_default_str();
-  cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (0 = no recovery)")
+  cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
-  cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate")->capture_default_str();
+  cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate (1/sensor update)")->capture_default_str();
   cmd->add_option("--injection-check", s.mcl.injection_check_updates,
                   "A random particle is injected only if it explains the scans of the last N sensor updates "
                   "(replayed through the odometry) better than the particle it would replace (updates; 0 = augmented MCL as "
