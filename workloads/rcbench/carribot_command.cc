@@ -284,23 +284,23 @@ void AddCarribotCommand(CLI::App& app) {
                   "scenarios or one start/goal pair");
   cmd->add_option("--map", cli->map_path, "Map file: MovingAI .map, or any format rcbench reads")->required();
   cmd->add_option("--scen", cli->scen_path, "MovingAI scenario file (.scen); plans every scenario unless --scenario");
-  cmd->add_option("--scenario", cli->scenario, "Plan only scenario I of --scen (0-based, in file order)")
+  cmd->add_option("--scenario", cli->scenario, "Plan only scenario I of --scen (index, 0-based, in file order); default: every scenario")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--start", cli->start, "Start cell X,Y (column, row of the map)")->expected(2)->delimiter(',');
-  cmd->add_option("--goal", cli->goal, "Goal cell X,Y (column, row of the map)")->expected(2)->delimiter(',');
-  cmd->add_option("--weight", cli->weight, "Heuristic weight (>= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
+  cmd->add_option("--start", cli->start, "Start cell X,Y (cells: column, row of the map)")->expected(2)->delimiter(',');
+  cmd->add_option("--goal", cli->goal, "Goal cell X,Y (cells: column, row of the map)")->expected(2)->delimiter(',');
+  cmd->add_option("--weight", cli->weight, "Heuristic weight (unitless, >= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
       ->capture_default_str();
   auto* footprint = cmd->add_option("--footprint", cli->footprint,
                                     "Rectangular robot WIDTHxLENGTH (m, across x along the heading), e.g. 0.4x0.8; "
                                     "default: a point robot");
-  cmd->add_option("--headings", cli->headings, "Heading count of a footprint robot: 8 or 16")
+  cmd->add_option("--headings", cli->headings, "Heading count of a footprint robot (count: 8 or 16)")
       ->check(CLI::IsMember({8, 16}))
       ->needs(footprint)
       ->capture_default_str();
-  cmd->add_option("--start-heading", cli->start_heading, "Start heading index (angle 2*pi*k/headings from +x); "
+  cmd->add_option("--start-heading", cli->start_heading, "Start heading (index k: angle 2*pi*k/headings from +x); "
                                                          "default: any collision-free heading")
       ->needs(footprint);
-  cmd->add_option("--goal-heading", cli->goal_heading, "Goal heading index; default: any")->needs(footprint);
+  cmd->add_option("--goal-heading", cli->goal_heading, "Goal heading (index k); default: any")->needs(footprint);
   cmd->add_option("--collision-mode", cli->collision_mode,
                   "precomputed (configuration space: one query per cell and heading, in launches of up to 65536, "
                   "built once and shared by every query) | per-expansion (one launch per A* expansion: its "
@@ -329,13 +329,13 @@ void AddCarribotCommand(CLI::App& app) {
   cmd->add_option("--backend-params", cli->backend_params_path,
                   "JSON file overriding backend cost parameters (see rcbench backends)");
   cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price kernel launches on the modelled backends");
-  cmd->add_option("--max-expansions", cli->max_expansions, "Stop a query after N expansions (0 = no limit)")
+  cmd->add_option("--max-expansions", cli->max_expansions, "Stop a query after N expansions (count; 0 = no limit)")
       ->capture_default_str();
   cmd->add_option("--resolution,--map-resolution", cli->resolution_m,
                   "Cell size (m) for MovingAI maps (default 1) and images")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--map-scale", cli->map_scale,
-                  "Split every cell into NxN cells (RoWild's --scale-map); start and goal cells are multiplied by N")
+                  "Split every cell into NxN cells (count N; RoWild's --scale-map); start and goal cells are multiplied by N")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   cmd->add_option("--timeline", cli->timeline_path, "Write one CSV row per query here");

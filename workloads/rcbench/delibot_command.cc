@@ -159,7 +159,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--map-convention", cli->map_convention,
                   "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
                   "('occupied')");
-  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size for MovingAI maps, images and grids built from an MRPT .simplemap (m)");
+  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap");
   cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth_path,
@@ -167,9 +167,9 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--particles", s.mcl.particle_count, "Number of particles (count, 1 to 1e7)")->capture_default_str();
   cmd->add_option("--initial-particles", s.mcl.initial_particle_count,
                   "Global localization: uniform particles before the first sensor update, which resamples "
-                  "them down to --particles (0 = --particles; count)")
+                  "them down to --particles (count; 0 = --particles)")
       ->capture_default_str();
-  cmd->add_option("--beam-step", s.mcl.beams.beam_step, "Use every K-th beam (K >= 1; 6 of 180 gives 30 beams)")
+  cmd->add_option("--beam-step", s.mcl.beams.beam_step, "Use every K-th beam (count, K >= 1; 6 of 180 gives 30 beams)")
       ->capture_default_str();
   cmd->add_option("--raycaster", cli->ray_caster, "march (fixed 1-cell step) | dda (exact) | rm (distance field)")
       ->capture_default_str();
@@ -211,7 +211,7 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--update-min-a", s.mcl.update_min_a_rad, "Sensor update after this much rotation (rad)")
       ->capture_default_str();
-  cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (0, 1]")
+  cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (unitless fraction in (0, 1])")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
@@ -227,7 +227,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--initial-sigma-xy", s.initial_sigma_xy_m, "Tracking start spread (m)")->capture_default_str();
   cmd->add_option("--initial-sigma-theta", s.initial_sigma_theta_rad, "Tracking start spread (rad)")
       ->capture_default_str();
-  cmd->add_option("--threads", cli->threads, "Worker threads (0 = all cores); results do not depend on it")
+  cmd->add_option("--threads", cli->threads, "Worker threads (count; 0 = all cores); results do not depend on it")
       ->capture_default_str();
   cmd->add_option("--timeline", cli->timeline_path, "Write the per-record timeline CSV here");
   cmd->add_option("--summary", cli->summary_path, "Write the run summary JSON here");

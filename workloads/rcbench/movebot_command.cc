@@ -189,9 +189,9 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--goal", cli->goal, "Goal q1,...,q5 (rad); default RoWild's 0,1.04719755,-1.30899694,-1.30899694,0")
       ->expected(kArmJoints)
       ->delimiter(',');
-  cmd->add_option("--iterations", cli->iterations, "RRTstar iterations (default 5000 when --time is not given)");
+  cmd->add_option("--iterations", cli->iterations, "RRTstar iterations (count; default 5000 when --time is not given)");
   cmd->add_option("--time", cli->time_s, "Planning time budget (s), instead of --iterations (not repeatable)");
-  cmd->add_option("--batch", s.batch_iterations, "Iterations per timeline row")->capture_default_str();
+  cmd->add_option("--batch", s.batch_iterations, "Iterations per timeline row (count)")->capture_default_str();
   cmd->add_option("--resolution", s.motion_resolution_rad,
                   "Edge check spacing (rad, joint-space distance between checked configurations)")
       ->capture_default_str();
@@ -200,7 +200,7 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--range", s.range_rad, "RRTstar's range (rad); 0: OMPL's default (0.2 x the space's extent)")
       ->capture_default_str();
   cmd->add_option("--goal-bias", s.goal_bias, "RRTstar's goal bias (probability)")->capture_default_str();
-  cmd->add_option("--seed", s.seed, "Random seed (>= 1; OMPL ignores 0)")->check(CLI::Range(1u, 4294967295u))
+  cmd->add_option("--seed", s.seed, "Random seed (unitless, >= 1; OMPL ignores 0)")->check(CLI::Range(1u, 4294967295u))
       ->capture_default_str();
   cmd->add_option("--nn", cli->nn, "Nearest-neighbour structure: gnat (OMPL's default) | p-ray | p-sphere")
       ->check(CLI::IsMember({"gnat", "p-ray", "p-sphere"}))

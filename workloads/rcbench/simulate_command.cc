@@ -27,22 +27,22 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--map", cli->map_path, "Map file (any format rcbench reads); default: the generated office map");
   cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'");
-  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size for MovingAI maps and images (m)");
+  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1) and images (required)");
   cmd->add_option("--output", cli->output, "Trace path (CMU robotdata format)")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth, "Ground-truth path (default: the trace path with .gt)");
-  cmd->add_option("--seed", o.seed, "Random seed for route, noise, people and kidnap")->capture_default_str();
-  cmd->add_option("--records", o.record_count, "Number of laser records")->capture_default_str();
-  cmd->add_option("--waypoints", o.waypoint_count, "Random route waypoints")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Random seed for route, noise, people and kidnap (unitless)")->capture_default_str();
+  cmd->add_option("--records", o.record_count, "Number of laser records (count)")->capture_default_str();
+  cmd->add_option("--waypoints", o.waypoint_count, "Random route waypoints (count)")->capture_default_str();
   cmd->add_option("--robot-radius", o.robot_radius_m, "Disc robot radius (m)")->capture_default_str();
   cmd->add_option("--speed", o.speed_mps, "Driving speed (m/s)")->capture_default_str();
   cmd->add_option("--turn-rate", o.turn_rate_radps, "In-place turn rate (rad/s)")->capture_default_str();
   cmd->add_option("--laser-rate", o.laser_rate_hz, "Laser records per second (Hz)")->capture_default_str();
   cmd->add_option("--range-sigma", o.range_sigma_m, "Gaussian range noise (m)")->capture_default_str();
-  cmd->add_option("--short-probability", o.short_reading_probability, "Per-beam unmodelled short reading probability")
+  cmd->add_option("--short-probability", o.short_reading_probability, "Per-beam unmodelled short reading (probability)")
       ->capture_default_str();
-  cmd->add_option("--dropout-probability", o.max_range_dropout_probability, "Per-beam max-range dropout probability")
+  cmd->add_option("--dropout-probability", o.max_range_dropout_probability, "Per-beam max-range dropout (probability)")
       ->capture_default_str();
-  cmd->add_option("--people", o.people_count, "Moving people discs that the laser sees")->capture_default_str();
+  cmd->add_option("--people", o.people_count, "Moving people discs that the laser sees (count)")->capture_default_str();
   cmd->add_option("--people-radius", o.people_radius_m, "People disc radius (m)")->capture_default_str();
   cmd->add_option("--people-speed", o.people_speed_mps, "People walking speed (m/s)")->capture_default_str();
   cmd->add_option("--odometry-translation-sigma", o.odometry_translation_sigma,
@@ -55,7 +55,7 @@ void AddSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--heading-drift", o.odometry_heading_drift_rad_per_m, "Odometry heading drift (rad/m)")
       ->capture_default_str();
-  cmd->add_option("--kidnap-record", o.kidnap_record, "Teleport the robot at this record (-1 = never)")
+  cmd->add_option("--kidnap-record", o.kidnap_record, "Teleport the robot at this record (record index; -1 = never)")
       ->capture_default_str();
   cmd->add_flag("--no-noise", cli->no_noise, "Turn every noise source off (a kidnap stays)");
   cmd->callback([cli] {
