@@ -47,8 +47,7 @@ std::vector<const DelibotRow*> LastUpdates(const std::vector<DelibotRow>& rows) 
 // the robot, a doorway), so "still localized at the end" asks that most of
 // the last kSustainRecords sensor updates pass, not only the very last one.
 template <typename Localized>
-bool MostOfTheLastUpdatesLocalized(const std::vector<DelibotRow>& rows, const Localized& localized) {
-  const std::vector<const DelibotRow*> last = LastUpdates(rows);
+bool MostLocalized(const std::vector<const DelibotRow*>& last, const Localized& localized) {
   int passed = 0;
   for (const DelibotRow* r : last) passed += localized(*r) ? 1 : 0;
   return !last.empty() && 2 * passed > static_cast<int>(last.size());
@@ -67,6 +66,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.injection_rejected += r.injection_rejected;
   }
   const bool gt = !rows.empty() && rows.front().has_ground_truth;
+  const std::vector<const DelibotRow*> last_updates = LastUpdates(rows);
   auto localized = [&](const DelibotRow& r) {
     return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad)
               : r.mode_weight >= s.converged_mode_weight && r.consistency >= s.converged_consistency;
@@ -111,11 +111,11 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.median_err_theta_rad = Median(eth);
     sum.median_consistency = Median(cons);
     sum.fraction_consistent = cons.empty() ? 0.0 : static_cast<double>(consistent) / cons.size();
-    sum.converged = gt ? localized(rows.back()) : MostOfTheLastUpdatesLocalized(rows, localized);
+    sum.converged = gt ? localized(rows.back()) : MostLocalized(last_updates, localized);
   }
   {
     std::vector<double> mode, cons;
-    for (const DelibotRow* r : LastUpdates(rows)) {
+    for (const DelibotRow* r : last_updates) {
       mode.push_back(r->mode_weight);
       cons.push_back(r->consistency);
     }
