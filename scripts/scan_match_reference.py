@@ -654,7 +654,7 @@ def main():
     ap.add_argument("--max-range", type=float, default=8.0, help="ignore ranges beyond this (m)")
     ap.add_argument("--decimate", type=int, default=1, help="use every K-th record's scan in a window (count)")
     ap.add_argument("--hypotheses", type=int, default=8,
-                    help="distinct starts chained through the whole log; the best mean window score wins (count)")
+                    help="distinct starts chained through the whole log; the best whole-log mean objective wins (count)")
     ap.add_argument("--refine-top", type=int, default=20, help="global peaks refined continuously (count)")
     ap.add_argument("--prior-weight", type=float, default=0.01,
                     help="odometry prior: score units lost per squared sigma of deviation from the prediction "
