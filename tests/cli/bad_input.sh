@@ -51,6 +51,8 @@ expect bad-resolution 1 "resolution" -- delibot --map badres.yaml --trace good.l
 expect truncated-map 1 "truncated.dat:6" -- delibot --map truncated.dat --trace good.log
 expect bad-option 2 "particles" -- delibot --particles 0
 expect map-without-trace 2 "--trace" -- delibot --map map.yaml
+expect unknown-lf-combine 2 "--lf-combine" -- delibot --map map.yaml --trace good.log --lf-combine cube
+expect injection-check-out-of-range 2 "injection check" -- delibot --map map.yaml --trace good.log --injection-check 5000
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
