@@ -53,6 +53,8 @@ expect bad-option 2 "particles" -- delibot --particles 0
 expect map-without-trace 2 "--trace" -- delibot --map map.yaml
 expect unknown-lf-combine 2 "--lf-combine" -- delibot --map map.yaml --trace good.log --lf-combine cube
 expect injection-check-out-of-range 2 "injection check" -- delibot --map map.yaml --trace good.log --injection-check 5000
+expect hypothesis-floor-out-of-range 2 "hypothesis floor" -- delibot --map map.yaml --trace good.log --hypothesis-floor 5000
+expect hypothesis-window-negative 2 "hypothesis window" -- delibot --map map.yaml --trace good.log --hypothesis-floor 20 --hypothesis-window -1
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -8,7 +8,7 @@ rcbench="$1"
 status=0
 # A unit in parentheses: SI or derived units, counts, ratios, or the
 # domain-specific units the suite uses (nodes per ray, core cycles).
-unit='\((count|count N|unitless|unitless fraction|fraction|probability|index|index k|record index|cells|m|s|rad|rad/m|J|m/s|rad/s|1/m|1/sensor update|rad\^2/rad\^2|rad\^2/m\^2|m\^2/m\^2|m\^2/rad\^2|updates|nodes per ray|nodes per query|tree nodes per kernel query|core cycles|cycles|m, m, rad|deg|Hz)[;,): ]'
+unit='\((count|count N|unitless|unitless fraction|fraction|probability|index|index k|record index|cells|m|s|rad|rad/m|J|m/s|rad/s|1/m|1/sensor update|rad\^2/rad\^2|rad\^2/m\^2|m\^2/m\^2|m\^2/rad\^2|updates|nodes per ray|nodes per query|tree nodes per kernel query|core cycles|cycles|m, m, rad|deg|Hz|nats)[;,): ]'
 subcommands=$("$rcbench" --help | awk '/^Subcommands:/{on=1; next} on && /^  [a-z]/{print $1}')
 [ -n "$subcommands" ] || { echo "no subcommands found in 'rcbench --help'"; exit 1; }
 for sub in $subcommands; do

@@ -281,8 +281,11 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
   s.mcl.beams.beam_step = 10;
   s.mcl.seed = 42;
   s.max_records = 40;
-  for (auto caster : {RayCastMethod::kMarch, RayCastMethod::kRayMarching}) {
-    s.ray_caster = caster;
+  // The second march run also keeps hypotheses at a floor: the clustering
+  // and the per-cluster passes must not depend on the thread count either.
+  for (int run_index = 0; run_index < 3; ++run_index) {
+    s.ray_caster = run_index == 1 ? RayCastMethod::kRayMarching : RayCastMethod::kMarch;
+    s.mcl.hypothesis_floor.min_particles = run_index == 2 ? 20 : 0;
     omp_set_num_threads(1);
     const DelibotResult one = RunDelibot(g, run.trace, &run.truth, s);
     omp_set_num_threads(2);
@@ -295,7 +298,11 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
       EXPECT_EQ(one.rows[i].ess, two.rows[i].ess) << i;
       EXPECT_EQ(one.rows[i].nodes, two.rows[i].nodes) << i;
       EXPECT_EQ(one.rows[i].injected, two.rows[i].injected) << i;
+      EXPECT_EQ(one.rows[i].hypotheses_floored, two.rows[i].hypotheses_floored) << i;
     }
+    long floored = 0;
+    for (const DelibotRow& row : one.rows) floored += row.hypotheses_floored;
+    EXPECT_EQ(floored > 0, run_index == 2) << "the floored run must hold some hypothesis at the floor";
   }
 }
 

@@ -24,7 +24,8 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
-                                      "sensor_updated", "resampled", "injected", "injection_rejected",
+                                      "sensor_updated", "log_likelihood_mean", "resampled", "injected",
+                                      "injection_rejected", "hypotheses_floored",
                                       "spread_m", "mode_weight", "consistency"};
   if (gt) {
     columns.push_back("err_xy_m");
@@ -55,9 +56,11 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   MaybeNumber(result.work_counted && r.rays > 0, r.NodesPerRay()),
                                   r.wall_s * 1e3,
                                   static_cast<int>(r.sensor_updated),
+                                  MaybeNumber(std::isfinite(r.log_mean_likelihood), r.log_mean_likelihood),
                                   static_cast<int>(r.resampled),
                                   r.injected,
                                   r.injection_rejected,
+                                  r.hypotheses_floored,
                                   r.spread_m,
                                   r.mode_weight,
                                   r.consistency};
@@ -123,6 +126,9 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
        {{"alpha1", s.mcl.motion.alpha1}, {"alpha2", s.mcl.motion.alpha2}, {"alpha3", s.mcl.motion.alpha3},
         {"alpha4", s.mcl.motion.alpha4}}},
       {"resample_ess_fraction", s.mcl.resample_ess_fraction},
+      {"hypothesis_floor_particles", s.mcl.hypothesis_floor.min_particles},
+      {"hypothesis_window_nats", s.mcl.hypothesis_floor.window_nats},
+      {"hypothesis_heading_bins", s.mcl.hypothesis_heading_bins},
       {"recovery_alpha_slow", s.mcl.alpha_slow},
       {"recovery_alpha_fast", s.mcl.alpha_fast},
       {"injection_check_updates", s.mcl.injection_check_updates},

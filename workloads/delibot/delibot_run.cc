@@ -218,9 +218,11 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     row.estimate = estimate.pose;
     row.ess = step.ess;
     row.sensor_updated = step.sensor_updated;
+    if (step.sensor_updated) row.log_mean_likelihood = step.log_mean_likelihood;
     row.resampled = step.resampled;
     row.injected = step.injected;
     row.injection_rejected = step.injection_rejected;
+    row.hypotheses_floored = step.floored_hypotheses;
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

@@ -3,6 +3,7 @@
 // one timeline row per laser record, plus accuracy statistics.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,9 +67,16 @@ struct DelibotRow {
   std::uint64_t nodes = 0;       // the same queries' node fetches
   double wall_s = 0.0;           // host time of the filter update
   bool sensor_updated = false;
+  // The update's evidence: log of the weighted mean scan likelihood (nats),
+  // the normalizer of Bayes' rule, which augmented MCL's averages also
+  // track. Summed over updates it compares hypotheses: the difference of two
+  // tracking runs' sums is their log Bayes factor. NaN without a sensor update
+  // or for an engine that does not report it.
+  double log_mean_likelihood = std::numeric_limits<double>::quiet_NaN();
   bool resampled = false;
   int injected = 0;
   int injection_rejected = 0;    // random poses refused by the injection check
+  int hypotheses_floored = 0;    // clusters the resampling held at the hypothesis floor
   double spread_m = 0.0;
   double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate

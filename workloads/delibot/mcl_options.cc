@@ -20,6 +20,12 @@ bool MclOptions::IsValid(std::string* error) const {
     return fail("alpha_fast must exceed alpha_slow for recovery to mean anything");
   if (injection_check_updates < 0 || injection_check_updates > 1000)
     return fail("injection check window must be in [0, 1000] sensor updates");
+  if (hypothesis_floor.min_particles < 0 || hypothesis_floor.min_particles > particle_count / 2)
+    return fail("hypothesis floor must be in [0, particles / 2] particles");
+  if (!(hypothesis_floor.window_nats >= 0.0 && hypothesis_floor.window_nats <= 1e4))
+    return fail("hypothesis window must be in [0, 10^4] nats");
+  if (hypothesis_heading_bins < 1 || hypothesis_heading_bins > 360)
+    return fail("hypothesis heading bins must be in [1, 360]");
   if (!(update_min_d_m >= 0.0 && update_min_a_rad >= 0.0)) return fail("update thresholds must be >= 0");
   if (!(estimate_kernel_radius_m > 0.0)) return fail("estimate kernel radius must be > 0 m");
   const auto& m = motion;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "workloads/delibot/motion_model.h"
+#include "workloads/delibot/resampling.h"
 #include "workloads/delibot/sensor_model.h"
 
 namespace rc {
@@ -31,6 +32,16 @@ struct MclOptions {
   // pose; MRPT's likelihood-field filter drifts into Wean's walls that way.
   bool reject_poses_in_obstacles = true;
   double resample_ess_fraction = 0.5; // resample when ESS < fraction * N; (0, 1]
+  // Hypothesis-preserving resampling (resampling.h): a cluster of particles
+  // (clusters: hypothesis_clusters.h, bins of estimate_kernel_radius_m and
+  // 30 deg) whose posterior mass is within window_nats of the heaviest keeps
+  // at least min_particles particles, weighted so the belief is unchanged.
+  // min_particles 0 = plain systematic resampling (the default). The window
+  // is 100 nats because on the Wean logs the true track trails a look-alike
+  // door by up to 85 nats (robotdata2, likelihood field) before the scans
+  // decide for it by thousands (README, "DeliBot on the real Wean logs").
+  HypothesisFloor hypothesis_floor{0, 100.0};  // [0, particle_count / 2] particles, [0, 10^4] nats
+  int hypothesis_heading_bins = 12;          // 30 deg heading bins; [1, 360]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
   // injected when the short-term average likelihood falls below the
   // long-term one. alpha_slow < alpha_fast; both 0 disables injection.

@@ -155,9 +155,29 @@ void MonteCarloLocalizer::RejectPosesInObstacles(std::vector<double>& log_likeli
 }
 
 void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& result) {
-  RandomStream pointer_stream(options_.seed, StreamPurpose::kResample, iteration, 0);
-  const std::vector<std::size_t> ancestors = SystematicResample(
-      log_weights_, pointer_stream.Uniform(), static_cast<std::size_t>(options_.particle_count));
+  const auto slots = static_cast<std::size_t>(options_.particle_count);
+  auto pass_offset = [&](std::size_t pass) {
+    return RandomStream(options_.seed, StreamPurpose::kResample, iteration, pass).Uniform();
+  };
+  // The dense first set is cut down by plain systematic resampling: spread
+  // uniformly over the map it is one connected cluster, and its point is to
+  // let the scan pick the few places worth keeping.
+  const bool floor_hypotheses =
+      options_.hypothesis_floor.min_particles > 0 && particles_.size() == slots;
+  std::vector<std::size_t> ancestors;
+  std::vector<double> next_log_weights;
+  if (floor_hypotheses) {
+    const HypothesisClusters clusters = ClusterHypotheses(
+        particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
+    WeightedResample resampled =
+        HypothesisPreservingResample(log_weights_, clusters, slots, options_.hypothesis_floor, pass_offset);
+    ancestors = std::move(resampled.ancestors);
+    next_log_weights = std::move(resampled.log_weights);
+    result.floored_hypotheses = resampled.floored_clusters;
+  } else {
+    ancestors = SystematicResample(log_weights_, pass_offset(0), slots);
+    next_log_weights.assign(slots, -std::log(static_cast<double>(slots)));
+  }
   std::vector<Pose2> next(ancestors.size());
   // Draw the random poses first (each slot keeps its own stream, so the
   // draws do not depend on the check), then admit those that pass it.
@@ -196,7 +216,8 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& resul
     ++injected;
   }
   particles_.swap(next);
-  log_weights_.assign(particles_.size(), -std::log(static_cast<double>(particles_.size())));
+  // An injected particle takes the weight of the slot it replaces.
+  log_weights_.swap(next_log_weights);
   result.resampled = true;
   result.injected = injected;
   // AMCL resets both averages after an injection; then a kidnap injects

@@ -21,6 +21,7 @@ struct MclStepResult {
   bool resampled = false;
   int injected = 0;              // particles replaced by random free-space poses
   int injection_rejected = 0;    // random poses drawn but refused by the injection check
+  int floored_hypotheses = 0;    // clusters kept alive at the hypothesis floor by this resampling
   double ess = 0.0;              // effective sample size after the update, before resampling
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
   double injection_probability = 0.0;

@@ -1,6 +1,8 @@
 #include "workloads/delibot/resampling.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/log_domain.h"
 
@@ -36,6 +38,107 @@ std::vector<std::size_t> SystematicResample(const std::vector<double>& normalize
     pointer += step;
   }
   return ancestors;
+}
+
+}  // namespace rc
+
+namespace rc {
+namespace {
+
+// Systematic pass over `members` (indices into log_weights, in this order),
+// whose weights sum to exp(log_mass), writing `slots` ancestors.
+void SystematicOver(const std::vector<double>& log_weights, const std::vector<std::size_t>& members,
+                    double log_mass, std::size_t slots, double u01, std::vector<std::size_t>& out) {
+  std::vector<double> local(members.size());
+  for (std::size_t k = 0; k < members.size(); ++k) local[k] = log_weights[members[k]] - log_mass;
+  for (std::size_t k : SystematicResample(local, u01, slots)) out.push_back(members[k]);
+}
+
+}  // namespace
+
+WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
+                                              const HypothesisClusters& clusters, std::size_t output_count,
+                                              const HypothesisFloor& floor,
+                                              const std::function<double(std::size_t)>& u01) {
+  const std::size_t n = normalized_log_weights.size();
+  const std::size_t slots = output_count > 0 ? output_count : n;
+  WeightedResample out;
+  if (n == 0) return out;
+  const auto k_count = static_cast<std::size_t>(clusters.count);
+  std::vector<std::vector<std::size_t>> members(k_count);
+  for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(clusters.cluster_of[i])].push_back(i);
+  std::vector<double> log_mass(k_count);
+  for (std::size_t c = 0; c < k_count; ++c) {
+    std::vector<double> lw;
+    lw.reserve(members[c].size());
+    for (std::size_t i : members[c]) lw.push_back(normalized_log_weights[i]);
+    log_mass[c] = LogSumExp(lw);
+  }
+  // Eligible clusters, heaviest first (ties: lower index first).
+  const double heaviest = *std::max_element(log_mass.begin(), log_mass.end());
+  std::vector<std::size_t> eligible;
+  if (floor.min_particles > 0)
+    for (std::size_t c = 0; c < k_count; ++c)
+      if (std::isfinite(log_mass[c]) && log_mass[c] >= heaviest - floor.window_nats) eligible.push_back(c);
+  std::stable_sort(eligible.begin(), eligible.end(),
+                   [&](std::size_t a, std::size_t b) { return log_mass[a] > log_mass[b]; });
+  // Floor the clusters whose proportional share of the shared slots is
+  // below min_particles. Flooring one shrinks the others' shares, so repeat
+  // until no share falls below the floor or half the slots are floored.
+  const auto m = static_cast<std::size_t>(std::max(0, floor.min_particles));
+  const std::size_t max_floored = m > 0 ? slots / (2 * m) : 0;
+  std::vector<bool> floored(k_count, false);
+  std::vector<std::size_t> floored_order;
+  double free_mass = 1.0;
+  for (bool changed = true; changed && floored_order.size() < max_floored;) {
+    changed = false;
+    for (std::size_t c : eligible) {
+      if (floored[c] || floored_order.size() >= max_floored) continue;
+      const double shared_slots = static_cast<double>(slots - floored_order.size() * m);
+      if (shared_slots * std::exp(log_mass[c]) / free_mass < static_cast<double>(m)) {
+        floored[c] = true;
+        floored_order.push_back(c);
+        free_mass -= std::exp(log_mass[c]);
+        changed = true;
+      }
+    }
+  }
+  out.floored_clusters = static_cast<int>(floored_order.size());
+  if (floored_order.empty()) {
+    out.ancestors = SystematicResample(normalized_log_weights, u01(0), slots);
+    out.log_weights.assign(slots, -std::log(static_cast<double>(slots)));
+    return out;
+  }
+  // The shared pass walks the other clusters one after another, so each of
+  // them gets the floor or the ceiling of its share.
+  std::vector<std::size_t> shared;
+  for (std::size_t c = 0; c < k_count; ++c)
+    if (!floored[c]) shared.insert(shared.end(), members[c].begin(), members[c].end());
+  const std::size_t shared_slots = slots - floored_order.size() * m;
+  out.ancestors.reserve(slots);
+  out.log_weights.reserve(slots);
+  double log_free_mass = 0.0;
+  if (!shared.empty()) {
+    std::vector<double> lw;
+    lw.reserve(shared.size());
+    for (std::size_t i : shared) lw.push_back(normalized_log_weights[i]);
+    log_free_mass = LogSumExp(lw);
+  }
+  // A cluster is floored only while its share is below min_particles, and
+  // the last cluster with mass outside the floor has all the shared slots
+  // (at least half of them), so some mass is always left to share.
+  if (shared.empty() || !std::isfinite(log_free_mass))
+    throw std::logic_error("hypothesis floor left no mass for the shared slots");
+  SystematicOver(normalized_log_weights, shared, log_free_mass, shared_slots, u01(0), out.ancestors);
+  out.log_weights.assign(shared_slots, log_free_mass - std::log(static_cast<double>(shared_slots)));
+  for (std::size_t k = 0; k < floored_order.size(); ++k) {
+    const std::size_t c = floored_order[k];
+    SystematicOver(normalized_log_weights, members[c], log_mass[c], m, u01(k + 1), out.ancestors);
+    out.log_weights.insert(out.log_weights.end(), m, log_mass[c] - std::log(static_cast<double>(m)));
+  }
+  // Rounding: renormalize so the weights sum to exactly 1 in the log domain.
+  NormalizeLogWeights(out.log_weights);
+  return out;
 }
 
 }  // namespace rc

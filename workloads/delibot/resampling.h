@@ -3,7 +3,10 @@
 // effective sample size falls below a fraction of the particle count (MRPT
 // and AMCL practice; 0.5 by default).
 #include <cstddef>
+#include <functional>
 #include <vector>
+
+#include "workloads/delibot/hypothesis_clusters.h"
 
 namespace rc {
 
@@ -20,5 +23,35 @@ double EffectiveSampleSize(const std::vector<double>& normalized_log_weights);
 // global localization is reduced to the working size this way).
 std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights,
                                             double u01, std::size_t output_count = 0);
+
+// Hypothesis-preserving resampling (after Milstein et al., "Robust global
+// localization using clustered particle filtering", AAAI 2002). Plain
+// resampling gives a hypothesis particles in proportion to its posterior
+// mass, so a hypothesis that trails by a few nats for a few updates is left
+// with no particle and can never come back, however strongly the later scans
+// favour it. Here every cluster whose mass is within window_nats of the
+// heaviest cluster's keeps at least min_particles particles; each of them
+// carries the weight mass / min_particles, so the weighted set still
+// represents the same posterior (only where the particles sit changes). The
+// other clusters share the remaining slots by one systematic pass, with
+// equal weights. At most half of the slots go to the floor (the heaviest
+// eligible clusters first). With one cluster this is SystematicResample.
+struct HypothesisFloor {
+  int min_particles = 0;       // particles a kept hypothesis holds at least; 0 = off
+  double window_nats = 0.0;    // kept while log(mass) >= log(heaviest mass) - window_nats
+};
+
+struct WeightedResample {
+  std::vector<std::size_t> ancestors;   // one per output slot
+  std::vector<double> log_weights;      // normalized, one per output slot
+  int floored_clusters = 0;             // clusters held at min_particles
+};
+
+// u01(k) is the offset in [0, 1) of systematic pass k: 0 for the shared pass,
+// k >= 1 for the k-th floored cluster (heaviest first).
+WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
+                                              const HypothesisClusters& clusters, std::size_t output_count,
+                                              const HypothesisFloor& floor,
+                                              const std::function<double(std::size_t)>& u01);
 
 }  // namespace rc

@@ -213,6 +213,15 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (unitless fraction in (0, 1])")
       ->capture_default_str();
+  cmd->add_option("--hypothesis-floor", s.mcl.hypothesis_floor.min_particles,
+                  "Hypothesis-preserving resampling: a cluster of particles (1 m x 1 m x 30 deg bins, joined "
+                  "when they touch) whose posterior mass is within --hypothesis-window of the heaviest keeps at "
+                  "least this many particles, weighted so the belief is unchanged (count, 0 to --particles / 2; "
+                  "0 = plain systematic resampling)")
+      ->capture_default_str();
+  cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
+                  "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats)")
+      ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate (1/sensor update)")->capture_default_str();

@@ -1,0 +1,175 @@
+// Hypothesis clusters and hypothesis-preserving resampling: the clusters
+// split look-alike places and opposite headings and join one cloud (also
+// across the +-pi seam); the resampler keeps a trailing hypothesis alive
+// without changing the belief the weighted set represents, and reduces to
+// plain systematic resampling when there is one hypothesis.
+#include <cmath>
+#include <numeric>
+
+#include <gtest/gtest.h>
+
+#include "common/log_domain.h"
+#include "workloads/delibot/hypothesis_clusters.h"
+#include "workloads/delibot/mcl_options.h"
+#include "workloads/delibot/resampling.h"
+
+namespace rc {
+namespace {
+
+constexpr double kBin = 1.0;
+constexpr int kHeadingBins = 12;
+
+// n particles on a line from (x, y), 0.05 m apart, all facing theta.
+std::vector<Pose2> Cloud(double x, double y, double theta, int n) {
+  std::vector<Pose2> out;
+  for (int i = 0; i < n; ++i) out.push_back({x + 0.05 * (i % 10), y + 0.05 * (i / 10 % 10), theta});
+  return out;
+}
+
+std::vector<Pose2> Join(std::vector<Pose2> a, const std::vector<Pose2>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST(HypothesisClustersTest, LookAlikeDoorsSixMetresApartAreTwoHypotheses) {
+  const HypothesisClusters c = ClusterHypotheses(Join(Cloud(40, 41, 0, 50), Cloud(34, 41, 0, 50)), kBin, kHeadingBins);
+  EXPECT_EQ(c.count, 2);
+  EXPECT_EQ(c.cluster_of.front(), 0);
+  EXPECT_EQ(c.cluster_of.back(), 1);
+}
+
+TEST(HypothesisClustersTest, TheSamePlaceFacedBothWaysIsTwoHypotheses) {
+  EXPECT_EQ(ClusterHypotheses(Join(Cloud(10, 10, 0, 30), Cloud(10, 10, kPi - 0.1, 30)), kBin, kHeadingBins).count, 2);
+}
+
+TEST(HypothesisClustersTest, OneCloudIsOneHypothesisEvenAcrossThePiSeam) {
+  std::vector<Pose2> cloud = Cloud(5, 5, kPi - 0.05, 40);
+  for (int i = 0; i < 40; i += 2) cloud[i].theta = -kPi + 0.05;  // the same heading, wrapped
+  EXPECT_EQ(ClusterHypotheses(cloud, kBin, kHeadingBins).count, 1);
+  // A chain of particles 0.9 m apart touches bin to bin: one hypothesis.
+  std::vector<Pose2> chain;
+  for (int i = 0; i < 20; ++i) chain.push_back({0.9 * i, 3.0, 0.0});
+  EXPECT_EQ(ClusterHypotheses(chain, kBin, kHeadingBins).count, 1);
+}
+
+TEST(HypothesisClustersTest, RejectsADegenerateGrid) {
+  EXPECT_THROW(ClusterHypotheses(Cloud(0, 0, 0, 3), 0.0, kHeadingBins), std::invalid_argument);
+  EXPECT_THROW(ClusterHypotheses(Cloud(0, 0, 0, 3), kBin, 0), std::invalid_argument);
+}
+
+// Log weights giving each cluster the listed total mass, spread unevenly
+// over its members (weights 1, 2, 3, ... inside a cluster).
+std::vector<double> WeightsWithMasses(const HypothesisClusters& c, const std::vector<double>& masses) {
+  std::vector<double> within(c.cluster_of.size()), total(masses.size(), 0.0);
+  std::vector<int> rank(masses.size(), 0);
+  for (std::size_t i = 0; i < within.size(); ++i) {
+    within[i] = 1.0 + rank[c.cluster_of[i]]++;
+    total[c.cluster_of[i]] += within[i];
+  }
+  std::vector<double> lw(within.size());
+  for (std::size_t i = 0; i < lw.size(); ++i)
+    lw[i] = std::log(masses[c.cluster_of[i]] * within[i] / total[c.cluster_of[i]]);
+  NormalizeLogWeights(lw);
+  return lw;
+}
+
+struct ClusterTally {
+  std::vector<int> slots;
+  std::vector<double> mass;
+};
+
+ClusterTally Tally(const HypothesisClusters& c, const WeightedResample& r) {
+  ClusterTally t{std::vector<int>(c.count, 0), std::vector<double>(c.count, 0.0)};
+  for (std::size_t s = 0; s < r.ancestors.size(); ++s) {
+    const int k = c.cluster_of[r.ancestors[s]];
+    ++t.slots[k];
+    t.mass[k] += std::exp(r.log_weights[s]);
+  }
+  return t;
+}
+
+auto Offsets(double u) {
+  return [u](std::size_t pass) { return std::fmod(u + 0.37 * static_cast<double>(pass), 1.0); };
+}
+
+TEST(HypothesisResamplingTest, KeepsATrailingHypothesisAliveWithItsTrueMass) {
+  // Plain resampling gives a hypothesis holding 0.1 % of the mass one of
+  // 1000 slots; the floor keeps 20 particles there, each weighing 0.005 %.
+  const std::vector<Pose2> particles = Join(Cloud(40, 41, 0, 500), Cloud(34, 41, 0, 500));
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  const std::vector<double> lw = WeightsWithMasses(c, {0.999, 0.001});
+  const WeightedResample r = HypothesisPreservingResample(lw, c, 1000, {20, 100.0}, Offsets(0.42));
+  ASSERT_EQ(r.ancestors.size(), 1000u);
+  ASSERT_EQ(r.log_weights.size(), 1000u);
+  EXPECT_EQ(r.floored_clusters, 1);
+  const ClusterTally t = Tally(c, r);
+  EXPECT_EQ(t.slots[1], 20);
+  EXPECT_EQ(t.slots[0], 980);
+  EXPECT_NEAR(t.mass[0], 0.999, 1e-12);
+  EXPECT_NEAR(t.mass[1], 0.001, 1e-12);
+  // Inside each hypothesis the draw follows the weights: the weighted mean x
+  // of the resampled set matches the input's within a slot's share.
+  double mean_in = 0.0, mean_out = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) mean_in += std::exp(lw[i]) * particles[i].x;
+  for (std::size_t s = 0; s < r.ancestors.size(); ++s) mean_out += std::exp(r.log_weights[s]) * particles[r.ancestors[s]].x;
+  EXPECT_NEAR(mean_out, mean_in, 0.01);
+}
+
+TEST(HypothesisResamplingTest, AHypothesisBeyondTheWindowIsResampledPlainly) {
+  const std::vector<Pose2> particles = Join(Cloud(40, 41, 0, 500), Cloud(34, 41, 0, 500));
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  // 1e-9 of the mass is 20.7 nats behind: outside a 10-nat window.
+  const std::vector<double> lw = WeightsWithMasses(c, {1.0 - 1e-9, 1e-9});
+  const WeightedResample r = HypothesisPreservingResample(lw, c, 1000, {20, 10.0}, Offsets(0.42));
+  EXPECT_EQ(r.floored_clusters, 0);
+  EXPECT_EQ(Tally(c, r).slots[1], 0);
+}
+
+TEST(HypothesisResamplingTest, WithOneHypothesisItIsSystematicResampling) {
+  const std::vector<Pose2> particles = Cloud(12, 7, 1.0, 400);
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  ASSERT_EQ(c.count, 1);
+  std::vector<double> lw(particles.size());
+  for (std::size_t i = 0; i < lw.size(); ++i) lw[i] = std::log(1.0 + i % 5);
+  NormalizeLogWeights(lw);
+  const WeightedResample r = HypothesisPreservingResample(lw, c, 300, {20, 100.0}, Offsets(0.42));
+  EXPECT_EQ(r.ancestors, SystematicResample(lw, 0.42, 300));
+  for (double w : r.log_weights) EXPECT_DOUBLE_EQ(w, -std::log(300.0));
+}
+
+TEST(HypothesisResamplingTest, FlooredHypothesesTakeAtMostHalfTheSlots) {
+  // One heavy hypothesis and 60 light ones 3 m apart: 1000 slots at a floor
+  // of 20 hold at most 25 light hypotheses; the heaviest light ones win.
+  std::vector<Pose2> particles = Cloud(0, 0, 0, 200);
+  std::vector<double> masses = {0.9};
+  for (int k = 0; k < 60; ++k) {
+    particles = Join(particles, Cloud(3.0 * (k + 1), 0, 0, 10));
+    masses.push_back(0.1 * (60 - k) / 1830.0);  // decreasing, summing to 0.1
+  }
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  ASSERT_EQ(c.count, 61);
+  const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
+                                                          Offsets(0.1));
+  EXPECT_EQ(r.floored_clusters, 25);
+  const ClusterTally t = Tally(c, r);
+  for (int k = 1; k <= 25; ++k) EXPECT_EQ(t.slots[k], 20) << "hypothesis " << k;
+  EXPECT_EQ(std::accumulate(t.slots.begin(), t.slots.end(), 0), 1000);
+  double total = 0.0;
+  for (double m : t.mass) total += m;
+  EXPECT_NEAR(total, 1.0, 1e-12);
+}
+
+TEST(HypothesisResamplingTest, OptionsBoundTheFloor) {
+  MclOptions o;
+  std::string error;
+  o.hypothesis_floor.min_particles = o.particle_count / 2 + 1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("hypothesis floor"), std::string::npos);
+  o.hypothesis_floor = {20, -1.0};
+  EXPECT_FALSE(o.IsValid(&error));
+  o.hypothesis_floor = {20, 100.0};
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+}
+
+}  // namespace
+}  // namespace rc
