@@ -40,6 +40,8 @@ import subprocess
 import sys
 import tempfile
 
+from rcbench_files import InputError, read_poses, read_timeline_rows
+
 
 def fail(message):
     sys.exit(f"hypothesis_evidence: {message}")
@@ -48,31 +50,17 @@ def fail(message):
 def first_reference_pose(path):
     """(x_m, y_m, theta_rad) of the first pose of a ground-truth file."""
     try:
-        with open(path) as f:
-            for line_no, line in enumerate(f, 1):
-                fields = line.split()
-                if not fields or fields[0].startswith("#"):
-                    continue
-                if len(fields) != 4:
-                    fail(f"{path}:{line_no}: {len(fields)} fields, expected 4 (t_s x_m y_m theta_rad)")
-                try:
-                    return tuple(float(v) for v in fields[1:])
-                except ValueError:
-                    fail(f"{path}:{line_no}: a field is not a number")
-    except OSError as e:
-        fail(f"{path}: {e.strerror} (make it with scripts/scan_match_reference.py)")
-    fail(f"{path}: no pose")
+        return tuple(read_poses(path)[0][1:])
+    except InputError as e:
+        fail(f"{e} (make the reference with scripts/scan_match_reference.py)")
 
 
 def read_evidence(path):
     """Per record: (cumulative log_likelihood_mean, est_x_m, est_y_m)."""
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        fail(f"{path}: empty timeline")
-    for column in ("iteration", "log_likelihood_mean", "est_x_m", "est_y_m"):
-        if column not in rows[0]:
-            fail(f"{path}: no '{column}' column (an rcbench older than this script?)")
+    try:
+        rows = read_timeline_rows(path, ("iteration", "log_likelihood_mean", "est_x_m", "est_y_m"))
+    except InputError as e:
+        fail(str(e))
     out, total = [], 0.0
     for r in rows:
         if r["log_likelihood_mean"] != "":

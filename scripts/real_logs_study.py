@@ -20,7 +20,13 @@ after convergence (rcbench's ground-truth-free measures), and against the
 reference: the fraction of records from convergence on (every record when
 tracking) with error < 1 m,
 the median error from convergence on and over all records, the final error
-(m), plus whether any non-finite value appeared (weights, estimates).
+(m), plus whether any non-finite value appeared (weights, estimates). With a
+reference, rcbench's "converged" is judged against it (within 0.2 m and 5
+deg for 10 records); the table also gives the record from which the filter
+itself claimed convergence without ground truth (mode weight and scan
+consistency), the fraction within 1 m from that claim on, and two verdicts:
+right (converged in the first half, then >= 95 % of records within 1 m) and
+right by its own claim (the same from the filter's own claim), with totals.
 rcbench's own err_xy_m timeline column must agree with the error computed
 here (a check that the reference pairs with the right records).
 
@@ -41,7 +47,10 @@ import tempfile
 
 import numpy as np
 
+from rcbench_files import InputError, read_poses, read_timeline_rows
+
 GOOD_ERROR_M = 1.0
+RIGHT_FRACTION = 0.95
 
 
 def fail(message):
@@ -49,33 +58,19 @@ def fail(message):
 
 
 def read_reference(path):
-    """(t_s, x_m, y_m) arrays from a ground-truth file; '#' lines are comments."""
-    rows = []
-    with open(path) as f:
-        for line_no, line in enumerate(f, 1):
-            fields = line.split()
-            if not fields or fields[0].startswith("#"):
-                continue
-            if len(fields) != 4:
-                fail(f"{path}:{line_no}: {len(fields)} fields, expected 4 (t_s x_m y_m theta_rad)")
-            try:
-                rows.append([float(v) for v in fields])
-            except ValueError:
-                fail(f"{path}:{line_no}: a field is not a number")
-    if not rows:
-        fail(f"{path}: no poses")
-    return np.array(rows)
+    """(t_s, x_m, y_m, theta_rad) rows of a ground-truth file as an array."""
+    try:
+        return np.array(read_poses(path))
+    except InputError as e:
+        fail(str(e))
 
 
 def read_timeline(path):
     """(record index, estimates [n, 3], rcbench's err_xy_m column or None)."""
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
-        fail(f"{path}: empty timeline")
-    for column in ("iteration", "est_x_m", "est_y_m", "est_theta_rad"):
-        if column not in rows[0]:
-            fail(f"{path}: no '{column}' column (has {', '.join(rows[0])})")
+    try:
+        rows = read_timeline_rows(path, ("iteration", "est_x_m", "est_y_m", "est_theta_rad"))
+    except InputError as e:
+        fail(str(e))
     it = np.array([int(r["iteration"]) for r in rows])
     est = np.array([[float(r["est_x_m"]), float(r["est_y_m"]), float(r["est_theta_rad"])] for r in rows])
     err = np.array([float(r["err_xy_m"]) for r in rows]) if "err_xy_m" in rows[0] else None
@@ -96,12 +91,14 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
     a = s["accuracy"]
     it, est, rc_err = read_timeline(timeline_path)
     conv = int(a["convergence_iteration"])
-    row = {"log": log_name, "seed": seed, "records": len(it), "converged_record": conv,
+    claim = int(a.get("convergence_iteration_without_ground_truth", conv))
+    row = {"log": log_name, "seed": seed, "records": len(it), "converged_record": conv, "own_claim_record": claim,
            "converged_at_end": int(bool(a["converged_at_end"])),
            "median_consistency": a["median_consistency_after_convergence"],
            "jumps_after_convergence": a["jumps_after_convergence"],
            "fraction_err_below_1m": float("nan"), "median_err_xy_m": float("nan"),
            "median_err_xy_all_m": float("nan"), "final_err_xy_m": float("nan"),
+           "fraction_err_below_1m_after_claim": float("nan"), "right": 0, "right_by_own_claim": 0,
            "non_finite": int(bool(a.get("non_finite_weights", False)) or not np.isfinite(est).all())}
     err = None
     if reference is not None:
@@ -119,6 +116,17 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
         row["fraction_err_below_1m"] = float((after < GOOD_ERROR_M).mean()) if len(after) else 0.0
         row["median_err_xy_m"] = float(np.median(after)) if len(after) else float("nan")
         row["final_err_xy_m"] = float(err[-1])
+        after_claim = err[it >= claim] if claim >= 0 else np.array([])
+        row["fraction_err_below_1m_after_claim"] = (float((after_claim < GOOD_ERROR_M).mean())
+                                                    if len(after_claim) else 0.0)
+        # A run is right when it converges in the first half of the log and
+        # is within 1 m of the reference in >= 95 % of the records from then
+        # on; "by its own claim" starts from the filter's ground-truth-free
+        # convergence, the record a user without a reference would trust.
+        half = len(it) / 2
+        row["right"] = int(0 <= first < half and row["fraction_err_below_1m"] >= RIGHT_FRACTION)
+        row["right_by_own_claim"] = int(0 <= claim < half and
+                                        row["fraction_err_below_1m_after_claim"] >= RIGHT_FRACTION)
     return row, it, err
 
 
@@ -139,16 +147,29 @@ def markdown(rows, logs, extra, tracking):
         out.append("")
         out.append("| seed | converged at record | converged at end | median consistency | jumps "
                    "| records with error < 1 m | median error (m) | median error, all records (m) "
-                   "| final error (m) | non-finite |")
-        out.append("|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
+                   "| final error (m) | non-finite | own claim at record | < 1 m from the claim on "
+                   "| right | right by its own claim |")
+        out.append("|---:|---:|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---|---|")
         for r in mine:
             out.append(f"| {r['seed']} | {r['converged_record']} | {'yes' if r['converged_at_end'] else 'no'} "
                        f"| {fmt(r['median_consistency'])} | {r['jumps_after_convergence']} "
-                       f"| {fmt(100 * r['fraction_err_below_1m'], 0)}{'' if math.isnan(r['fraction_err_below_1m']) else ' %'} "
+                       f"| {percent(r['fraction_err_below_1m'])} "
                        f"| {fmt(r['median_err_xy_m'])} | {fmt(r['median_err_xy_all_m'])} | {fmt(r['final_err_xy_m'])} "
-                       f"| {'yes' if r['non_finite'] else 'no'} |")
+                       f"| {'yes' if r['non_finite'] else 'no'} | {r['own_claim_record']} "
+                       f"| {percent(r['fraction_err_below_1m_after_claim'])} "
+                       f"| {'yes' if r['right'] else 'no'} | {'yes' if r['right_by_own_claim'] else 'no'} |")
+        out.append("")
+    if not tracking:
+        out.append(f"Right (converged in the first half, then >= {100 * RIGHT_FRACTION:.0f} % of records within "
+                   f"{GOOD_ERROR_M:g} m of the reference): {sum(r['right'] for r in rows)} of {len(rows)}; "
+                   f"by the filter's own (ground-truth-free) claim: {sum(r['right_by_own_claim'] for r in rows)} "
+                   f"of {len(rows)}.")
         out.append("")
     return "\n".join(out)
+
+
+def percent(fraction):
+    return "-" if math.isnan(fraction) else f"{100 * fraction:.0f} %"
 
 
 def write_atomic(path, text):

@@ -49,6 +49,28 @@ TEST(DelibotSummaryTest, EndMediansSayWhyTheEndIsNotConfirmed) {
   EXPECT_DOUBLE_EQ(mostly.end_consistency, 0.8);
 }
 
+TEST(DelibotSummaryTest, NoClaimWhileARivalHypothesisIsAlive) {
+  const DelibotSettings s;
+  // Confident and consistent from the start, but a second hypothesis stays
+  // within the floor's window for the first 15 updates: the claim waits.
+  std::vector<DelibotRow> rows = GoodThen(std::vector<std::pair<double, double>>(20, {0.95, 0.9}));
+  for (DelibotRow& r : rows) r.hypotheses_alive = r.iteration < 15 ? 2 : 1;
+  EXPECT_EQ(SummarizeDelibot(rows, s).convergence_iteration, 15);
+  // Without the floor the count is 0 (not computed) and does not block.
+  for (DelibotRow& r : rows) r.hypotheses_alive = 0;
+  EXPECT_EQ(SummarizeDelibot(rows, s).convergence_iteration, 0);
+  // With ground truth, convergence is judged against the truth, and the
+  // filter's own claim is reported beside it.
+  for (DelibotRow& r : rows) {
+    r.has_ground_truth = true;
+    r.err_xy_m = r.iteration < 5 ? 1.0 : 0.05;
+    r.hypotheses_alive = r.iteration < 12 ? 3 : 1;
+  }
+  const DelibotSummary judged = SummarizeDelibot(rows, s);
+  EXPECT_EQ(judged.convergence_iteration, 5);
+  EXPECT_EQ(judged.self_convergence_iteration, 12);
+}
+
 TEST(DelibotSummaryTest, RecordsWithoutASensorUpdateAreNotEvidence) {
   const DelibotSettings s;
   // A robot standing still: 30 records, one sensor update. It has not

@@ -25,7 +25,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
                                       "sensor_updated", "log_likelihood_mean", "resampled", "injected",
-                                      "injection_rejected", "hypotheses_floored",
+                                      "injection_rejected", "hypotheses_alive",
                                       "spread_m", "mode_weight", "consistency"};
   if (gt) {
     columns.push_back("err_xy_m");
@@ -60,7 +60,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   static_cast<int>(r.resampled),
                                   r.injected,
                                   r.injection_rejected,
-                                  r.hypotheses_floored,
+                                  r.hypotheses_alive,
                                   r.spread_m,
                                   r.mode_weight,
                                   r.consistency};
@@ -152,6 +152,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
   if (!result.work_counted)
     for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
   json accuracy = {{"convergence_iteration", m.convergence_iteration},
+                   {"convergence_iteration_without_ground_truth", m.self_convergence_iteration},
                    {"converged_at_end", m.converged},
                    {"end_median_mode_weight", m.end_mode_weight},
                    {"end_median_consistency", m.end_consistency},
@@ -238,6 +239,16 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
                                                      : "scans disagree with the map: wrong pose or wrong map");
   } else
     emit("converged at record     never");
+  // With ground truth, also the record from which the filter itself claimed
+  // to be localized: what a user without ground truth would have trusted.
+  if (gt) {
+    if (m.self_convergence_iteration >= 0)
+      emit("filter's own claim      record %ld (mode weight >= %.2f and consistency >= %.2f for 10 updates)",
+           m.self_convergence_iteration, s.converged_mode_weight, s.converged_consistency);
+    else
+      emit("filter's own claim      never (mode weight >= %.2f and consistency >= %.2f for 10 updates)",
+           s.converged_mode_weight, s.converged_consistency);
+  }
   emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
        m.median_consistency, s.consistency_sigmas);
   emit("jumps after convergence %ld (estimate moved > %.1f m between two records)", m.jumps_after_convergence,

@@ -53,6 +53,24 @@ bool MostLocalized(const std::vector<const DelibotRow*>& last, const Localized& 
   return !last.empty() && 2 * passed > static_cast<int>(last.size());
 }
 
+// The first record of kSustainRecords consecutive localized rows (only
+// sensor-updated rows count when updates_only), or -1.
+template <typename Localized>
+long FirstSustained(const std::vector<DelibotRow>& rows, const Localized& localized, bool updates_only) {
+  int run = 0;
+  long run_start = -1;
+  for (const auto& r : rows) {
+    if (updates_only && !r.sensor_updated) continue;
+    if (!localized(r)) {
+      run = 0;
+      continue;
+    }
+    if (run++ == 0) run_start = r.iteration;
+    if (run == kSustainRecords) return run_start;
+  }
+  return -1;
+}
+
 DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSettings& s) {
   DelibotSummary sum;
   sum.records = static_cast<long>(rows.size());
@@ -67,28 +85,23 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   }
   const bool gt = !rows.empty() && rows.front().has_ground_truth;
   const std::vector<const DelibotRow*> last_updates = LastUpdates(rows);
+  // With the hypothesis floor the filter also knows its rivals: while it
+  // keeps a second hypothesis alive (within the window of the heaviest) it
+  // does not claim to be localized, however much weight the first holds.
+  // (hypotheses_alive is 0 when the floor is off.)
+  auto self_localized = [&](const DelibotRow& r) {
+    return r.mode_weight >= s.converged_mode_weight && r.consistency >= s.converged_consistency &&
+           r.hypotheses_alive <= 1;
+  };
   auto localized = [&](const DelibotRow& r) {
-    return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad)
-              : r.mode_weight >= s.converged_mode_weight && r.consistency >= s.converged_consistency;
+    return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad) : self_localized(r);
   };
   // With ground truth every record is a check against the truth. Without,
   // only a sensor update adds evidence: a robot standing still for the first
   // 20 records of a log (robotdata1 does) would otherwise "converge" on the
   // weights of its very first scan.
-  int run = 0;
-  long run_start = -1;
-  for (const auto& r : rows) {
-    if (!gt && !r.sensor_updated) continue;
-    if (!localized(r)) {
-      run = 0;
-      continue;
-    }
-    if (run++ == 0) run_start = r.iteration;
-    if (run == kSustainRecords) {
-      sum.convergence_iteration = run_start;
-      break;
-    }
-  }
+  sum.self_convergence_iteration = FirstSustained(rows, self_localized, true);
+  sum.convergence_iteration = gt ? FirstSustained(rows, localized, false) : sum.self_convergence_iteration;
   if (sum.convergence_iteration >= 0) {
     std::vector<double> exy, eth, cons;
     long consistent = 0;
@@ -222,7 +235,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     row.resampled = step.resampled;
     row.injected = step.injected;
     row.injection_rejected = step.injection_rejected;
-    row.hypotheses_floored = step.floored_hypotheses;
+    row.hypotheses_alive = step.hypotheses_alive;
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

@@ -76,7 +76,10 @@ struct DelibotRow {
   bool resampled = false;
   int injected = 0;
   int injection_rejected = 0;    // random poses refused by the injection check
-  int hypotheses_floored = 0;    // clusters the resampling held at the hypothesis floor
+  // With the hypothesis floor: hypotheses within its window after the
+  // update (1 = no rival; 0 = not computed). While a rival is alive the
+  // filter does not claim convergence without ground truth.
+  int hypotheses_alive = 0;
   double spread_m = 0.0;
   double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate
@@ -100,6 +103,11 @@ struct DelibotSummary {
   // -1 when never reached. With ground truth: error below both thresholds for
   // 10 consecutive records; without: mode weight above its threshold likewise.
   long convergence_iteration = -1;
+  // The ground-truth-free convergence (mode weight and consistency, as
+  // above) even when ground truth is given: the record from which the
+  // filter itself claims to be localized, which is all a user without
+  // ground truth sees. Equal to convergence_iteration without ground truth.
+  long self_convergence_iteration = -1;
   bool converged = false;        // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
   // Medians over the last 10 sensor updates, which the ground-truth-free
   // verdict at the end rests on: a low mode weight means the belief is

@@ -36,11 +36,16 @@ struct MclOptions {
   // (clusters: hypothesis_clusters.h, bins of estimate_kernel_radius_m and
   // 30 deg) whose posterior mass is within window_nats of the heaviest keeps
   // at least min_particles particles, weighted so the belief is unchanged.
-  // min_particles 0 = plain systematic resampling (the default). The window
-  // is 100 nats because on the Wean logs the true track trails a look-alike
-  // door by up to 85 nats (robotdata2, likelihood field) before the scans
-  // decide for it by thousands (README, "DeliBot on the real Wean logs").
-  HypothesisFloor hypothesis_floor{0, 100.0};  // [0, particle_count / 2] particles, [0, 10^4] nats
+  // min_particles 0 = plain systematic resampling (the default). While a
+  // second hypothesis is alive the filter does not claim convergence
+  // without ground truth (delibot_run.h). The window is 200 nats: on
+  // robotdata2 the true track, held at a 20-particle floor, trails the door
+  // 6 m west by up to about 160 nats before the corridor's end decides for it
+  // by hundreds. Windows of 100, 200 and 300 nats were tried on the four Wean
+  // logs (9, 10 and 8 of 12 runs right by the filter's own claim; README,
+  // "Evidence between look-alike places"); chosen on the same logs, with no
+  // held-out data.
+  HypothesisFloor hypothesis_floor{0, 200.0};  // [0, particle_count / 2] particles, [0, 10^4] nats
   int hypothesis_heading_bins = 12;          // 30 deg heading bins; [1, 360]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
   // injected when the short-term average likelihood falls below the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "common/log_domain.h"
@@ -133,8 +134,17 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   }
   result.ess = EffectiveSampleSize(log_weights_);
   const bool oversized = particles_.size() != static_cast<std::size_t>(options_.particle_count);
+  // The dense first set is not clustered: spread uniformly over the map it
+  // is one connected cluster, and its point is to let the scan pick the few
+  // places worth keeping, which plain systematic resampling does.
+  std::optional<HypothesisClusters> clusters;
+  if (options_.hypothesis_floor.min_particles > 0 && !oversized) {
+    clusters = ClusterHypotheses(particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
+    result.hypotheses_alive =
+        HypothesesAlive(ClusterLogMasses(log_weights_, *clusters), options_.hypothesis_floor.window_nats);
+  }
   if (oversized || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
-    Resample(iteration, result);
+    Resample(iteration, clusters ? &*clusters : nullptr, result);
   return result;
 }
 
@@ -154,26 +164,19 @@ void MonteCarloLocalizer::RejectPosesInObstacles(std::vector<double>& log_likeli
     if (inside_obstacle(particles_[i])) log_likelihoods[i] = -std::numeric_limits<double>::infinity();
 }
 
-void MonteCarloLocalizer::Resample(std::uint64_t iteration, MclStepResult& result) {
+void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClusters* clusters,
+                                   MclStepResult& result) {
   const auto slots = static_cast<std::size_t>(options_.particle_count);
   auto pass_offset = [&](std::size_t pass) {
     return RandomStream(options_.seed, StreamPurpose::kResample, iteration, pass).Uniform();
   };
-  // The dense first set is cut down by plain systematic resampling: spread
-  // uniformly over the map it is one connected cluster, and its point is to
-  // let the scan pick the few places worth keeping.
-  const bool floor_hypotheses =
-      options_.hypothesis_floor.min_particles > 0 && particles_.size() == slots;
   std::vector<std::size_t> ancestors;
   std::vector<double> next_log_weights;
-  if (floor_hypotheses) {
-    const HypothesisClusters clusters = ClusterHypotheses(
-        particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
+  if (clusters) {
     WeightedResample resampled =
-        HypothesisPreservingResample(log_weights_, clusters, slots, options_.hypothesis_floor, pass_offset);
+        HypothesisPreservingResample(log_weights_, *clusters, slots, options_.hypothesis_floor, pass_offset);
     ancestors = std::move(resampled.ancestors);
     next_log_weights = std::move(resampled.log_weights);
-    result.floored_hypotheses = resampled.floored_clusters;
   } else {
     ancestors = SystematicResample(log_weights_, pass_offset(0), slots);
     next_log_weights.assign(slots, -std::log(static_cast<double>(slots)));

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "maps/occupancy_grid.h"
+#include "workloads/delibot/hypothesis_clusters.h"
 #include "workloads/delibot/mcl_options.h"
 #include "workloads/delibot/pose_estimate.h"
 #include "workloads/delibot/sensor_model.h"
@@ -21,7 +22,10 @@ struct MclStepResult {
   bool resampled = false;
   int injected = 0;              // particles replaced by random free-space poses
   int injection_rejected = 0;    // random poses drawn but refused by the injection check
-  int floored_hypotheses = 0;    // clusters kept alive at the hypothesis floor by this resampling
+  // With the hypothesis floor: hypotheses within its window after this
+  // update (1 = no rival; hypothesis_clusters.h). 0 when not computed (floor
+  // off, no sensor update, or the dense first update).
+  int hypotheses_alive = 0;
   double ess = 0.0;              // effective sample size after the update, before resampling
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
   double injection_probability = 0.0;
@@ -58,7 +62,9 @@ class MonteCarloLocalizer {
 
  private:
   Pose2 RandomFreePose(RandomStream& stream) const;
-  void Resample(std::uint64_t iteration, MclStepResult& result);
+  // clusters: the hypotheses of the current particles, or null to resample
+  // plainly.
+  void Resample(std::uint64_t iteration, const HypothesisClusters* clusters, MclStepResult& result);
   // Log-likelihood of each pose (a pose now) over the remembered scans, each
   // scored at the pose replayed back through the odometry since that scan.
   // Adds the casts' work (and kernel records) to `result`.

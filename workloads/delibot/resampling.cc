@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/log_domain.h"
@@ -56,6 +57,24 @@ void SystematicOver(const std::vector<double>& log_weights, const std::vector<st
 
 }  // namespace
 
+std::vector<double> ClusterLogMasses(const std::vector<double>& normalized_log_weights,
+                                     const HypothesisClusters& clusters) {
+  std::vector<double> log_mass(static_cast<std::size_t>(clusters.count), -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < normalized_log_weights.size(); ++i) {
+    double& m = log_mass[static_cast<std::size_t>(clusters.cluster_of[i])];
+    m = LogAddExp(m, normalized_log_weights[i]);
+  }
+  return log_mass;
+}
+
+int HypothesesAlive(const std::vector<double>& cluster_log_masses, double window_nats) {
+  if (cluster_log_masses.empty()) return 0;
+  const double heaviest = *std::max_element(cluster_log_masses.begin(), cluster_log_masses.end());
+  int alive = 0;
+  for (double m : cluster_log_masses) alive += std::isfinite(m) && m >= heaviest - window_nats;
+  return alive;
+}
+
 WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
                                               const HypothesisClusters& clusters, std::size_t output_count,
                                               const HypothesisFloor& floor,
@@ -67,13 +86,7 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   const auto k_count = static_cast<std::size_t>(clusters.count);
   std::vector<std::vector<std::size_t>> members(k_count);
   for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(clusters.cluster_of[i])].push_back(i);
-  std::vector<double> log_mass(k_count);
-  for (std::size_t c = 0; c < k_count; ++c) {
-    std::vector<double> lw;
-    lw.reserve(members[c].size());
-    for (std::size_t i : members[c]) lw.push_back(normalized_log_weights[i]);
-    log_mass[c] = LogSumExp(lw);
-  }
+  const std::vector<double> log_mass = ClusterLogMasses(normalized_log_weights, clusters);
   // Eligible clusters, heaviest first (ties: lower index first).
   const double heaviest = *std::max_element(log_mass.begin(), log_mass.end());
   std::vector<std::size_t> eligible;

@@ -47,6 +47,15 @@ struct WeightedResample {
   int floored_clusters = 0;             // clusters held at min_particles
 };
 
+// Log of each cluster's total weight (-inf for a cluster of zero weight).
+std::vector<double> ClusterLogMasses(const std::vector<double>& normalized_log_weights,
+                                     const HypothesisClusters& clusters);
+
+// Hypotheses alive: clusters whose log mass is within window_nats of the
+// heaviest (the heaviest included; 0 for an empty set). These are the ones
+// the floor keeps, and while more than one is alive the belief has a rival.
+int HypothesesAlive(const std::vector<double>& cluster_log_masses, double window_nats);
+
 // u01(k) is the offset in [0, 1) of systematic pass k: 0 for the shared pass,
 // k >= 1 for the k-th floored cluster (heaviest first).
 WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
