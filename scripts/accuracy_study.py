@@ -20,10 +20,15 @@ record 917). Tracking runs 500 particles (--tracking-particles): the harder
 case for recovery, since one random particle is a larger share of the set
 (with published augmented MCL, --injection-check 0, 4 of 40 tracked runs
 jumped away).
+Global localization also reports the filter's own (ground-truth-free)
+claim of convergence and whether it held: at least 95 % of the records from
+the claim on within 1 m of the truth (what a user without ground truth would
+have relied on).
 Writes <out>/accuracy_study.csv and <out>/accuracy_study.md.
 
 Usage: scripts/accuracy_study.py [--rcbench build/rcbench] [--out out/accuracy]
        [--seeds 20] [--particles 5000] [--tracking-particles 500] [--records 1000]
+       [-- EXTRA RCBENCH DELIBOT ARGS]   (e.g. -- --hypothesis-floor 20)
 """
 import argparse
 import csv
@@ -32,6 +37,8 @@ import os
 import statistics
 import subprocess
 import sys
+
+from rcbench_files import InputError, read_timeline_rows
 
 WEAN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "wean", "wean.dat")
 
@@ -51,6 +58,18 @@ def first_pose(gt_path):
     sys.exit(f"{gt_path}: no pose")
 
 
+def claim_held(timeline, claim):
+    """At least 95 % of the records from the claim on within 1 m of the truth."""
+    if claim < 0:
+        return False
+    try:
+        rows = read_timeline_rows(timeline, ("iteration", "err_xy_m"))
+    except InputError as e:
+        sys.exit(f"accuracy_study: {e}")
+    after = [float(r["err_xy_m"]) for r in rows if int(r["iteration"]) >= claim]
+    return bool(after) and sum(e < 1.0 for e in after) >= 0.95 * len(after)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rcbench", default="build/rcbench")
@@ -59,7 +78,9 @@ def main():
     ap.add_argument("--particles", type=int, default=5000)
     ap.add_argument("--tracking-particles", type=int, default=500)
     ap.add_argument("--records", type=int, default=1000)
-    args = ap.parse_args()
+    args, extra = ap.parse_known_args()
+    if extra and extra[0] == "--":
+        extra = extra[1:]
     os.makedirs(args.out, exist_ok=True)
 
     maps = []
@@ -83,7 +104,10 @@ def main():
                 summary = os.path.join(args.out, f"{name}_{seed}_{mode}.json")
                 cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--ground-truth", gt,
                        "--particles", str(args.particles if mode == "global" else args.tracking_particles), "--seed", str(seed),
-                       "--summary", summary, "--quiet", "--no-pricing"]
+                       "--summary", summary, "--quiet", "--no-pricing", *extra]
+                timeline = os.path.join(args.out, f"{name}_{seed}_{mode}.csv")
+                if mode == "global":
+                    cmd += ["--timeline", timeline]
                 if mode == "tracking":
                     cmd += ["--initial-pose", first_pose(gt)]
                 run(cmd)
@@ -96,6 +120,10 @@ def main():
                 result[f"{mode}_final_err_xy_m"] = a["final_err_xy_m"]
                 result[f"{mode}_jumps"] = a["jumps_after_convergence"]
                 result[f"{mode}_time_per_update_s"] = t["wall_per_update_s"]
+                if mode == "global":
+                    claim = a["convergence_iteration_without_ground_truth"]
+                    result["global_own_claim_record"] = claim
+                    result["global_own_claim_held"] = int(claim_held(timeline, claim))
             rows.append(result)
             print(f"{name} seed {seed}: global converged={result['global_converged']} "
                   f"(record {result['global_convergence_iteration']}), tracking median "
@@ -107,7 +135,8 @@ def main():
         w.writerows(rows)
     lines = ["| map | seeds | global localization converged | median convergence record | "
              "jumps after global convergence | tracking median error (m) | worst tracking median (m) | "
-             "tracking still localized at the end | tracking jumps |", "|---|---|---|---|---|---|---|---|---|"]
+             "tracking still localized at the end | tracking jumps | global: own claim held |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for name, _ in maps:
         sel = [r for r in rows if r["map"] == name]
         conv = [r for r in sel if r["global_converged"]]
@@ -117,7 +146,8 @@ def main():
         lines.append(f"| {name} | {len(sel)} | {len(conv)}/{len(sel)} ({100 * len(conv) / len(sel):.0f}%) | "
                      f"{statistics.median(its) if its else '-'} | {sum(r['global_jumps'] for r in conv)} | "
                      f"{statistics.median(trk):.3f} | {max(trk):.3f} | {held}/{len(sel)} | "
-                     f"{sum(r['tracking_jumps'] for r in sel)} |")
+                     f"{sum(r['tracking_jumps'] for r in sel)} | "
+                     f"{sum(r['global_own_claim_held'] for r in sel)}/{len(sel)} |")
     with open(os.path.join(args.out, "accuracy_study.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))

@@ -4,7 +4,7 @@
 Runs `rcbench delibot` twice per log and sensor model, tracking from two
 starts: the scan-matching reference's first pose (A) and the same pose moved
 by --offset (B, e.g. the look-alike door one door west). Every sensor
-update's timeline value `log_likelihood_mean` is log p(scan | earlier scans,
+update's timeline value `log_mean_likelihood_nats` is log p(scan | earlier scans,
 start), the particle estimate of the update's normalizer, so its running sum
 is the log marginal likelihood of the scans so far given the start, and the
 difference of the two sums is the log Bayes factor of A over B (nats). Both
@@ -18,7 +18,8 @@ Writes
   --figure FILE                   the log Bayes factor against the record,
                                   one panel per log, one line per model
 and prints per (log, model): the lowest log Bayes factor and its record, the
-last record at which it was below 0, and its final value. separation_m is the
+last record at which it was below 0 ("never", or "still below at the end"),
+and its final value. separation_m is the
 distance between the two tracks' estimates: a track that has wandered onto
 the other hypothesis (separation near 0) no longer compares two hypotheses.
 
@@ -43,6 +44,9 @@ import tempfile
 from rcbench_files import InputError, read_poses, read_timeline_rows
 
 
+COLUMN = "log_mean_likelihood_nats"
+
+
 def fail(message):
     sys.exit(f"hypothesis_evidence: {message}")
 
@@ -56,17 +60,19 @@ def first_reference_pose(path):
 
 
 def read_evidence(path):
-    """Per record: (cumulative log_likelihood_mean, est_x_m, est_y_m)."""
+    """Per record: (cumulative log_mean_likelihood_nats, est_x_m, est_y_m)."""
     try:
-        rows = read_timeline_rows(path, ("iteration", "log_likelihood_mean", "est_x_m", "est_y_m"))
+        rows = read_timeline_rows(path, ("iteration", "sensor_updated", COLUMN, "est_x_m", "est_y_m"))
     except InputError as e:
         fail(str(e))
     out, total = [], 0.0
     for r in rows:
-        if r["log_likelihood_mean"] != "":
-            value = float(r["log_likelihood_mean"])
+        if r["sensor_updated"] == "1":
+            # rcbench leaves the cell empty only without an update, or for a
+            # value it cannot write (not finite): then the sum is meaningless.
+            value = float(r[COLUMN]) if r[COLUMN] != "" else math.nan
             if not math.isfinite(value):
-                fail(f"{path}: record {r['iteration']}: non-finite log_likelihood_mean")
+                fail(f"{path}: record {r['iteration']}: sensor update without a finite {COLUMN}")
             total += value
         out.append((total, float(r["est_x_m"]), float(r["est_y_m"])))
     return out
@@ -83,9 +89,17 @@ def run_track(rcbench, map_path, trace_path, start, model, extra, timeline):
 
 
 def summarize(diff):
+    """Lowest value and its record, when the factor was last below 0 ('never',
+    'still at the end', or the record), and the final value."""
     low = min(range(len(diff)), key=lambda i: diff[i])
     below = [i for i, d in enumerate(diff) if d < 0]
-    return diff[low], low, (below[-1] if below else -1), diff[-1]
+    if not below:
+        last_below = "never"
+    elif diff[-1] < 0:
+        last_below = "still below at the end"
+    else:
+        last_below = f"record {below[-1]}"
+    return diff[low], low, last_below, diff[-1]
 
 
 def main():
@@ -144,7 +158,7 @@ def main():
                 curves[(log, model)] = diff
                 low, low_at, last_below, final = summarize(diff)
                 min_sep = min(math.hypot(pa[1] - pb[1], pa[2] - pb[2]) for pa, pb in zip(a, b))
-                print(f"{log} {model}: lowest {low:.1f} nats at record {low_at}, last below 0 at record "
+                print(f"{log} {model}: lowest {low:.1f} nats at record {low_at}, last below 0: "
                       f"{last_below}, final {final:.1f} nats; tracks at least {min_sep:.1f} m apart")
     print(f"wrote {csv_path}")
 

@@ -32,8 +32,11 @@ def read_poses(path):
 
 def read_timeline_rows(path, columns):
     """The rows of an rcbench timeline CSV as dicts; every name in `columns` must be a column."""
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        raise InputError(f"{path}: {e.strerror}") from None
     if not rows:
         raise InputError(f"{path}: empty timeline")
     for column in columns:

@@ -4,6 +4,7 @@
 // without changing the belief the weighted set represents, and reduces to
 // plain systematic resampling when there is one hypothesis.
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <gtest/gtest.h>
@@ -154,9 +155,60 @@ TEST(HypothesisResamplingTest, FlooredHypothesesTakeAtMostHalfTheSlots) {
   const ClusterTally t = Tally(c, r);
   for (int k = 1; k <= 25; ++k) EXPECT_EQ(t.slots[k], 20) << "hypothesis " << k;
   EXPECT_EQ(std::accumulate(t.slots.begin(), t.slots.end(), 0), 1000);
-  double total = 0.0;
-  for (double m : t.mass) total += m;
-  EXPECT_NEAR(total, 1.0, 1e-12);
+  // A floored hypothesis keeps its mass exactly; the others share the rest
+  // by systematic resampling, each to within one shared slot's weight.
+  const double slot_weight = std::exp(r.log_weights.front());
+  double shared_in = 0.0, shared_out = 0.0;
+  for (int k = 0; k < c.count; ++k) {
+    if (k >= 1 && k <= 25) {
+      EXPECT_NEAR(t.mass[k], masses[k], 1e-12) << "hypothesis " << k;
+    } else {
+      EXPECT_LE(std::abs(t.mass[k] - masses[k]), slot_weight + 1e-12) << "hypothesis " << k;
+      shared_in += masses[k];
+      shared_out += t.mass[k];
+    }
+  }
+  EXPECT_NEAR(shared_out, shared_in, 1e-12);
+}
+
+TEST(HypothesisResamplingTest, TheCapGoesToTheHeaviestHypotheses) {
+  // Masses 0.949, 0.021 and 30 x 0.001 over 1000 slots at a floor of 20:
+  // the 0.021 hypothesis starts above the floor (21 slots) and falls below
+  // it as lighter ones are floored. It must still get its 20 particles
+  // before the 25-hypothesis cap is filled by hypotheses 21 times lighter.
+  std::vector<Pose2> particles = Cloud(0, 0, 0, 200);
+  std::vector<double> masses = {0.949, 0.021};
+  particles = Join(particles, Cloud(3.0, 0, 0, 10));
+  for (int k = 0; k < 30; ++k) {
+    particles = Join(particles, Cloud(3.0 * (k + 2), 0, 0, 10));
+    masses.push_back(0.001);
+  }
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  ASSERT_EQ(c.count, 32);
+  const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
+                                                          Offsets(0.3));
+  EXPECT_EQ(r.floored_clusters, 25);
+  const ClusterTally t = Tally(c, r);
+  EXPECT_EQ(t.slots[1], 20);
+  EXPECT_NEAR(t.mass[1], 0.021, 1e-12);
+}
+
+TEST(HypothesisResamplingTest, AHypothesisWithNoWeightIsNeverKept) {
+  const std::vector<Pose2> particles = Join(Cloud(40, 41, 0, 500), Cloud(34, 41, 0, 500));
+  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  std::vector<double> lw(particles.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < 500; ++i) lw[i] = -std::log(500.0);  // the second cloud: all in walls
+  const WeightedResample r = HypothesisPreservingResample(lw, c, 1000, {20, 1e4}, Offsets(0.42));
+  EXPECT_EQ(r.floored_clusters, 0);
+  EXPECT_EQ(Tally(c, r).slots[1], 0);
+  EXPECT_EQ(HypothesesAlive(ClusterLogMasses(lw, c), 1e4), 1);
+}
+
+TEST(HypothesisResamplingTest, RejectsClustersThatDoNotCoverTheWeights) {
+  const HypothesisClusters c = ClusterHypotheses(Cloud(0, 0, 0, 10), kBin, kHeadingBins);
+  const std::vector<double> lw(11, -std::log(11.0));
+  EXPECT_THROW(HypothesisPreservingResample(lw, c, 11, {2, 10.0}, Offsets(0.5)), std::invalid_argument);
+  EXPECT_THROW(ClusterLogMasses(lw, c), std::invalid_argument);
 }
 
 TEST(HypothesisResamplingTest, OptionsBoundTheFloor) {

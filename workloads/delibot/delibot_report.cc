@@ -24,7 +24,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
-                                      "sensor_updated", "log_likelihood_mean", "resampled", "injected",
+                                      "sensor_updated", "log_mean_likelihood_nats", "resampled", "injected",
                                       "injection_rejected", "hypotheses_alive",
                                       "spread_m", "mode_weight", "consistency"};
   if (gt) {
@@ -129,6 +129,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"hypothesis_floor_particles", s.mcl.hypothesis_floor.min_particles},
       {"hypothesis_window_nats", s.mcl.hypothesis_floor.window_nats},
       {"hypothesis_heading_bins", s.mcl.hypothesis_heading_bins},
+      {"hypothesis_bin_m", s.mcl.estimate_kernel_radius_m},
       {"recovery_alpha_slow", s.mcl.alpha_slow},
       {"recovery_alpha_fast", s.mcl.alpha_fast},
       {"injection_check_updates", s.mcl.injection_check_updates},
@@ -156,6 +157,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                    {"converged_at_end", m.converged},
                    {"end_median_mode_weight", m.end_mode_weight},
                    {"end_median_consistency", m.end_consistency},
+                   {"end_median_hypotheses_alive", m.end_hypotheses_alive},
                    {"median_consistency_after_convergence", m.median_consistency},
                    {"fraction_consistent_after_convergence", m.fraction_consistent},
                    {"jumps_after_convergence", m.jumps_after_convergence},
@@ -236,18 +238,20 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
          "consistency %.2f; %s)",
          m.convergence_iteration, m.end_mode_weight, m.end_consistency,
          m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
-                                                     : "scans disagree with the map: wrong pose or wrong map");
+         : m.end_hypotheses_alive > 1.0 ? "a rival hypothesis is still alive"
+                                        : "scans disagree with the map: wrong pose or wrong map");
   } else
     emit("converged at record     never");
   // With ground truth, also the record from which the filter itself claimed
   // to be localized: what a user without ground truth would have trusted.
   if (gt) {
+    const char* rivals = s.mcl.hypothesis_floor.min_particles > 0 ? ", no rival hypothesis" : "";
     if (m.self_convergence_iteration >= 0)
-      emit("filter's own claim      record %ld (mode weight >= %.2f and consistency >= %.2f for 10 updates)",
-           m.self_convergence_iteration, s.converged_mode_weight, s.converged_consistency);
+      emit("filter's own claim      record %ld (mode weight >= %.2f and consistency >= %.2f%s for 10 updates)",
+           m.self_convergence_iteration, s.converged_mode_weight, s.converged_consistency, rivals);
     else
-      emit("filter's own claim      never (mode weight >= %.2f and consistency >= %.2f for 10 updates)",
-           s.converged_mode_weight, s.converged_consistency);
+      emit("filter's own claim      never (mode weight >= %.2f and consistency >= %.2f%s for 10 updates)",
+           s.converged_mode_weight, s.converged_consistency, rivals);
   }
   emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
        m.median_consistency, s.consistency_sigmas);

@@ -127,14 +127,16 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.converged = gt ? localized(rows.back()) : MostLocalized(last_updates, localized);
   }
   {
-    std::vector<double> mode, cons;
+    std::vector<double> mode, cons, alive;
     for (const DelibotRow* r : last_updates) {
       mode.push_back(r->mode_weight);
       cons.push_back(r->consistency);
+      alive.push_back(r->hypotheses_alive);
     }
     if (!mode.empty()) {
       sum.end_mode_weight = Median(mode);
       sum.end_consistency = Median(cons);
+      sum.end_hypotheses_alive = Median(alive);
     }
   }
   if (gt && !rows.empty()) {

@@ -71,7 +71,8 @@ struct DelibotRow {
   // the normalizer of Bayes' rule, which augmented MCL's averages also
   // track. Summed over updates it compares hypotheses: the difference of two
   // tracking runs' sums is their log Bayes factor. NaN without a sensor update
-  // or for an engine that does not report it.
+  // or for an engine that does not report it; finite after every update
+  // (every beam density has a positive floor, z_rand / max_range).
   double log_mean_likelihood = std::numeric_limits<double>::quiet_NaN();
   bool resampled = false;
   int injected = 0;
@@ -101,7 +102,9 @@ struct DelibotSummary {
   long injected = 0;
   long injection_rejected = 0;
   // -1 when never reached. With ground truth: error below both thresholds for
-  // 10 consecutive records; without: mode weight above its threshold likewise.
+  // 10 consecutive records; without: for 10 consecutive sensor updates, mode
+  // weight and scan consistency at or above their thresholds and (with the
+  // hypothesis floor) no rival hypothesis alive.
   long convergence_iteration = -1;
   // The ground-truth-free convergence (mode weight and consistency, as
   // above) even when ground truth is given: the record from which the
@@ -116,6 +119,9 @@ struct DelibotSummary {
   // is; without ground truth the two cannot be told apart). -1 if none.
   double end_mode_weight = -1.0;
   double end_consistency = -1.0;
+  // The same median of hypotheses_alive: above 1, a rival hypothesis is
+  // alive (hypothesis floor only; 0 without it).
+  double end_hypotheses_alive = -1.0;
   double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
   double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
   double median_consistency = 0.0;       // after convergence

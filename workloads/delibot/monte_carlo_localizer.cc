@@ -172,11 +172,16 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
   };
   std::vector<std::size_t> ancestors;
   std::vector<double> next_log_weights;
+  // Random poses replace only equal-weight slots: one put in a floored
+  // hypothesis's slot would inherit that hypothesis's tiny weight (useless
+  // from the start) and push the hypothesis below its floor.
+  std::size_t injectable_slots = slots;
   if (clusters) {
     WeightedResample resampled =
         HypothesisPreservingResample(log_weights_, *clusters, slots, options_.hypothesis_floor, pass_offset);
     ancestors = std::move(resampled.ancestors);
     next_log_weights = std::move(resampled.log_weights);
+    injectable_slots = resampled.shared_slots;
   } else {
     ancestors = SystematicResample(log_weights_, pass_offset(0), slots);
     next_log_weights.assign(slots, -std::log(static_cast<double>(slots)));
@@ -188,7 +193,7 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
   std::vector<Pose2> candidates;
   for (std::size_t slot = 0; slot < next.size(); ++slot) {
     next[slot] = particles_[ancestors[slot]];
-    if (result.injection_probability > 0.0) {
+    if (result.injection_probability > 0.0 && slot < injectable_slots) {
       RandomStream stream(options_.seed, StreamPurpose::kInjection, iteration, slot);
       if (stream.Uniform() < result.injection_probability) {
         candidate_slots.push_back(slot);
@@ -219,7 +224,8 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
     ++injected;
   }
   particles_.swap(next);
-  // An injected particle takes the weight of the slot it replaces.
+  // An injected particle takes the (equal) weight of the shared slot it
+  // replaces.
   log_weights_.swap(next_log_weights);
   result.resampled = true;
   result.injected = injected;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "common/log_domain.h"
 
@@ -41,9 +42,6 @@ std::vector<std::size_t> SystematicResample(const std::vector<double>& normalize
   return ancestors;
 }
 
-}  // namespace rc
-
-namespace rc {
 namespace {
 
 // Systematic pass over `members` (indices into log_weights, in this order),
@@ -59,6 +57,9 @@ void SystematicOver(const std::vector<double>& log_weights, const std::vector<st
 
 std::vector<double> ClusterLogMasses(const std::vector<double>& normalized_log_weights,
                                      const HypothesisClusters& clusters) {
+  if (clusters.cluster_of.size() != normalized_log_weights.size())
+    throw std::invalid_argument("hypothesis clusters cover " + std::to_string(clusters.cluster_of.size()) +
+                                " particles, the weights " + std::to_string(normalized_log_weights.size()));
   std::vector<double> log_mass(static_cast<std::size_t>(clusters.count), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < normalized_log_weights.size(); ++i) {
     double& m = log_mass[static_cast<std::size_t>(clusters.cluster_of[i])];
@@ -82,6 +83,9 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   const std::size_t n = normalized_log_weights.size();
   const std::size_t slots = output_count > 0 ? output_count : n;
   WeightedResample out;
+  if (clusters.cluster_of.size() != n)
+    throw std::invalid_argument("hypothesis clusters cover " + std::to_string(clusters.cluster_of.size()) +
+                                " particles, the weights " + std::to_string(n));
   if (n == 0) return out;
   const auto k_count = static_cast<std::size_t>(clusters.count);
   std::vector<std::vector<std::size_t>> members(k_count);
@@ -95,31 +99,33 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
       if (std::isfinite(log_mass[c]) && log_mass[c] >= heaviest - floor.window_nats) eligible.push_back(c);
   std::stable_sort(eligible.begin(), eligible.end(),
                    [&](std::size_t a, std::size_t b) { return log_mass[a] > log_mass[b]; });
-  // Floor the clusters whose proportional share of the shared slots is
-  // below min_particles. Flooring one shrinks the others' shares, so repeat
-  // until no share falls below the floor or half the slots are floored.
+  // Floor, one at a time, the heaviest eligible cluster whose proportional
+  // share of the shared slots is below min_particles. Flooring one shrinks
+  // every other share (the shared slots fall by m, the shared mass by less
+  // than m / slots of the whole), so each flooring rescans from the
+  // heaviest, until no share is below the floor or half the slots are
+  // floored: the cap then goes to the heaviest hypotheses, not to whichever
+  // light ones came first.
   const auto m = static_cast<std::size_t>(std::max(0, floor.min_particles));
   const std::size_t max_floored = m > 0 ? slots / (2 * m) : 0;
   std::vector<bool> floored(k_count, false);
   std::vector<std::size_t> floored_order;
   double free_mass = 1.0;
-  for (bool changed = true; changed && floored_order.size() < max_floored;) {
-    changed = false;
-    for (std::size_t c : eligible) {
-      if (floored[c] || floored_order.size() >= max_floored) continue;
-      const double shared_slots = static_cast<double>(slots - floored_order.size() * m);
-      if (shared_slots * std::exp(log_mass[c]) / free_mass < static_cast<double>(m)) {
-        floored[c] = true;
-        floored_order.push_back(c);
-        free_mass -= std::exp(log_mass[c]);
-        changed = true;
-      }
-    }
+  while (floored_order.size() < max_floored) {
+    const double shared_slots = static_cast<double>(slots - floored_order.size() * m);
+    const auto below = std::find_if(eligible.begin(), eligible.end(), [&](std::size_t c) {
+      return !floored[c] && shared_slots * std::exp(log_mass[c]) / free_mass < static_cast<double>(m);
+    });
+    if (below == eligible.end()) break;
+    floored[*below] = true;
+    floored_order.push_back(*below);
+    free_mass -= std::exp(log_mass[*below]);
   }
   out.floored_clusters = static_cast<int>(floored_order.size());
   if (floored_order.empty()) {
     out.ancestors = SystematicResample(normalized_log_weights, u01(0), slots);
     out.log_weights.assign(slots, -std::log(static_cast<double>(slots)));
+    out.shared_slots = slots;
     return out;
   }
   // The shared pass walks the other clusters one after another, so each of
@@ -128,6 +134,7 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   for (std::size_t c = 0; c < k_count; ++c)
     if (!floored[c]) shared.insert(shared.end(), members[c].begin(), members[c].end());
   const std::size_t shared_slots = slots - floored_order.size() * m;
+  out.shared_slots = shared_slots;
   out.ancestors.reserve(slots);
   out.log_weights.reserve(slots);
   double log_free_mass = 0.0;

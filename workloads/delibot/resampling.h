@@ -45,9 +45,15 @@ struct WeightedResample {
   std::vector<std::size_t> ancestors;   // one per output slot
   std::vector<double> log_weights;      // normalized, one per output slot
   int floored_clusters = 0;             // clusters held at min_particles
+  // The first shared_slots slots come from the shared pass and carry equal
+  // weights; the rest belong to floored clusters. Right after a floored
+  // resampling the effective sample size is about shared_slots (at least
+  // half the slots), not N: the floored particles carry little weight.
+  std::size_t shared_slots = 0;
 };
 
 // Log of each cluster's total weight (-inf for a cluster of zero weight).
+// Throws std::invalid_argument if the clusters do not cover the weights.
 std::vector<double> ClusterLogMasses(const std::vector<double>& normalized_log_weights,
                                      const HypothesisClusters& clusters);
 
