@@ -138,16 +138,20 @@ TEST(HypothesisResamplingTest, WithOneHypothesisItIsSystematicResampling) {
   for (double w : r.log_weights) EXPECT_DOUBLE_EQ(w, -std::log(300.0));
 }
 
+// A cloud of 200 particles at the origin, then count - 1 clouds of 10, 3 m
+// apart along x: count separate hypotheses.
+std::vector<Pose2> HypothesesInARow(std::size_t count) {
+  std::vector<Pose2> particles = Cloud(0, 0, 0, 200);
+  for (std::size_t k = 1; k < count; ++k) particles = Join(particles, Cloud(3.0 * k, 0, 0, 10));
+  return particles;
+}
+
 TEST(HypothesisResamplingTest, FlooredHypothesesTakeAtMostHalfTheSlots) {
   // One heavy hypothesis and 60 light ones 3 m apart: 1000 slots at a floor
   // of 20 hold at most 25 light hypotheses; the heaviest light ones win.
-  std::vector<Pose2> particles = Cloud(0, 0, 0, 200);
   std::vector<double> masses = {0.9};
-  for (int k = 0; k < 60; ++k) {
-    particles = Join(particles, Cloud(3.0 * (k + 1), 0, 0, 10));
-    masses.push_back(0.1 * (60 - k) / 1830.0);  // decreasing, summing to 0.1
-  }
-  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  for (int k = 0; k < 60; ++k) masses.push_back(0.1 * (60 - k) / 1830.0);  // decreasing, summing to 0.1
+  const HypothesisClusters c = ClusterHypotheses(HypothesesInARow(masses.size()), kBin, kHeadingBins);
   ASSERT_EQ(c.count, 61);
   const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
                                                           Offsets(0.1));
@@ -176,14 +180,9 @@ TEST(HypothesisResamplingTest, TheCapGoesToTheHeaviestHypotheses) {
   // the 0.021 hypothesis starts above the floor (21 slots) and falls below
   // it as lighter ones are floored. It must still get its 20 particles
   // before the 25-hypothesis cap is filled by hypotheses 21 times lighter.
-  std::vector<Pose2> particles = Cloud(0, 0, 0, 200);
   std::vector<double> masses = {0.949, 0.021};
-  particles = Join(particles, Cloud(3.0, 0, 0, 10));
-  for (int k = 0; k < 30; ++k) {
-    particles = Join(particles, Cloud(3.0 * (k + 2), 0, 0, 10));
-    masses.push_back(0.001);
-  }
-  const HypothesisClusters c = ClusterHypotheses(particles, kBin, kHeadingBins);
+  masses.resize(32, 0.001);
+  const HypothesisClusters c = ClusterHypotheses(HypothesesInARow(masses.size()), kBin, kHeadingBins);
   ASSERT_EQ(c.count, 32);
   const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
                                                           Offsets(0.3));
