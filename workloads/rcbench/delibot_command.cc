@@ -220,7 +220,8 @@ void AddDelibotCommand(CLI::App& app) {
                   "0 = plain systematic resampling)")
       ->capture_default_str();
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
-                  "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats)")
+                  "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
+                  "second hypothesis is that close, the filter does not claim convergence")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
