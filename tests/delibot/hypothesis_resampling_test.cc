@@ -146,17 +146,38 @@ std::vector<Pose2> HypothesesInARow(std::size_t count) {
   return particles;
 }
 
+// One hypothesis per mass (HypothesesInARow) resampled into 1000 slots at a
+// floor of 20 particles and a 100-nat window.
+struct RowResample {
+  HypothesisClusters clusters;
+  WeightedResample resampled;
+  ClusterTally tally;
+};
+
+RowResample ResampleARow(const std::vector<double>& masses, double u) {
+  RowResample out;
+  out.clusters = ClusterHypotheses(HypothesesInARow(masses.size()), kBin, kHeadingBins);
+  if (out.clusters.count != static_cast<int>(masses.size())) {
+    ADD_FAILURE() << out.clusters.count << " clusters for " << masses.size() << " hypotheses";
+    return out;
+  }
+  out.resampled = HypothesisPreservingResample(WeightsWithMasses(out.clusters, masses), out.clusters, 1000,
+                                               {20, 100.0}, Offsets(u));
+  out.tally = Tally(out.clusters, out.resampled);
+  return out;
+}
+
 TEST(HypothesisResamplingTest, FlooredHypothesesTakeAtMostHalfTheSlots) {
   // One heavy hypothesis and 60 light ones 3 m apart: 1000 slots at a floor
   // of 20 hold at most 25 light hypotheses; the heaviest light ones win.
   std::vector<double> masses = {0.9};
   for (int k = 0; k < 60; ++k) masses.push_back(0.1 * (60 - k) / 1830.0);  // decreasing, summing to 0.1
-  const HypothesisClusters c = ClusterHypotheses(HypothesesInARow(masses.size()), kBin, kHeadingBins);
-  ASSERT_EQ(c.count, 61);
-  const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
-                                                          Offsets(0.1));
+  const RowResample row = ResampleARow(masses, 0.1);
+  ASSERT_EQ(row.tally.slots.size(), masses.size());
+  const HypothesisClusters& c = row.clusters;
+  const WeightedResample& r = row.resampled;
+  const ClusterTally& t = row.tally;
   EXPECT_EQ(r.floored_clusters, 25);
-  const ClusterTally t = Tally(c, r);
   for (int k = 1; k <= 25; ++k) EXPECT_EQ(t.slots[k], 20) << "hypothesis " << k;
   EXPECT_EQ(std::accumulate(t.slots.begin(), t.slots.end(), 0), 1000);
   // A floored hypothesis keeps its mass exactly; the others share the rest
@@ -182,14 +203,11 @@ TEST(HypothesisResamplingTest, TheCapGoesToTheHeaviestHypotheses) {
   // before the 25-hypothesis cap is filled by hypotheses 21 times lighter.
   std::vector<double> masses = {0.949, 0.021};
   masses.resize(32, 0.001);
-  const HypothesisClusters c = ClusterHypotheses(HypothesesInARow(masses.size()), kBin, kHeadingBins);
-  ASSERT_EQ(c.count, 32);
-  const WeightedResample r = HypothesisPreservingResample(WeightsWithMasses(c, masses), c, 1000, {20, 100.0},
-                                                          Offsets(0.3));
-  EXPECT_EQ(r.floored_clusters, 25);
-  const ClusterTally t = Tally(c, r);
-  EXPECT_EQ(t.slots[1], 20);
-  EXPECT_NEAR(t.mass[1], 0.021, 1e-12);
+  const RowResample row = ResampleARow(masses, 0.3);
+  ASSERT_EQ(row.tally.slots.size(), masses.size());
+  EXPECT_EQ(row.resampled.floored_clusters, 25);
+  EXPECT_EQ(row.tally.slots[1], 20);
+  EXPECT_NEAR(row.tally.mass[1], 0.021, 1e-12);
 }
 
 TEST(HypothesisResamplingTest, AHypothesisWithNoWeightIsNeverKept) {
