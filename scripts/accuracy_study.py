@@ -38,7 +38,7 @@ import statistics
 import subprocess
 import sys
 
-from rcbench_files import InputError, read_timeline_rows
+from rcbench_files import InputError, read_poses, read_timeline_rows
 
 WEAN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "wean", "wean.dat")
 
@@ -50,12 +50,12 @@ def run(cmd):
 
 
 def first_pose(gt_path):
-    with open(gt_path) as f:
-        for line in f:
-            if line.strip() and not line.startswith("#"):
-                _, x, y, theta = line.split()
-                return f"{x},{y},{theta}"
-    sys.exit(f"{gt_path}: no pose")
+    """The ground truth's first pose as rcbench's --initial-pose X,Y,THETA."""
+    try:
+        _, x, y, theta = read_poses(gt_path)[0]
+    except InputError as e:
+        sys.exit(f"accuracy_study: {e}")
+    return f"{x!r},{y!r},{theta!r}"
 
 
 def claim_held(timeline, claim):
@@ -105,10 +105,10 @@ def main():
                 cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--ground-truth", gt,
                        "--particles", str(args.particles if mode == "global" else args.tracking_particles), "--seed", str(seed),
                        "--summary", summary, "--quiet", "--no-pricing", *extra]
-                timeline = os.path.join(args.out, f"{name}_{seed}_{mode}.csv")
+                timeline = os.path.join(args.out, f"{name}_{seed}_global.csv")
                 if mode == "global":
                     cmd += ["--timeline", timeline]
-                if mode == "tracking":
+                else:
                     cmd += ["--initial-pose", first_pose(gt)]
                 run(cmd)
                 with open(summary) as f:

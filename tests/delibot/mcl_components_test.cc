@@ -282,8 +282,9 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
   s.mcl.beams.beam_step = 10;
   s.mcl.seed = 42;
   s.max_records = 40;
-  // The second march run also keeps hypotheses at a floor: the clustering
-  // and the per-cluster passes must not depend on the thread count either.
+  // Runs: march, rm, and march again with hypotheses kept at a floor (the
+  // clustering and the per-cluster passes must not depend on the thread
+  // count either).
   for (int run_index = 0; run_index < 3; ++run_index) {
     s.ray_caster = run_index == 1 ? RayCastMethod::kRayMarching : RayCastMethod::kMarch;
     s.mcl.hypothesis_floor.min_particles = run_index == 2 ? 20 : 0;

@@ -21,8 +21,8 @@
 // - Every beam at beam step 1 keeps every weight finite on all four logs.
 // robotdata1 is left out of the recipe's global check: two of three seeds
 // lock onto the door 6 m west of the truth (README, "DeliBot on the real
-// Wean logs"); with nav2's update gating or its cube-sum likelihood it
-// localizes, and that is checked.
+// Wean logs"); with nav2's update gating, its cube-sum likelihood or the
+// hypothesis floor it localizes, and that is checked.
 #include <algorithm>
 #include <cmath>
 #include <string>

@@ -66,13 +66,14 @@ HypothesisClusters ClusterHypotheses(const std::vector<Pose2>& particles, double
           const auto it = bin_index.find({bins[b].x + dx, bins[b].y + dy, h});
           if (it != bin_index.end()) sets.Join(static_cast<int>(b), it->second);
         }
+  // Number the clusters in order of their first particle.
   HypothesisClusters out;
   out.cluster_of.resize(particles.size());
-  std::unordered_map<int, int> cluster_of_root;
+  std::vector<int> cluster_of_root(bins.size(), -1);
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    const auto [it, inserted] = cluster_of_root.emplace(sets.Find(bin_of[i]), out.count);
-    if (inserted) ++out.count;
-    out.cluster_of[i] = it->second;
+    int& cluster = cluster_of_root[static_cast<std::size_t>(sets.Find(bin_of[i]))];
+    if (cluster < 0) cluster = out.count++;
+    out.cluster_of[i] = cluster;
   }
   return out;
 }

@@ -42,7 +42,7 @@ struct MclOptions {
   // robotdata2 the true track, held at a 20-particle floor, trails the door
   // 6 m west by up to about 160 nats before the corridor's end decides for it
   // by hundreds. Windows of 100, 200 and 300 nats were tried on the four Wean
-  // logs (9, 10 and 8 of 12 runs right by the filter's own claim; README,
+  // logs (9, 10 and 9 of 12 runs right by the filter's own claim; README,
   // "Evidence between look-alike places"); chosen on the same logs, with no
   // held-out data.
   HypothesisFloor hypothesis_floor{0, 200.0};  // [0, particle_count / 2] particles, [0, 10^4] nats

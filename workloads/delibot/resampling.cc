@@ -83,14 +83,12 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   const std::size_t n = normalized_log_weights.size();
   const std::size_t slots = output_count > 0 ? output_count : n;
   WeightedResample out;
-  if (clusters.cluster_of.size() != n)
-    throw std::invalid_argument("hypothesis clusters cover " + std::to_string(clusters.cluster_of.size()) +
-                                " particles, the weights " + std::to_string(n));
+  // Throws if the clusters do not cover the weights, before they index anything.
+  const std::vector<double> log_mass = ClusterLogMasses(normalized_log_weights, clusters);
   if (n == 0) return out;
   const auto k_count = static_cast<std::size_t>(clusters.count);
   std::vector<std::vector<std::size_t>> members(k_count);
   for (std::size_t i = 0; i < n; ++i) members[static_cast<std::size_t>(clusters.cluster_of[i])].push_back(i);
-  const std::vector<double> log_mass = ClusterLogMasses(normalized_log_weights, clusters);
   // Eligible clusters, heaviest first (ties: lower index first).
   const double heaviest = *std::max_element(log_mass.begin(), log_mass.end());
   std::vector<std::size_t> eligible;
@@ -137,16 +135,16 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   out.shared_slots = shared_slots;
   out.ancestors.reserve(slots);
   out.log_weights.reserve(slots);
-  double log_free_mass = 0.0;
-  if (!shared.empty()) {
-    std::vector<double> lw;
-    lw.reserve(shared.size());
-    for (std::size_t i : shared) lw.push_back(normalized_log_weights[i]);
-    log_free_mass = LogSumExp(lw);
-  }
-  // A cluster is floored only while its share is below min_particles, and
-  // the last cluster with mass outside the floor has all the shared slots
-  // (at least half of them), so some mass is always left to share.
+  // The shared mass, summed in the log domain (1 minus the floored masses
+  // would round away tiny masses). A cluster is floored only while
+  // its share is below min_particles, and the last cluster with mass outside
+  // the floor has all the shared slots (at least half of them), so some mass
+  // is always left to share.
+  std::vector<double> shared_log_weights;
+  shared_log_weights.reserve(shared.size());
+  for (std::size_t i : shared) shared_log_weights.push_back(normalized_log_weights[i]);
+  const double log_free_mass =
+      shared.empty() ? -std::numeric_limits<double>::infinity() : LogSumExp(shared_log_weights);
   if (shared.empty() || !std::isfinite(log_free_mass))
     throw std::logic_error("hypothesis floor left no mass for the shared slots");
   SystematicOver(normalized_log_weights, shared, log_free_mass, shared_slots, u01(0), out.ancestors);
