@@ -15,9 +15,9 @@
 //   consistent scans, and without a jump after convergence on robotdata2
 //   (on robotdata3 the ground-truth-free convergence comes while two doors
 //   are still alive, and the estimate jumps between them before settling).
-// - With hypothesis-preserving resampling the recipe's own (ground-truth-
-//   free) claim of convergence comes in the first half of robotdata1, 3 and
-//   4 and holds at every later checkpoint.
+// - With hypothesis-preserving resampling (a 500-particle floor) the
+//   recipe's own (ground-truth-free) claim of convergence comes in the first
+//   half of every log and holds at every later checkpoint.
 // - Every beam at beam step 1 keeps every weight finite on all four logs.
 // robotdata1 is left out of the recipe's global check: two of three seeds
 // lock onto the door 6 m west of the truth (README, "DeliBot on the real
@@ -185,18 +185,21 @@ TEST(RealLogGlobalLocalization, CubeSumRecipeLocalizesRobotdata1) {
 // and 950 at the end); the plain recipe on the same seed loses it (checked
 // above). And while a rival hypothesis is alive the filter does not claim
 // convergence, so on robotdata3, where the plain recipe claims while two
-// doors are alive and then switches, its claim comes later and holds.
-// Checked: the claim comes in the first half of the log, with rivals counted
-// on the way, and from the claim on every checkpoint is within 1 m of the
-// reference (seed 1). README: robotdata2 holds in 1 of 3 seeds (its records
-// 180-500 favour the door 6 m west).
+// doors are alive and then switches, its claim comes later and holds. On
+// robotdata2 the true track trails the look-alikes along the corridor
+// (records 180-500) and survives because the floor holds 500 particles: a
+// hypothesis held by 20 loses about 0.5 nats per update to sampling alone
+// (scripts/evidence_vs_particles.py), and was lost in 2 of 3 seeds.
+// Checked on all four logs: the claim comes in the first half of the log,
+// with rivals counted on the way, and from the claim on every checkpoint is
+// within 1 m of the reference (seed 1; README: 37 of 40 runs over 10 seeds).
 class RealLogHypothesisFloor : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
   RC_REQUIRE_SHARED_DATA("wean/" + GetParam().name + ".log");
   const WeanInputs in = Load(GetParam().name);
   DelibotSettings s = RealLogRecipe();
-  s.mcl.hypothesis_floor.min_particles = 20;
+  s.mcl.hypothesis_floor.min_particles = 500;
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
   EXPECT_FALSE(r.summary.any_non_finite_weight);
   const long claim = r.summary.convergence_iteration;
@@ -212,7 +215,8 @@ TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor, ::testing::Values(kRobotdata1, kRobotdata3, kRobotdata4),
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
+                         ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4),
                          PrintName);
 
 class RealLogEveryBeam : public ::testing::TestWithParam<std::string> {};
