@@ -38,9 +38,9 @@ import statistics
 import subprocess
 import sys
 
-from rcbench_files import InputError, read_poses, read_timeline_rows
+from rcbench_files import SHARED_DATA, InputError, read_poses, read_timeline_rows, split_extra_args
 
-WEAN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data", "wean", "wean.dat")
+WEAN = os.path.join(SHARED_DATA, "wean", "wean.dat")
 
 
 def run(cmd):
@@ -78,9 +78,8 @@ def main():
     ap.add_argument("--particles", type=int, default=5000)
     ap.add_argument("--tracking-particles", type=int, default=500)
     ap.add_argument("--records", type=int, default=1000)
-    args, extra = ap.parse_known_args()
-    if extra and extra[0] == "--":
-        extra = extra[1:]
+    own, extra = split_extra_args(sys.argv[1:])
+    args = ap.parse_args(own)
     os.makedirs(args.out, exist_ok=True)
 
     maps = []

@@ -23,7 +23,7 @@ that the scans do not favour at all; at 20 particles on simulated Wean that
 is 0.5 nats per update, about the real lead of robotdata2's look-alike
 track (README, "How many particles a hypothesis needs").
 
-Writes <out>/evidence_vs_particles.csv (trace, particles, seed,
+Writes <out>/evidence_vs_particles.csv (map, seed, particles,
 log_evidence_nats, sensor_updates) and <out>/evidence_vs_particles.md (per
 map and count: mean log evidence and the loss per update), and prints the
 table.
@@ -44,9 +44,7 @@ import statistics
 import subprocess
 import sys
 
-from rcbench_files import InputError, read_poses, read_timeline_rows
-
-COLUMN = "log_mean_likelihood_nats"
+from rcbench_files import SHARED_DATA, InputError, read_cumulative_evidence, read_poses, split_extra_args
 
 
 def fail(message):
@@ -60,20 +58,20 @@ def run(cmd):
 
 
 def log_evidence(timeline_path):
-    """(sum of log_mean_likelihood_nats over the sensor updates, number of updates)."""
+    """(log marginal likelihood of the run's scans (nats), number of sensor updates)."""
     try:
-        rows = read_timeline_rows(timeline_path, (COLUMN,))
+        records = read_cumulative_evidence(timeline_path)
     except InputError as e:
         fail(str(e))
-    values = [float(r[COLUMN]) for r in rows if r[COLUMN] != ""]
-    if not values:
+    updates = sum(updated for _, updated, _, _ in records)
+    if updates == 0:
         fail(f"{timeline_path}: no sensor update")
-    return sum(values), len(values)
+    return records[-1][0], updates
 
 
 def make_traces(args):
-    """{trace name: (map path, trace path, ground-truth path)}, simulated here."""
-    traces = {}
+    """[(map name, seed, map path, trace path, ground-truth path)], simulated here."""
+    traces = []
     maps = [m for m in args.maps.split(",") if m]
     office_map = os.path.join(args.out, "office.yaml")
     if "office" in maps:
@@ -92,7 +90,7 @@ def make_traces(args):
             trace = os.path.join(args.out, f"{name}_seed{seed}.log")
             run([args.rcbench, "simulate", "--map", map_path, "--seed", str(seed), "--records",
                  str(args.records), "--output", trace])
-            traces[f"{name}_seed{seed}"] = (map_path, trace, trace[:-len(".log")] + ".gt")
+            traces.append((name, seed, map_path, trace, trace[:-len(".log")] + ".gt"))
     if not traces:
         fail("no trace to study")
     return traces
@@ -101,19 +99,15 @@ def make_traces(args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--data-dir", default="../shared/data")
+    ap.add_argument("--data-dir", default=SHARED_DATA)
     ap.add_argument("--maps", default="office,wean", help="comma-separated: office, wean")
     ap.add_argument("--seeds", type=int, default=3, help="simulated traces per map, seeds 1..S (count)")
     ap.add_argument("--records", type=int, default=1000, help="laser records per trace (count)")
     ap.add_argument("--counts", default="20,50,100,200,300,500,1000,2000,5000", help="particle counts")
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (count)")
     ap.add_argument("--out", default="out/evidence_vs_particles")
-    argv = sys.argv[1:]
-    extra = []
-    if "--" in argv:  # everything after -- goes to rcbench delibot unchanged
-        extra = argv[argv.index("--") + 1:]
-        argv = argv[:argv.index("--")]
-    args = ap.parse_args(argv)
+    own, extra = split_extra_args(sys.argv[1:])
+    args = ap.parse_args(own)
     try:
         counts = sorted({int(c) for c in args.counts.split(",") if c})
     except ValueError:
@@ -126,38 +120,36 @@ def main():
     traces = make_traces(args)
 
     jobs = []
-    for name, (map_path, trace, truth) in traces.items():
+    for name, seed, map_path, trace, truth in traces:
         try:
             x, y, theta = read_poses(truth)[0][1:]
         except InputError as e:
             fail(str(e))
         for n in counts:
-            # The filter's seed varies with the trace's, so the seeds average
-            # over both the scans and the filter's own noise.
-            seed = int(name.rsplit("seed", 1)[1])
-            timeline = os.path.join(args.out, "runs", f"{name}_n{n}.csv")
+            # The filter's seed is the trace's, so the seeds average over
+            # both the scans and the filter's own noise.
+            timeline = os.path.join(args.out, "runs", f"{name}_seed{seed}_n{n}.csv")
             cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--particles", str(n),
                    "--seed", str(seed), "--initial-pose", repr(x), repr(y), repr(theta),
                    "--sensor-model", "likelihood", "--recovery-alpha-slow", "0",
                    "--quiet", "--no-pricing", "--threads", "1", "--timeline", timeline] + extra
-            jobs.append((name, n, seed, cmd, timeline))
+            jobs.append((name, seed, n, cmd, timeline))
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         list(pool.map(lambda job: run(job[3]), jobs))
 
-    rows = []
-    for name, n, seed, _, timeline in jobs:
-        total, updates = log_evidence(timeline)
-        rows.append({"trace": name, "particles": n, "seed": seed, "log_evidence_nats": total,
-                     "sensor_updates": updates})
+    evidence = {}  # (map, seed, particles) -> (log evidence (nats), sensor updates)
+    for name, seed, n, _, timeline in jobs:
+        evidence[(name, seed, n)] = log_evidence(timeline)
     with open(os.path.join(args.out, "evidence_vs_particles.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+        writer = csv.writer(f)
+        writer.writerow(["map", "seed", "particles", "log_evidence_nats", "sensor_updates"])
+        for (name, seed, n), (total, updates) in evidence.items():
+            writer.writerow([name, seed, n, f"{total:.3f}", updates])
 
     # Loss per update of each count against the largest, per map (mean over seeds).
-    maps = sorted({r["trace"].rsplit("_seed", 1)[0] for r in rows})
+    maps = sorted({name for name, _, _, _, _ in traces}, key=[t[0] for t in traces].index)
+    seeds_of = {m: [seed for name, seed, _, _, _ in traces if name == m] for m in maps}
     largest = counts[-1]
-    loss = {}
     lines = [f"Log evidence lost to sampling, per sensor update, against {largest} particles "
              f"(tracking from the true start, {args.seeds} simulated traces per map, {args.records} records)",
              "", "| particles | " + " | ".join(f"{m}: mean log evidence (nats) | {m}: loss (nats/update)"
@@ -166,16 +158,10 @@ def main():
     for n in counts:
         cells = []
         for m in maps:
-            per_seed = []
-            evid = []
-            for r in rows:
-                if r["trace"].rsplit("_seed", 1)[0] != m or r["particles"] != n:
-                    continue
-                ref = next(q for q in rows if q["trace"] == r["trace"] and q["particles"] == largest)
-                per_seed.append((ref["log_evidence_nats"] - r["log_evidence_nats"]) / r["sensor_updates"])
-                evid.append(r["log_evidence_nats"])
-            loss[(m, n)] = statistics.mean(per_seed)
-            cells.append(f"{statistics.mean(evid):.0f} | {loss[(m, n)]:.3f}")
+            runs = [evidence[(m, seed, n)] for seed in seeds_of[m]]
+            loss = statistics.mean((evidence[(m, seed, largest)][0] - total) / updates
+                                   for seed, (total, updates) in zip(seeds_of[m], runs))
+            cells.append(f"{statistics.mean(total for total, _ in runs):.0f} | {loss:.3f}")
         lines.append(f"| {n} | " + " | ".join(cells) + " |")
     with open(os.path.join(args.out, "evidence_vs_particles.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -41,10 +41,8 @@ import subprocess
 import sys
 import tempfile
 
-from rcbench_files import InputError, read_poses, read_timeline_rows
+from rcbench_files import SHARED_DATA, InputError, read_cumulative_evidence, read_poses, split_extra_args
 
-
-COLUMN = "log_mean_likelihood_nats"
 
 
 def fail(message):
@@ -62,20 +60,9 @@ def first_reference_pose(path):
 def read_evidence(path):
     """Per record: (cumulative log_mean_likelihood_nats, est_x_m, est_y_m)."""
     try:
-        rows = read_timeline_rows(path, ("iteration", "sensor_updated", COLUMN, "est_x_m", "est_y_m"))
+        return [(total, x, y) for total, _, x, y in read_cumulative_evidence(path)]
     except InputError as e:
         fail(str(e))
-    out, total = [], 0.0
-    for r in rows:
-        if r["sensor_updated"] == "1":
-            # rcbench leaves the cell empty only without an update, or for a
-            # value it cannot write (not finite): then the sum is meaningless.
-            value = float(r[COLUMN]) if r[COLUMN] != "" else math.nan
-            if not math.isfinite(value):
-                fail(f"{path}: record {r['iteration']}: sensor update without a finite {COLUMN}")
-            total += value
-        out.append((total, float(r["est_x_m"]), float(r["est_y_m"])))
-    return out
 
 
 def run_track(rcbench, map_path, trace_path, start, model, extra, timeline):
@@ -105,7 +92,7 @@ def summarize(diff):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--data-dir", default="../shared/data")
+    ap.add_argument("--data-dir", default=SHARED_DATA)
     ap.add_argument("--reference-dir", default="out/reference")
     ap.add_argument("--logs", default="robotdata1,robotdata2", help="comma-separated CMU log names")
     ap.add_argument("--models", default="likelihood,beam", help="comma-separated --sensor-model values")
@@ -113,9 +100,8 @@ def main():
     ap.add_argument("--out", default="out/evidence")
     ap.add_argument("--figure", default="", help="PNG of the log Bayes factor per record")
     ap.add_argument("--jobs", type=int, default=2, help="runs at a time (count)")
-    args, extra = ap.parse_known_args()
-    if extra and extra[0] == "--":
-        extra = extra[1:]
+    own, extra = split_extra_args(sys.argv[1:])
+    args = ap.parse_args(own)
     try:
         dx, dy = (float(v) for v in args.offset.split(","))
     except ValueError:

@@ -1,7 +1,24 @@
-"""Readers shared by the study scripts: ground-truth (or reference) pose
-files and rcbench timeline CSVs. A malformed file raises InputError with a
-message naming the file, and the line where there is one."""
+"""Helpers shared by the study scripts: where ../shared/data is, how the
+arguments after `--` reach rcbench, and readers of ground-truth (or
+reference) pose files and rcbench timeline CSVs. A malformed file raises
+InputError with a message naming the file, and the line where there is
+one."""
 import csv
+import math
+import os
+
+# ../shared/data beside the project root, wherever the script is run from.
+SHARED_DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data"))
+
+EVIDENCE_COLUMN = "log_mean_likelihood_nats"
+
+
+def split_extra_args(argv):
+    """(the script's own arguments, the arguments after `--`, passed to rcbench unchanged)."""
+    if "--" not in argv:
+        return argv, []
+    cut = argv.index("--")
+    return argv[:cut], argv[cut + 1:]
 
 
 class InputError(Exception):
@@ -43,3 +60,22 @@ def read_timeline_rows(path, columns):
         if column not in rows[0]:
             raise InputError(f"{path}: no '{column}' column (has {', '.join(rows[0])})")
     return rows
+
+
+def read_cumulative_evidence(path):
+    """Per timeline record: (running sum of log_mean_likelihood_nats, whether
+    the record had a sensor update, est_x_m, est_y_m). The running sum is the
+    log marginal likelihood of the scans so far. A sensor update without a
+    finite value (rcbench leaves the cell empty only for a value it cannot
+    write) makes the sum meaningless and raises InputError."""
+    rows = read_timeline_rows(path, ("iteration", "sensor_updated", EVIDENCE_COLUMN, "est_x_m", "est_y_m"))
+    out, total = [], 0.0
+    for r in rows:
+        updated = r["sensor_updated"] == "1"
+        if updated:
+            value = float(r[EVIDENCE_COLUMN]) if r[EVIDENCE_COLUMN] != "" else math.nan
+            if not math.isfinite(value):
+                raise InputError(f"{path}: record {r['iteration']}: sensor update without a finite {EVIDENCE_COLUMN}")
+            total += value
+        out.append((total, updated, float(r["est_x_m"]), float(r["est_y_m"])))
+    return out

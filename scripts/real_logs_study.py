@@ -47,7 +47,7 @@ import tempfile
 
 import numpy as np
 
-from rcbench_files import InputError, read_poses, read_timeline_rows
+from rcbench_files import SHARED_DATA, InputError, read_poses, read_timeline_rows, split_extra_args
 
 GOOD_ERROR_M = 1.0
 RIGHT_FRACTION = 0.95
@@ -215,14 +215,10 @@ def plot(path, logs, curves, rows):
 
 
 def main():
-    argv = sys.argv[1:]
-    extra = []
-    if "--" in argv:
-        extra = argv[argv.index("--") + 1:]
-        argv = argv[:argv.index("--")]
+    argv, extra = split_extra_args(sys.argv[1:])
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--data-dir", default="/work/shared/data/wean", help="holds wean.dat and robotdataN.log")
+    ap.add_argument("--data-dir", default=os.path.join(SHARED_DATA, "wean"), help="holds wean.dat and robotdataN.log")
     ap.add_argument("--logs", default="1,2,3,4", help="which robotdataN.log (comma-separated N)")
     ap.add_argument("--reference-dir", default="out/reference", help="holds robotdataN.ref.txt (optional)")
     ap.add_argument("--seeds", type=int, default=5, help="seeds 1..S per log (count)")

@@ -38,13 +38,18 @@ struct MclOptions {
   // at least min_particles particles, weighted so the belief is unchanged.
   // min_particles 0 = plain systematic resampling (the default). While a
   // second hypothesis is alive the filter does not claim convergence
-  // without ground truth (delibot_run.h). The window is 200 nats: on
-  // robotdata2 the true track, held at a 20-particle floor, trails the door
-  // 6 m west by up to about 160 nats before the corridor's end decides for it
-  // by hundreds. Windows of 100, 200 and 300 nats were tried on the four Wean
-  // logs (9, 10 and 9 of 12 runs right by the filter's own claim; README,
-  // "Evidence between look-alike places"); chosen on the same logs, with no
-  // held-out data.
+  // without ground truth (delibot_run.h). min_particles should be hundreds:
+  // a hypothesis held by few particles loses evidence to sampling (0.5 nats
+  // per update at 20 particles on simulated Wean, 0.05 at 500;
+  // scripts/evidence_vs_particles.py), so a true place held at a small floor
+  // falls out of the window behind a look-alike the scans do not favour.
+  // The window is 200 nats: on robotdata2 the scans favour the door 6 m west
+  // by up to 84 nats before the corridor's end decides for the truth by
+  // hundreds, while on robotdata3 the truth leads by only 264 nats at the
+  // end. Windows of 100, 200 and 300 nats were tried on the four Wean logs
+  // with a 20-particle floor (9, 10 and 9 of 12 runs right by the filter's
+  // own claim; README, "Evidence between look-alike places"); chosen on the
+  // same logs, with no held-out data.
   HypothesisFloor hypothesis_floor{0, 200.0};  // [0, particle_count / 2] particles, [0, 10^4] nats
   int hypothesis_heading_bins = 12;          // 30 deg heading bins; [1, 360]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
