@@ -282,12 +282,13 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
   s.mcl.beams.beam_step = 10;
   s.mcl.seed = 42;
   s.max_records = 40;
-  // Runs: march, rm, and march again with hypotheses kept at a floor (the
-  // clustering and the per-cluster passes must not depend on the thread
-  // count either).
+  // Runs: march, rm, and march again with hypotheses kept at a floor and
+  // the set growing while they are alive (the clustering, the per-cluster
+  // passes and the set size must not depend on the thread count either).
   for (int run_index = 0; run_index < 3; ++run_index) {
     s.ray_caster = run_index == 1 ? RayCastMethod::kRayMarching : RayCastMethod::kMarch;
-    s.mcl.hypothesis_floor.min_particles = run_index == 2 ? 20 : 0;
+    s.mcl.hypothesis_floor.min_particles = run_index == 2 ? 200 : 0;
+    s.mcl.max_particle_count = run_index == 2 ? 4000 : 0;
     omp_set_num_threads(1);
     const DelibotResult one = RunDelibot(g, run.trace, &run.truth, s);
     omp_set_num_threads(2);
@@ -301,12 +302,18 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
       EXPECT_EQ(one.rows[i].nodes, two.rows[i].nodes) << i;
       EXPECT_EQ(one.rows[i].injected, two.rows[i].injected) << i;
       EXPECT_EQ(one.rows[i].hypotheses_alive, two.rows[i].hypotheses_alive) << i;
+      EXPECT_EQ(one.rows[i].particles, two.rows[i].particles) << i;
     }
     int most_alive = 0;
-    for (const DelibotRow& row : one.rows) most_alive = std::max(most_alive, row.hypotheses_alive);
-    if (run_index == 2)
+    std::size_t largest = 0;
+    for (const DelibotRow& row : one.rows) {
+      most_alive = std::max(most_alive, row.hypotheses_alive);
+      largest = std::max(largest, row.particles);
+    }
+    if (run_index == 2) {
       EXPECT_GT(most_alive, 1) << "global localization must start with rival hypotheses";
-    else
+      EXPECT_GT(largest, 800u) << "the set must grow while they are alive";
+    } else
       EXPECT_EQ(most_alive, 0) << "hypotheses are counted only with the floor";
   }
 }

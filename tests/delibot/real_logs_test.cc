@@ -219,6 +219,36 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
                          ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4),
                          PrintName);
 
+// At a fixed size the floor holds only particle_count / (2 * floor)
+// hypotheses: at robotdata1's second update 17 places are within 21 nats,
+// 2000 particles with a 500 floor keep the heaviest two, and with seed 4 the
+// true place is not one of them. Letting the set grow to 20000 while rivals
+// are alive keeps it, and the set is back at 2000 by the claim (10 of 10
+// seeds on robotdata1, 3 and 4; README).
+TEST(RealLogGrowingSet, KeepsTheTruePlaceThatAFixedSizeDrops) {
+  RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
+  const WeanInputs in = Load("robotdata1");
+  DelibotSettings s = RealLogRecipe();
+  s.mcl.hypothesis_floor.min_particles = 500;
+  s.mcl.seed = 4;
+  const DelibotResult fixed = RunDelibot(in.map.grid, in.trace, nullptr, s);
+  EXPECT_GT(PositionError(fixed.rows.back(), kRobotdata1.checkpoints.back().reference), 3.0);
+  s.mcl.max_particle_count = 20000;
+  const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
+  EXPECT_FALSE(r.summary.any_non_finite_weight);
+  std::size_t largest = 0;
+  for (const DelibotRow& row : r.rows) largest = std::max(largest, row.particles);
+  EXPECT_GT(largest, 10000u);
+  const long claim = r.summary.convergence_iteration;
+  ASSERT_GE(claim, 0);
+  EXPECT_LT(claim, static_cast<long>(r.rows.size()) / 2);
+  EXPECT_EQ(r.rows[static_cast<std::size_t>(claim)].particles, 2000u);
+  for (const Checkpoint& c : kRobotdata1.checkpoints)
+    if (c.record >= claim) {
+      EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
+    }
+}
+
 class RealLogEveryBeam : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RealLogEveryBeam, AllBeamsKeepEveryWeightFinite) {

@@ -69,6 +69,26 @@ TEST(MrptEngine, SameSeedSameRunOtherSeedOtherRun) {
   EXPECT_TRUE(differs);
 }
 
+TEST(MrptEngine, RefusesOptionsOnlyOurFilterHas) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.4, 0.03, 7);
+  const DelibotSettings plain = TrackingSettings(SensorModelKind::kLikelihoodField, run.truth.front());
+  std::vector<DelibotSettings> ours(4, plain);
+  ours[0].mcl.initial_particle_count = 3000;
+  ours[1].mcl.hypothesis_floor.min_particles = 100;
+  ours[2].mcl.hypothesis_floor.min_particles = 100;
+  ours[2].mcl.max_particle_count = 3000;
+  ours[3].mcl.injection_check_updates = 10;
+  for (std::size_t k = 0; k < ours.size(); ++k) {
+    EXPECT_THROW(RunDelibotEngine(DelibotEngine::kMrpt, g, run.trace, &run.truth, ours[k]), std::invalid_argument)
+        << "settings " << k;
+    // Our engine runs them.
+    DelibotSettings short_run = ours[k];
+    short_run.max_records = 5;
+    EXPECT_NO_THROW(RunDelibotEngine(DelibotEngine::kOurs, g, run.trace, &run.truth, short_run)) << "settings " << k;
+  }
+}
+
 TEST(MrptEngine, TimelineHasOurColumnsWithKernelWorkEmpty) {
   const OccupancyGrid g = test::AsymmetricRoom();
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.6, 0.03, 7);

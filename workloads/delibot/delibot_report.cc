@@ -25,7 +25,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
                                       "sensor_updated", "log_mean_likelihood_nats", "resampled", "injected",
-                                      "injection_rejected", "hypotheses_alive",
+                                      "injection_rejected", "hypotheses_alive", "particles",
                                       "spread_m", "mode_weight", "consistency"};
   if (gt) {
     columns.push_back("err_xy_m");
@@ -61,6 +61,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
                                   r.injected,
                                   r.injection_rejected,
                                   r.hypotheses_alive,
+                                  r.particles,
                                   r.spread_m,
                                   r.mode_weight,
                                   r.consistency};
@@ -109,6 +110,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"trace", {{"path", p.trace_path}, {"format", p.trace_format}, {"ground_truth", p.ground_truth_path}}},
       {"particles", s.mcl.particle_count},
       {"initial_particles", std::max(s.mcl.particle_count, s.mcl.initial_particle_count)},
+      {"max_particles", std::max(s.mcl.particle_count, s.mcl.max_particle_count)},
       {"seed", s.mcl.seed},
       {"beam_step", s.mcl.beams.beam_step},
       {"ray_caster", ToString(s.ray_caster)},

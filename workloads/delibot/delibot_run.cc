@@ -238,6 +238,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     row.injected = step.injected;
     row.injection_rejected = step.injection_rejected;
     row.hypotheses_alive = step.hypotheses_alive;
+    row.particles = mcl.particles().size();
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

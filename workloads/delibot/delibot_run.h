@@ -81,6 +81,9 @@ struct DelibotRow {
   // update (1 = no rival; 0 = not computed). While a rival is alive the
   // filter does not claim convergence without ground truth.
   int hypotheses_alive = 0;
+  // Particles after the update: particle_count, more for the dense first
+  // set of global localization or while rivals grow the set.
+  std::size_t particles = 0;
   double spread_m = 0.0;
   double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate

@@ -22,6 +22,11 @@ bool MclOptions::IsValid(std::string* error) const {
     return fail("injection check window must be in [0, 1000] sensor updates");
   if (hypothesis_floor.min_particles < 0 || hypothesis_floor.min_particles > particle_count / 2)
     return fail("hypothesis floor must be in [0, particles / 2] particles");
+  if (max_particle_count != 0 &&
+      (max_particle_count < particle_count || max_particle_count > 10000000))
+    return fail("max particles must be 0 or in [particles, 10^7]");
+  if (max_particle_count != 0 && hypothesis_floor.min_particles == 0)
+    return fail("max particles grows the set only to keep floored hypotheses: it needs a hypothesis floor");
   if (!(hypothesis_floor.window_nats >= 0.0 && hypothesis_floor.window_nats <= 1e4))
     return fail("hypothesis window must be in [0, 10^4] nats");
   if (hypothesis_heading_bins < 1 || hypothesis_heading_bins > 360)

@@ -43,6 +43,7 @@ void MonteCarloLocalizer::InitializeUniform() {
     particles_[i] = RandomFreePose(stream);
   }
   log_weights_.assign(n, -std::log(static_cast<double>(n)));
+  dense_initial_set_ = n > static_cast<std::size_t>(options_.particle_count);
 }
 
 void MonteCarloLocalizer::InitializeAround(const Pose2& pose, double sigma_xy_m, double sigma_theta_rad) {
@@ -60,6 +61,7 @@ void MonteCarloLocalizer::InitializeAround(const Pose2& pose, double sigma_xy_m,
     particles_[i] = p;
   }
   log_weights_.assign(n, -std::log(static_cast<double>(n)));
+  dense_initial_set_ = false;
 }
 
 MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeometry& geometry,
@@ -93,7 +95,7 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   first_sensor_update_done_ = true;
   moved_d_m_ = moved_a_rad_ = 0.0;
 
-  if (static_cast<long>(particles_.size()) > options_.particle_count)
+  if (dense_initial_set_)
     sensor_model_->SelectionLogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
   else
     sensor_model_->LogLikelihoods(particles_, scan, geometry, options_.beams, log_likelihoods_, work_);
@@ -133,17 +135,16 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
       recent_scans_.pop_front();
   }
   result.ess = EffectiveSampleSize(log_weights_);
-  const bool oversized = particles_.size() != static_cast<std::size_t>(options_.particle_count);
   // The dense first set is not clustered: spread uniformly over the map it
   // is one connected cluster, and its point is to let the scan pick the few
   // places worth keeping, which plain systematic resampling does.
   std::optional<HypothesisClusters> clusters;
-  if (options_.hypothesis_floor.min_particles > 0 && !oversized) {
+  if (options_.hypothesis_floor.min_particles > 0 && !dense_initial_set_) {
     clusters = ClusterHypotheses(particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
     result.hypotheses_alive =
         HypothesesAlive(ClusterLogMasses(log_weights_, *clusters), options_.hypothesis_floor.window_nats);
   }
-  if (oversized || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
+  if (dense_initial_set_ || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
     Resample(iteration, clusters ? &*clusters : nullptr, result);
   return result;
 }
@@ -164,9 +165,24 @@ void MonteCarloLocalizer::RejectPosesInObstacles(std::vector<double>& log_likeli
     if (inside_obstacle(particles_[i])) log_likelihoods[i] = -std::numeric_limits<double>::infinity();
 }
 
+std::size_t MonteCarloLocalizer::ResampledSetSize(int hypotheses_alive) const {
+  const auto base = static_cast<std::size_t>(options_.particle_count);
+  if (options_.max_particle_count == 0) return base;
+  // The dense first set is not clustered (Update), so how many places
+  // deserve particles is not known yet: keep as many as allowed, and let the
+  // next update's clusters decide.
+  if (dense_initial_set_) return static_cast<std::size_t>(options_.max_particle_count);
+  if (hypotheses_alive <= 1) return base;
+  // Twice the floors of all live hypotheses: HypothesisPreservingResample
+  // floors at most half of the slots.
+  const std::size_t wanted = 2 * static_cast<std::size_t>(hypotheses_alive) *
+                             static_cast<std::size_t>(options_.hypothesis_floor.min_particles);
+  return std::clamp(wanted, base, static_cast<std::size_t>(options_.max_particle_count));
+}
+
 void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClusters* clusters,
                                    MclStepResult& result) {
-  const auto slots = static_cast<std::size_t>(options_.particle_count);
+  const std::size_t slots = ResampledSetSize(result.hypotheses_alive);
   auto pass_offset = [&](std::size_t pass) {
     return RandomStream(options_.seed, StreamPurpose::kResample, iteration, pass).Uniform();
   };
@@ -224,6 +240,7 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
     ++injected;
   }
   particles_.swap(next);
+  dense_initial_set_ = false;
   // An injected particle takes the (equal) weight of the shared slot it
   // replaces.
   log_weights_.swap(next_log_weights);

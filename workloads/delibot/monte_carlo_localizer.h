@@ -65,6 +65,9 @@ class MonteCarloLocalizer {
   // clusters: the hypotheses of the current particles, or null to resample
   // plainly.
   void Resample(std::uint64_t iteration, const HypothesisClusters* clusters, MclStepResult& result);
+  // Particles a resampling draws: particle_count, or more while rivals are
+  // alive (MclOptions::max_particle_count).
+  std::size_t ResampledSetSize(int hypotheses_alive) const;
   // Log-likelihood of each pose (a pose now) over the remembered scans, each
   // scored at the pose replayed back through the odometry since that scan.
   // Adds the casts' work (and kernel records) to `result`.
@@ -84,6 +87,9 @@ class MonteCarloLocalizer {
   Pose2 last_odometry_;
   double moved_d_m_ = 0.0, moved_a_rad_ = 0.0;  // since the last sensor update
   bool first_sensor_update_done_ = false;
+  // The uniform set of global localization, larger than particle_count,
+  // before its first resampling (it is scored and resampled differently).
+  bool dense_initial_set_ = false;
   bool have_recovery_averages_ = false;
   double log_w_slow_ = 0.0, log_w_fast_ = 0.0;
   // The last injection_check_updates sensor updates, oldest first.

@@ -219,6 +219,11 @@ void AddDelibotCommand(CLI::App& app) {
                   "least this many particles, weighted so the belief is unchanged (count, 0 to --particles / 2; "
                   "0 = plain systematic resampling)")
       ->capture_default_str();
+  cmd->add_option("--max-particles", s.mcl.max_particle_count,
+                  "With --hypothesis-floor: while rivals are alive a resampling draws up to this many particles, "
+                  "twice the floor per live hypothesis, so that every rival keeps its floor; the set shrinks "
+                  "back to --particles as they fall out of the window (count; 0 = --particles, fixed size)")
+      ->capture_default_str();
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
                   "second hypothesis is that close, the filter does not claim convergence")

@@ -142,6 +142,15 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
   if (!settings.likelihood.IsValid(&error)) throw std::invalid_argument("likelihood model: " + error);
   if (settings.mcl.beams.beam_step > trace.geometry.beam_count)
     throw std::invalid_argument("beam step exceeds the trace's beam count");
+  // Options only our filter has are refused, not silently dropped: a run
+  // meant to compare like with like would otherwise compare unlike.
+  const MclOptions& o = settings.mcl;
+  for (const auto& [given, option] :
+       {std::pair{o.initial_particle_count != 0, "--initial-particles"},
+        std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
+        std::pair{o.max_particle_count != 0, "--max-particles"},
+        std::pair{o.injection_check_updates != 0, "--injection-check"}})
+    if (given) throw std::invalid_argument(std::string("the MRPT engine has no counterpart of ") + option);
   if (ground_truth && ground_truth->size() != trace.scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +
                                 std::to_string(trace.scans.size()) + " laser records");
@@ -207,6 +216,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
     row.iteration = static_cast<long>(k);
     row.time_s = scan.time_s;
     row.ess = last_ess;
+    row.particles = mcl.m_particles.size();
     row.spread_m = last_estimate.spread_m;
     row.mode_weight = last_estimate.mode_weight;
     if (!JudgeDelibotRow(exact_scene, scan, trace.geometry, settings,
