@@ -85,17 +85,18 @@ namespace ray_cast_detail {
 struct Axis {
   double origin = 0.0;    // m
   double dir = 0.0;       // unit-vector component
+  double inv_dir = 0.0;   // 1 / dir (0 when dir is 0): a multiply per boundary, not a divide
   int step = 0;           // +1, -1 or 0
   double BoundaryTime(int cell, double r) const {
     // Time at which the ray leaves `cell` along this axis.
     if (step == 0) return std::numeric_limits<double>::infinity();
     const int boundary = step > 0 ? cell + 1 : cell;
-    return (boundary * r - origin) / dir;
+    return (boundary * r - origin) * inv_dir;
   }
   double EntryTime(int cell, double r) const {
     if (step == 0) return -std::numeric_limits<double>::infinity();
     const int boundary = step > 0 ? cell : cell + 1;
-    return (boundary * r - origin) / dir;
+    return (boundary * r - origin) * inv_dir;
   }
 };
 
@@ -104,6 +105,7 @@ inline Axis MakeAxis(double origin, double dir) {
   a.origin = origin;
   a.dir = dir;
   a.step = dir > 0.0 ? 1 : (dir < 0.0 ? -1 : 0);
+  a.inv_dir = a.step == 0 ? 0.0 : 1.0 / dir;
   return a;
 }
 
