@@ -26,7 +26,9 @@ deg for 10 records); the table also gives the record from which the filter
 itself claimed convergence without ground truth (mode weight and scan
 consistency), the fraction within 1 m from that claim on, and two verdicts:
 right (converged in the first half, then >= 95 % of records within 1 m) and
-right by its own claim (the same from the filter's own claim), with totals.
+right by its own claim (the same from the filter's own claim), with totals,
+and what became of the own claims whenever they came (claim_outcome: held,
+wrong, or none when the filter never claimed).
 rcbench's own err_xy_m timeline column must agree with the error computed
 here (a check that the reference pairs with the right records).
 
@@ -99,6 +101,7 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
            "fraction_err_below_1m": float("nan"), "median_err_xy_m": float("nan"),
            "median_err_xy_all_m": float("nan"), "final_err_xy_m": float("nan"),
            "fraction_err_below_1m_after_claim": float("nan"), "right": 0, "right_by_own_claim": 0,
+           "claim_outcome": "none" if claim < 0 else "-",
            "non_finite": int(bool(a.get("non_finite_weights", False)) or not np.isfinite(est).all())}
     err = None
     if reference is not None:
@@ -127,7 +130,27 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
         row["right"] = int(0 <= first < half and row["fraction_err_below_1m"] >= RIGHT_FRACTION)
         row["right_by_own_claim"] = int(0 <= claim < half and
                                         row["fraction_err_below_1m_after_claim"] >= RIGHT_FRACTION)
+        # What a user without a reference would have met, whenever the claim
+        # came: it held, it was wrong, or the filter never claimed (the
+        # cautious failure: it said it was not sure).
+        if claim >= 0:
+            row["claim_outcome"] = ("held" if row["fraction_err_below_1m_after_claim"] >= RIGHT_FRACTION
+                                    else "wrong")
     return row, it, err
+
+
+def claim_outcomes(rows):
+    """The own claims, whenever they came: held, wrong, or never made."""
+    held = [r for r in rows if r["claim_outcome"] == "held"]
+    late = sum(1 for r in held if r["own_claim_record"] >= r["records"] / 2)
+    wrong = sum(1 for r in rows if r["claim_outcome"] == "wrong")
+    never = [r for r in rows if r["claim_outcome"] == "none"]
+    ends_near = sum(1 for r in rows if r["final_err_xy_m"] < GOOD_ERROR_M)
+    text = (f"Own claims, whenever made: {len(held)} held ({late} of them in the second half of the log), "
+            f"{wrong} wrong, {len(never)} never claimed")
+    if never:
+        text += f" (final error of those: median {float(np.median([r['final_err_xy_m'] for r in never])):.2f} m)"
+    return text + f"; {ends_near} of {len(rows)} runs end within {GOOD_ERROR_M:g} m of the reference."
 
 
 def fmt(v, digits=2):
@@ -165,6 +188,9 @@ def markdown(rows, logs, extra, tracking):
                    f"by the filter's own (ground-truth-free) claim: {sum(r['right_by_own_claim'] for r in rows)} "
                    f"of {len(rows)}.")
         out.append("")
+        if all(r["claim_outcome"] != "-" for r in rows):
+            out.append(claim_outcomes(rows))
+            out.append("")
     return "\n".join(out)
 
 

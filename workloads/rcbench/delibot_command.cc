@@ -226,7 +226,9 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
-                  "second hypothesis is that close, the filter does not claim convergence")
+                  "second hypothesis is that close, the filter does not claim convergence. With --lf-combine "
+                  "amcl-cube the ratio is of the cube sum's weights, a far smaller scale (8 in the README's "
+                  "cautious recipe)")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
