@@ -63,6 +63,34 @@ TEST(LikelihoodFieldTest, InsideAWallTheDistanceIsTheDepthUnlessUnsigned) {
   EXPECT_DOUBLE_EQ(LikelihoodFieldModel(solid, capped).DistanceAt(0.55, 0.55), 0.5);
 }
 
+// 4 m x 4 m, free for x < 2 m, unknown (unmapped) from x = 2 m on.
+OccupancyGrid HalfUnknown() {
+  OccupancyGrid g(40, 40, kResolution);
+  for (int ix = 20; ix < 40; ++ix)
+    for (int iy = 0; iy < 40; ++iy) g.Set(ix, iy, CellState::kUnknown);
+  return g;
+}
+
+// The ray casters and `rcbench simulate` stop a ray at an unknown cell, so a
+// simulated beam ends on the edge of mapped free space. By default that end
+// point is a miss (the cap); with unknown_is_edge it is a hit on a surface,
+// and deeper in the unknown space it scores by its depth below the edge.
+TEST(LikelihoodFieldTest, UnknownSpaceIsAMissOrAnEdgeSurface) {
+  const OccupancyGrid g = HalfUnknown();
+  LikelihoodFieldParams miss, edge;
+  edge.unknown_is_edge = true;
+  const LikelihoodFieldModel miss_model(g, miss), edge_model(g, edge);
+  for (double x = 1.3; x < 2.0; x += 0.05) {
+    EXPECT_NEAR(edge_model.DistanceAt(x, 2.0), 2.0 - x, 1e-6) << "x " << x;
+    // Measured to occupied cells only, and there are none.
+    EXPECT_DOUBLE_EQ(miss_model.DistanceAt(x, 2.0), miss.max_occ_dist_m) << "x " << x;
+  }
+  for (double x = 2.0; x <= 3.5; x += 0.05) {
+    EXPECT_NEAR(edge_model.DistanceAt(x, 2.0), x - 2.0, 1e-6) << "x " << x;
+    EXPECT_DOUBLE_EQ(miss_model.DistanceAt(x, 2.0), miss.max_occ_dist_m) << "x " << x;
+  }
+}
+
 TEST(LikelihoodFieldTest, DistanceIsCappedAndOutsideTheMapIsFar) {
   const OccupancyGrid g = HalfWall();
   LikelihoodFieldParams p;

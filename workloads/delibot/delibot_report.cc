@@ -123,6 +123,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
        {{"z_hit", s.likelihood.z_hit}, {"z_rand", s.likelihood.z_rand}, {"sigma_hit_m", s.likelihood.sigma_hit_m},
         {"max_occ_dist_m", s.likelihood.max_occ_dist_m},
         {"distance", s.likelihood.signed_distance ? "signed" : "unsigned"},
+        {"unknown", s.likelihood.unknown_is_edge ? "edge" : "miss"},
         {"combine", ToString(s.likelihood.combination)}}},
       {"motion_noise",
        {{"alpha1", s.mcl.motion.alpha1}, {"alpha2", s.mcl.motion.alpha2}, {"alpha3", s.mcl.motion.alpha3},

@@ -32,8 +32,11 @@ bool LikelihoodFieldParams::IsValid(std::string* error) const {
 }
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid, LikelihoodFieldParams params)
-    : grid_(&grid), field_(DistanceField::Build(grid, DistanceTarget::kOccupied)), params_(params) {
-  if (params_.signed_distance) depth_field_ = DistanceField::Build(grid, DistanceTarget::kFree);
+    : grid_(&grid),
+      field_(DistanceField::Build(grid, params.unknown_is_edge ? DistanceTarget::kBlocking : DistanceTarget::kOccupied)),
+      params_(params) {
+  if (params_.signed_distance || params_.unknown_is_edge)
+    depth_field_ = DistanceField::Build(grid, DistanceTarget::kFree);
 }
 
 double LikelihoodFieldModel::FaceDistance(const DistanceField& field, double u, double v) const {
@@ -71,10 +74,13 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   // occupied cells only, so without this an end point in the unmapped space
   // behind a wall scores as if it hit the wall: in Wean Hall a particle in a
   // doorway pocket, 2.6 m beside the robot's corridor, then explains the
-  // scan better than the true pose.
-  if (grid_->At(static_cast<int>(x_m / r), static_cast<int>(y_m / r)) == CellState::kUnknown)
-    return params_.max_occ_dist_m;
+  // scan better than the true pose. With unknown_is_edge the unknown cells
+  // are surfaces instead, and an end point inside unknown space scores by
+  // its depth below the edge of free space: deep in the space behind a
+  // metre-thick wall it is still a miss.
   const double u = x_m / r - 0.5, v = y_m / r - 0.5;
+  if (grid_->At(static_cast<int>(x_m / r), static_cast<int>(y_m / r)) == CellState::kUnknown)
+    return params_.unknown_is_edge ? FaceDistance(depth_field_, u, v) : params_.max_occ_dist_m;
   const double outside = FaceDistance(field_, u, v);
   // Unsigned (AMCL), the distance is 0 throughout a wall, so an end point
   // that goes through a wall's face costs nothing while one short of it

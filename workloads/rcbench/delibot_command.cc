@@ -34,6 +34,7 @@ struct DelibotCli {
   std::string trace_path, trace_format = "auto", ground_truth_path;
   std::string sensor_model = "beam", ray_caster = "rm";
   std::string lf_distance = "unsigned";
+  std::string lf_unknown = "miss";
   std::string lf_combine = "product";
   std::vector<double> initial_pose;
   std::string timeline_path, summary_path;
@@ -51,6 +52,7 @@ void Run(DelibotCli& cli) {
   s.sensor_model = ParseSensorModelKind(cli.sensor_model);
   s.ray_caster = ParseRayCastMethod(cli.ray_caster);
   s.likelihood.signed_distance = cli.lf_distance == "signed";
+  s.likelihood.unknown_is_edge = cli.lf_unknown == "edge";
   s.likelihood.combination = ParseBeamCombination(cli.lf_combine);
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
@@ -194,6 +196,12 @@ void AddDelibotCommand(CLI::App& app) {
                   "maps that match the world), 'signed' scores an end point's depth below the wall face "
                   "(unbiased, but worse on maps that draw open doors as walls; see README)")
       ->check(CLI::IsMember({"signed", "unsigned"}))
+      ->capture_default_str();
+  cmd->add_option("--lf-unknown", cli->lf_unknown,
+                  "Likelihood field, an end point at an unknown cell: 'miss' scores it at the distance cap; "
+                  "'edge' takes the edge of mapped free space for a surface, as the ray casters and "
+                  "'rcbench simulate' do (distances to occupied or unknown cells, depth inside unknown space)")
+      ->check(CLI::IsMember({"miss", "edge"}))
       ->capture_default_str();
   cmd->add_option("--lf-combine", cli->lf_combine,
                   "Likelihood field, how a scan's beams combine: 'product' of the per-beam densities (log "
