@@ -248,7 +248,7 @@ nlohmann::json MrptSettingsJson(const DelibotSettings& s) {
                   {"LF_maxCorrsDistance_m", s.likelihood.max_occ_dist_m},
                   {"LF_maxRange_m", s.beam.max_range_m},
                   {"LF_decimation", s.mcl.beams.beam_step},
-                  {"differs", "hit term without the Gaussian's 1/(sigma sqrt(2 pi)); unsigned distance (0 inside walls) whatever --lf-distance says; beams combined as a product (log domain) whatever --lf-combine says"}};
+                  {"differs", "hit term without the Gaussian's 1/(sigma sqrt(2 pi)); unsigned distance (0 inside walls) whatever --lf-distance says; beams combined as a product (log domain) whatever --lf-combine says; unknown cells as MRPT's field scores them whatever --lf-unknown says"}};
   return {{"algorithm", "CMonteCarloLocalization2D, pfStandardProposal"},
           {"sampleSize", s.mcl.particle_count},
           {"adaptiveSampleSize", false},
