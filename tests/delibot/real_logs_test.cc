@@ -25,6 +25,7 @@
 // hypothesis floor it localizes, and that is checked.
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ struct RealLog {
 };
 
 std::string PrintName(const ::testing::TestParamInfo<RealLog>& info) { return info.param.name; }
+
+// How GoogleTest (and so CTest's test list) prints a parameter: its name,
+// not the struct's bytes.
+void PrintTo(const RealLog& log, std::ostream* os) { *os << log.name; }
 
 const RealLog kRobotdata1{"robotdata1",
                           {{0, {40.016, 41.471, -1.658}},
