@@ -139,13 +139,14 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   // is one connected cluster, and its point is to let the scan pick the few
   // places worth keeping, which plain systematic resampling does.
   std::optional<HypothesisClusters> clusters;
+  std::vector<double> cluster_log_masses;
   if (options_.hypothesis_floor.min_particles > 0 && !dense_initial_set_) {
     clusters = ClusterHypotheses(particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
-    result.hypotheses_alive =
-        HypothesesAlive(ClusterLogMasses(log_weights_, *clusters), options_.hypothesis_floor.window_nats);
+    cluster_log_masses = ClusterLogMasses(log_weights_, *clusters);
+    result.hypotheses_alive = HypothesesAlive(cluster_log_masses, options_.hypothesis_floor.window_nats);
   }
   if (dense_initial_set_ || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
-    Resample(iteration, clusters ? &*clusters : nullptr, result);
+    Resample(iteration, clusters ? &*clusters : nullptr, cluster_log_masses, result);
   return result;
 }
 
@@ -181,7 +182,7 @@ std::size_t MonteCarloLocalizer::ResampledSetSize(int hypotheses_alive) const {
 }
 
 void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClusters* clusters,
-                                   MclStepResult& result) {
+                                   const std::vector<double>& cluster_log_masses, MclStepResult& result) {
   const std::size_t slots = ResampledSetSize(result.hypotheses_alive);
   auto pass_offset = [&](std::size_t pass) {
     return RandomStream(options_.seed, StreamPurpose::kResample, iteration, pass).Uniform();
@@ -194,7 +195,8 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
   std::size_t injectable_slots = slots;
   if (clusters) {
     WeightedResample resampled =
-        HypothesisPreservingResample(log_weights_, *clusters, slots, options_.hypothesis_floor, pass_offset);
+        HypothesisPreservingResample(log_weights_, *clusters, cluster_log_masses, slots, options_.hypothesis_floor,
+                                     pass_offset);
     ancestors = std::move(resampled.ancestors);
     next_log_weights = std::move(resampled.log_weights);
     injectable_slots = resampled.shared_slots;

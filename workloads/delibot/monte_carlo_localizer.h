@@ -62,9 +62,10 @@ class MonteCarloLocalizer {
 
  private:
   Pose2 RandomFreePose(RandomStream& stream) const;
-  // clusters: the hypotheses of the current particles, or null to resample
-  // plainly.
-  void Resample(std::uint64_t iteration, const HypothesisClusters* clusters, MclStepResult& result);
+  // clusters: the hypotheses of the current particles, with their log
+  // masses (ClusterLogMasses), or null to resample plainly.
+  void Resample(std::uint64_t iteration, const HypothesisClusters* clusters,
+                const std::vector<double>& cluster_log_masses, MclStepResult& result);
   // Particles a resampling draws: particle_count, or more while rivals are
   // alive (MclOptions::max_particle_count).
   std::size_t ResampledSetSize(int hypotheses_alive) const;

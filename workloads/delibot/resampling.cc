@@ -46,6 +46,11 @@ namespace {
 
 // Systematic pass over `members` (indices into log_weights, in this order),
 // whose weights sum to exp(log_mass), writing `slots` ancestors.
+// A cluster of this log mass is alive: within window_nats of the heaviest.
+bool WithinWindow(double log_mass, double heaviest, double window_nats) {
+  return std::isfinite(log_mass) && log_mass >= heaviest - window_nats;
+}
+
 void SystematicOver(const std::vector<double>& log_weights, const std::vector<std::size_t>& members,
                     double log_mass, std::size_t slots, double u01, std::vector<std::size_t>& out) {
   std::vector<double> local(members.size());
@@ -72,7 +77,7 @@ int HypothesesAlive(const std::vector<double>& cluster_log_masses, double window
   if (cluster_log_masses.empty()) return 0;
   const double heaviest = *std::max_element(cluster_log_masses.begin(), cluster_log_masses.end());
   int alive = 0;
-  for (double m : cluster_log_masses) alive += std::isfinite(m) && m >= heaviest - window_nats;
+  for (double m : cluster_log_masses) alive += WithinWindow(m, heaviest, window_nats);
   return alive;
 }
 
@@ -80,11 +85,21 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
                                               const HypothesisClusters& clusters, std::size_t output_count,
                                               const HypothesisFloor& floor,
                                               const std::function<double(std::size_t)>& u01) {
+  // Throws if the clusters do not cover the weights, before they index anything.
+  return HypothesisPreservingResample(normalized_log_weights, clusters,
+                                      ClusterLogMasses(normalized_log_weights, clusters), output_count, floor, u01);
+}
+
+WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
+                                              const HypothesisClusters& clusters,
+                                              const std::vector<double>& log_mass, std::size_t output_count,
+                                              const HypothesisFloor& floor,
+                                              const std::function<double(std::size_t)>& u01) {
   const std::size_t n = normalized_log_weights.size();
   const std::size_t slots = output_count > 0 ? output_count : n;
   WeightedResample out;
-  // Throws if the clusters do not cover the weights, before they index anything.
-  const std::vector<double> log_mass = ClusterLogMasses(normalized_log_weights, clusters);
+  if (clusters.cluster_of.size() != n || log_mass.size() != static_cast<std::size_t>(clusters.count))
+    throw std::invalid_argument("hypothesis clusters and their masses do not cover the weights");
   if (n == 0) return out;
   const auto k_count = static_cast<std::size_t>(clusters.count);
   std::vector<std::vector<std::size_t>> members(k_count);
@@ -94,7 +109,7 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
   std::vector<std::size_t> eligible;
   if (floor.min_particles > 0)
     for (std::size_t c = 0; c < k_count; ++c)
-      if (std::isfinite(log_mass[c]) && log_mass[c] >= heaviest - floor.window_nats) eligible.push_back(c);
+      if (WithinWindow(log_mass[c], heaviest, floor.window_nats)) eligible.push_back(c);
   std::stable_sort(eligible.begin(), eligible.end(),
                    [&](std::size_t a, std::size_t b) { return log_mass[a] > log_mass[b]; });
   // Floor, one at a time, the heaviest eligible cluster whose proportional

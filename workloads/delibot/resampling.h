@@ -69,4 +69,12 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
                                               const HypothesisFloor& floor,
                                               const std::function<double(std::size_t)>& u01);
 
+// The same with the clusters' log masses already computed by
+// ClusterLogMasses (the localizer needs them for HypothesesAlive first).
+WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
+                                              const HypothesisClusters& clusters,
+                                              const std::vector<double>& cluster_log_masses,
+                                              std::size_t output_count, const HypothesisFloor& floor,
+                                              const std::function<double(std::size_t)>& u01);
+
 }  // namespace rc
