@@ -28,7 +28,7 @@ consistency), the fraction within 1 m from that claim on, and two verdicts:
 right (converged in the first half, then >= 95 % of records within 1 m) and
 right by its own claim (the same from the filter's own claim), with totals,
 and what became of the own claims whenever they came (claim_outcome: held,
-wrong, or none when the filter never claimed).
+wrong, or none when the filter never claimed; - without a reference).
 rcbench's own err_xy_m timeline column must agree with the error computed
 here (a check that the reference pairs with the right records).
 
@@ -101,7 +101,7 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
            "fraction_err_below_1m": float("nan"), "median_err_xy_m": float("nan"),
            "median_err_xy_all_m": float("nan"), "final_err_xy_m": float("nan"),
            "fraction_err_below_1m_after_claim": float("nan"), "right": 0, "right_by_own_claim": 0,
-           "claim_outcome": "none" if claim < 0 else "-",
+           "claim_outcome": "-",
            "non_finite": int(bool(a.get("non_finite_weights", False)) or not np.isfinite(est).all())}
     err = None
     if reference is not None:
@@ -133,7 +133,9 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
         # What a user without a reference would have met, whenever the claim
         # came: it held, it was wrong, or the filter never claimed (the
         # cautious failure: it said it was not sure).
-        if claim >= 0:
+        if claim < 0:
+            row["claim_outcome"] = "none"
+        else:
             row["claim_outcome"] = ("held" if row["fraction_err_below_1m_after_claim"] >= RIGHT_FRACTION
                                     else "wrong")
     return row, it, err
@@ -182,15 +184,15 @@ def markdown(rows, logs, extra, tracking):
                        f"| {percent(r['fraction_err_below_1m_after_claim'])} "
                        f"| {'yes' if r['right'] else 'no'} | {'yes' if r['right_by_own_claim'] else 'no'} |")
         out.append("")
-    if not tracking:
+    # The verdicts need the reference (claim_outcome is "-" without one).
+    if not tracking and all(r["claim_outcome"] != "-" for r in rows):
         out.append(f"Right (converged in the first half, then >= {100 * RIGHT_FRACTION:.0f} % of records within "
                    f"{GOOD_ERROR_M:g} m of the reference): {sum(r['right'] for r in rows)} of {len(rows)}; "
                    f"by the filter's own (ground-truth-free) claim: {sum(r['right_by_own_claim'] for r in rows)} "
                    f"of {len(rows)}.")
         out.append("")
-        if all(r["claim_outcome"] != "-" for r in rows):
-            out.append(claim_outcomes(rows))
-            out.append("")
+        out.append(claim_outcomes(rows))
+        out.append("")
     return "\n".join(out)
 
 

@@ -9,6 +9,7 @@
 
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
+#include "real_log_recipes.h"
 #include "test_data.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/trace_simulator.h"
@@ -131,14 +132,9 @@ TEST(AccuracyRegressionTest, UnknownSpaceAsAnEdgeMatchesTheSimulatorOnWean) {
   RC_REQUIRE_SHARED_DATA("wean/wean.dat");
   const OccupancyGrid grid = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
   const Simulated sim = Simulate(grid, 3, 1000);
-  DelibotSettings s;
-  s.sensor_model = SensorModelKind::kLikelihoodField;
-  s.likelihood.combination = BeamCombination::kAmclCubeSum;
-  s.mcl.initial_particle_count = 2000000;
-  s.mcl.alpha_slow = 0.0;
-  s.mcl.hypothesis_floor = {500, 8.0};
-  s.mcl.max_particle_count = 20000;
+  DelibotSettings s = test::CautiousRealLogRecipe();
   s.mcl.seed = 3;
+  s.likelihood.unknown_is_edge = false;
   const DelibotResult miss = RunDelibot(grid, sim.trace, &sim.truth, s);
   EXPECT_GT(miss.summary.final_err_xy_m, 10.0);
   s.likelihood.unknown_is_edge = true;

@@ -17,13 +17,16 @@ namespace {
 
 constexpr double kResolution = 0.1;
 
-// 4 m x 4 m, free for x < 2 m, a solid wall from x = 2 m on.
-OccupancyGrid HalfWall() {
+// 4 m x 4 m, free for x < 2 m, `state` from x = 2 m on.
+OccupancyGrid HalfFilled(CellState state) {
   OccupancyGrid g(40, 40, kResolution);
   for (int ix = 20; ix < 40; ++ix)
-    for (int iy = 0; iy < 40; ++iy) g.Set(ix, iy, CellState::kOccupied);
+    for (int iy = 0; iy < 40; ++iy) g.Set(ix, iy, state);
   return g;
 }
+
+// A solid wall from x = 2 m on.
+OccupancyGrid HalfWall() { return HalfFilled(CellState::kOccupied); }
 
 TEST(LikelihoodFieldTest, DistanceIsMeasuredToTheWallFace) {
   const OccupancyGrid g = HalfWall();
@@ -63,20 +66,12 @@ TEST(LikelihoodFieldTest, InsideAWallTheDistanceIsTheDepthUnlessUnsigned) {
   EXPECT_DOUBLE_EQ(LikelihoodFieldModel(solid, capped).DistanceAt(0.55, 0.55), 0.5);
 }
 
-// 4 m x 4 m, free for x < 2 m, unknown (unmapped) from x = 2 m on.
-OccupancyGrid HalfUnknown() {
-  OccupancyGrid g(40, 40, kResolution);
-  for (int ix = 20; ix < 40; ++ix)
-    for (int iy = 0; iy < 40; ++iy) g.Set(ix, iy, CellState::kUnknown);
-  return g;
-}
-
 // The ray casters and `rcbench simulate` stop a ray at an unknown cell, so a
 // simulated beam ends on the edge of mapped free space. By default that end
 // point is a miss (the cap); with unknown_is_edge it is a hit on a surface,
 // and deeper in the unknown space it scores by its depth below the edge.
 TEST(LikelihoodFieldTest, UnknownSpaceIsAMissOrAnEdgeSurface) {
-  const OccupancyGrid g = HalfUnknown();
+  const OccupancyGrid g = HalfFilled(CellState::kUnknown);  // unmapped from x = 2 m on
   LikelihoodFieldParams miss, edge;
   edge.unknown_is_edge = true;
   const LikelihoodFieldModel miss_model(g, miss), edge_model(g, edge);

@@ -32,6 +32,7 @@
 #include <gtest/gtest.h>
 
 #include "maps/map_loader.h"
+#include "real_log_recipes.h"
 #include "test_data.h"
 #include "traces/trace_reader.h"
 #include "workloads/delibot/delibot_run.h"
@@ -119,13 +120,7 @@ TEST_P(RealLogTracking, BeamModelFollowsTheScanMatchingReference) {
 
 INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking, ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata4), PrintName);
 
-DelibotSettings RealLogRecipe() {
-  DelibotSettings s;
-  s.sensor_model = SensorModelKind::kLikelihoodField;
-  s.mcl.initial_particle_count = 500000;
-  s.mcl.alpha_slow = 0.0;
-  return s;
-}
+using test::RealLogRecipe;
 
 // Global localization: converged, consistent, finite, and within 1 m of the
 // reference at every checkpoint of the log's second half. The first half may
@@ -254,25 +249,18 @@ TEST(RealLogGrowingSet, KeepsTheTruePlaceThatAFixedSizeDrops) {
     }
 }
 
-// The cautious recipe (README, "A recipe whose claims hold"): nav2's
-// cube-sum likelihood with unknown space as an edge, 2,000,000 uniform
-// particles first, a 500-particle floor in an 8-nat window, and a set that
-// grows to 20000 while rivals are alive. On every log the run ends within
-// 0.3 m of the reference, and if the filter claims convergence (it need
-// not: robotdata3 leaves a rival within the window in 4 of 10 seeds), every
-// checkpoint from the claim on is within 1 m. robotdata2 claims only after record 1260, where the scans
-// first decide against the look-alike 12 m east.
+// The cautious recipe (real_log_recipes.h). On every log the run ends
+// within 0.3 m of the reference, and if the filter claims convergence (it
+// need not: robotdata3 leaves a rival within the window in 4 of 10 seeds),
+// every checkpoint from the claim on is within 1 m. robotdata2 claims only
+// after record 1260, where the scans first decide against the look-alike
+// 12 m east.
 class RealLogCautiousRecipe : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogCautiousRecipe, NoClaimIsWrongAndEveryRunEndsLocalized) {
   RC_REQUIRE_SHARED_DATA("wean/" + GetParam().name + ".log");
   const WeanInputs in = Load(GetParam().name);
-  DelibotSettings s = RealLogRecipe();
-  s.likelihood.combination = BeamCombination::kAmclCubeSum;
-  s.likelihood.unknown_is_edge = true;
-  s.mcl.initial_particle_count = 2000000;
-  s.mcl.hypothesis_floor = {500, 8.0};
-  s.mcl.max_particle_count = 20000;
+  const DelibotSettings s = test::CautiousRealLogRecipe();
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, s);
   EXPECT_FALSE(r.summary.any_non_finite_weight);
   EXPECT_LT(PositionError(r.rows.back(), GetParam().checkpoints.back().reference), 0.3);
