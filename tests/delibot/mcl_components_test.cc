@@ -250,6 +250,65 @@ TEST(BeamModelTest, AllOutlierScanGivesFiniteLogLikelihoods) {
   EXPECT_NEAR(BeamLogDensity(p, p.max_range_m, 3.0), std::log(p.z_max), 1e-9);
 }
 
+// nav2 AMCL's beam model (beam_model.cpp) sums pz^3 over beams, pz without
+// the Gaussian's or the short term's normalizer; a reading beyond max range
+// counts as one at max range. The rays cast are the same under both rules.
+TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
+  BeamModelParams p;
+  p.max_range_m = 5.0;
+  const double floor = p.z_rand / p.max_range_m;
+  EXPECT_NEAR(BeamCubeProbability(p, 3.0, 3.0), p.z_hit + floor, 1e-12);
+  EXPECT_NEAR(BeamCubeProbability(p, 3.4, 3.0), p.z_hit * std::exp(-0.5 * 4.0) + floor, 1e-12);
+  EXPECT_NEAR(BeamCubeProbability(p, 2.0, 3.0),
+              p.z_hit * std::exp(-0.5 * 25.0) + p.z_short * p.lambda_short_per_m * std::exp(-p.lambda_short_per_m * 2.0) +
+                  floor,
+              1e-12);
+  EXPECT_NEAR(BeamCubeProbability(p, 7.0, p.max_range_m), p.z_hit + p.z_max, 1e-12);
+  EXPECT_NEAR(BeamCubeProbability(p, 7.0, 1.0), p.z_hit * std::exp(-0.5 * 400.0) + p.z_max, 1e-12);
+
+  // A room's scan at its own pose: the model's score is 1 + the sum of cubes
+  // over the selected beams, each beam's pz from the ray the model casts.
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.0, 3);
+  const auto scene = std::make_shared<RayCastScene>(g, RayCastMethod::kDda);
+  p.max_range_m = run.trace.geometry.max_range_m;
+  p.combination = BeamCombination::kAmclCubeSum;
+  BeamSensorModel cube(scene, p);
+  const BeamSelection beams{6};
+  const LaserScan& scan = run.trace.scans[5];
+  const Pose2 truth = run.truth[5];
+  const Pose2 off{truth.x + 0.3, truth.y, truth.theta};
+  std::vector<double> ll;
+  SensorUpdateWork work;
+  cube.LogLikelihoods({truth, off}, scan, run.trace.geometry, beams, ll, work);
+  const Pose2 sensor = SensorPose(off, run.trace.geometry);
+  double cube_sum = 1.0;
+  for (int k = 0; k < beams.Count(run.trace.geometry.beam_count); ++k) {
+    const int i = k * beams.beam_step;
+    const double expected = CastRay(*scene, sensor.x, sensor.y, sensor.theta + run.trace.geometry.BeamAngle(i),
+                                    p.max_range_m)
+                                .range_m;
+    cube_sum += std::pow(BeamCubeProbability(p, scan.ranges_m[static_cast<std::size_t>(i)], expected), 3);
+  }
+  EXPECT_NEAR(ll[1], std::log(cube_sum), 1e-9);
+  EXPECT_GT(ll[0], ll[1]);
+  // Bounded by 1 + n pz_max^3 however well the scan fits.
+  EXPECT_LE(ll[0], std::log(1.0 + beams.Count(run.trace.geometry.beam_count) *
+                                      std::pow(p.z_hit + p.z_max + p.z_short * p.lambda_short_per_m, 3)));
+  const std::uint64_t cube_rays = work.rays, cube_nodes = work.nodes;
+
+  // The product of the same beams, and the selection update scores as the product.
+  p.combination = BeamCombination::kProduct;
+  BeamSensorModel product(scene, p);
+  std::vector<double> product_ll, selection_ll;
+  product.LogLikelihoods({truth, off}, scan, run.trace.geometry, beams, product_ll, work);
+  EXPECT_EQ(work.rays, cube_rays);
+  EXPECT_EQ(work.nodes, cube_nodes);
+  cube.SelectionLogLikelihoods({truth, off}, scan, run.trace.geometry, beams, selection_ll, work);
+  EXPECT_EQ(selection_ll, product_ll);
+  EXPECT_GT(product_ll[0] - product_ll[1], ll[0] - ll[1]);
+}
+
 TEST(PoseEstimateTest, HeadingsAreAveragedOnTheCircle) {
   std::vector<Pose2> particles = {{1, 1, kPi - 0.01}, {1, 1, -kPi + 0.01}};
   std::vector<double> lw = {std::log(0.5), std::log(0.5)};

@@ -41,12 +41,34 @@ double BeamLogDensity(const BeamModelParams& p, double z, double z_star) {
   return std::log(density);
 }
 
+double BeamCubeProbability(const BeamModelParams& p, double z, double z_star) {
+  const double range = z < p.max_range_m ? z : p.max_range_m;
+  const double e = (range - z_star) / p.sigma_hit_m;
+  double pz = p.z_hit * std::exp(-0.5 * e * e);
+  if (range < z_star) pz += p.z_short * p.lambda_short_per_m * std::exp(-p.lambda_short_per_m * range);
+  pz += range < p.max_range_m ? p.z_rand / p.max_range_m : p.z_max;
+  return pz;
+}
+
 BeamSensorModel::BeamSensorModel(std::shared_ptr<const RayCastScene> scene, BeamModelParams params)
     : scene_(std::move(scene)), params_(params) {}
 
 void BeamSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                      const LaserGeometry& geometry, const BeamSelection& beams,
                                      std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+  Score(particles, scan, geometry, beams, params_.combination, log_likelihoods, work);
+}
+
+void BeamSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                              const LaserGeometry& geometry, const BeamSelection& beams,
+                                              std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+  Score(particles, scan, geometry, beams, BeamCombination::kProduct, log_likelihoods, work);
+}
+
+void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
+                            const LaserGeometry& geometry, const BeamSelection& beams,
+                            BeamCombination combination, std::vector<double>& log_likelihoods,
+                            SensorUpdateWork& work) {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   const long n = static_cast<long>(particles.size());
   RayBatch& batch = work.batch;
@@ -68,15 +90,21 @@ void BeamSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, const 
   else
     CastRayBatch(*scene_, batch, work.hits);
   log_likelihoods.resize(particles.size());
+  const bool cube_sum = combination == BeamCombination::kAmclCubeSum;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    double sum = 0.0;
+    double log_product = 0.0, cube_sum_p = 1.0;
     for (int k = 0; k < beams_per_particle; ++k) {
       const RayHit& hit = work.hits[static_cast<std::size_t>(i) * beams_per_particle + k];
-      sum += BeamLogDensity(params_, scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step],
-                            hit.range_m);
+      const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
+      if (cube_sum) {
+        const double pz = BeamCubeProbability(params_, z, hit.range_m);
+        cube_sum_p += pz * pz * pz;
+      } else {
+        log_product += BeamLogDensity(params_, z, hit.range_m);
+      }
     }
-    log_likelihoods[i] = sum;
+    log_likelihoods[i] = cube_sum ? std::log(cube_sum_p) : log_product;
   }
   work.rays = batch.queries.size();
   work.beams_scored = beams_per_particle;

@@ -2,11 +2,12 @@
 // Beam range-finder model (Thrun et al., Probabilistic Robotics, 6.3): each
 // beam's density is a mixture of a Gaussian around the ray-cast range (hit),
 // an exponential for unexpected short readings (short), a point mass at the
-// maximum range (max) and a uniform floor (rand). The log of each beam's
-// mixture is summed over beams.
+// maximum range (max) and a uniform floor (rand). The beams combine as a
+// product (log of each beam's mixture, summed) or by nav2 AMCL's cube sum.
 #include <memory>
 
 #include "robocore/ray_batch.h"
+#include "workloads/delibot/beam_combination.h"
 #include "workloads/delibot/sensor_model.h"
 
 namespace rc {
@@ -20,11 +21,17 @@ struct BeamModelParams {
   double sigma_hit_m = 0.2;          // m, nav2 default
   double lambda_short_per_m = 0.1;   // 1/m, nav2 default
   double max_range_m = 10.0;         // m: readings at or beyond are "max"
+  BeamCombination combination = BeamCombination::kProduct;
   bool IsValid(std::string* error) const;
 };
 
 // Per-beam log density of measured range z given expected range z_star.
 double BeamLogDensity(const BeamModelParams& p, double z, double z_star);
+// nav2 AMCL's per-beam pz for its cube sum (beam_model.cpp): the hit term
+// without the Gaussian's normalizer, the short term without its truncation
+// normalizer, z_max for a reading at max range, else z_rand / max_range; a
+// reading beyond max range counts as max range, as nav2 clamps it.
+double BeamCubeProbability(const BeamModelParams& p, double z, double z_star);
 
 class BeamSensorModel final : public SensorModel {
  public:
@@ -33,9 +40,18 @@ class BeamSensorModel final : public SensorModel {
   void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                       const LaserGeometry& geometry, const BeamSelection& beams,
                       std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
+  // Always the product: the cube sum is too flat to pick a few thousand
+  // particles out of a dense first set (see LikelihoodFieldModel).
+  void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                               const LaserGeometry& geometry, const BeamSelection& beams,
+                               std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
   const BeamModelParams& params() const { return params_; }
 
  private:
+  void Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+             const BeamSelection& beams, BeamCombination combination, std::vector<double>& log_likelihoods,
+             SensorUpdateWork& work);
+
   std::shared_ptr<const RayCastScene> scene_;
   BeamModelParams params_;
 };

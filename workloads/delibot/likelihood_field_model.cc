@@ -9,16 +9,6 @@ namespace {
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 }
 
-const char* ToString(BeamCombination combination) {
-  return combination == BeamCombination::kAmclCubeSum ? "amcl-cube" : "product";
-}
-
-BeamCombination ParseBeamCombination(const std::string& name) {
-  if (name == "product") return BeamCombination::kProduct;
-  if (name == "amcl-cube") return BeamCombination::kAmclCubeSum;
-  throw std::invalid_argument("unknown beam combination '" + name + "' (product | amcl-cube)");
-}
-
 bool LikelihoodFieldParams::IsValid(std::string* error) const {
   auto fail = [&](const char* what) {
     if (error) *error = what;

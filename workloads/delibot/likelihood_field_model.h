@@ -9,27 +9,10 @@
 
 #include "maps/distance_field.h"
 #include "maps/occupancy_grid.h"
+#include "workloads/delibot/beam_combination.h"
 #include "workloads/delibot/sensor_model.h"
 
 namespace rc {
-
-// How the per-beam scores of one scan make the scan's likelihood.
-enum class BeamCombination {
-  // Product of the beams' densities, z_hit N(d; 0, sigma) + z_rand / max_range,
-  // summed in the log domain (Thrun et al. 6.4; MRPT). Treats the beams as
-  // independent, so a scan of n beams is n pieces of evidence.
-  kProduct,
-  // nav2 AMCL's and Beluga's likelihood field: 1 + sum over beams of pz^3,
-  // pz = z_hit exp(-d^2 / 2 sigma^2) + z_rand / max_range (no Gaussian
-  // normalizer). A heuristic: one scan can change a weight by at most a
-  // factor 1 + n (z_hit + z_rand / max_range)^3 (6 for 30 beams at the
-  // defaults), so evidence builds over many updates and map errors that
-  // repeat scan after scan weigh less than under the product.
-  kAmclCubeSum,
-};
-const char* ToString(BeamCombination combination);
-// "product" | "amcl-cube"; throws std::invalid_argument otherwise.
-BeamCombination ParseBeamCombination(const std::string& name);
 
 struct LikelihoodFieldParams {
   double z_hit = 0.5;             // nav2 default

@@ -36,6 +36,7 @@ struct DelibotCli {
   std::string lf_distance = "unsigned";
   std::string lf_unknown = "miss";
   std::string lf_combine = "product";
+  std::string beam_combine = "product";
   std::vector<double> initial_pose;
   std::string timeline_path, summary_path;
   int threads = 0;
@@ -54,6 +55,7 @@ void Run(DelibotCli& cli) {
   s.likelihood.signed_distance = cli.lf_distance == "signed";
   s.likelihood.unknown_is_edge = cli.lf_unknown == "edge";
   s.likelihood.combination = ParseBeamCombination(cli.lf_combine);
+  s.beam.combination = ParseBeamCombination(cli.beam_combine);
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
   const DelibotEngine engine = ParseDelibotEngine(cli.engine);
@@ -188,6 +190,13 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--z-rand", s.beam.z_rand, "Beam model random weight (unitless)")->capture_default_str();
   cmd->add_option("--lambda-short", s.beam.lambda_short_per_m, "Beam model short-reading rate (1/m)")
       ->capture_default_str();
+  cmd->add_option("--beam-combine", cli->beam_combine,
+                  "Beam model, how a scan's beams combine: 'product' of the per-beam mixture densities (log "
+                  "domain; Thrun et al., MRPT), or 'amcl-cube', nav2 AMCL's 1 + sum of cubed per-beam "
+                  "probabilities (hit term without its normalizer; far flatter, as for --lf-combine). The "
+                  "rays cast, and so the backends' costs, are the same")
+      ->check(CLI::IsMember({"product", "amcl-cube"}))
+      ->capture_default_str();
   cmd->add_option("--lf-sigma-hit", s.likelihood.sigma_hit_m, "Likelihood field sigma (m)")->capture_default_str();
   cmd->add_option("--lf-max-dist", s.likelihood.max_occ_dist_m, "Likelihood field distance cap (m)")
       ->capture_default_str();
@@ -234,8 +243,8 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
-                  "second hypothesis is that close, the filter does not claim convergence. With --lf-combine "
-                  "amcl-cube the ratio is of the cube sum's weights, a far smaller scale (8 in the README's "
+                  "second hypothesis is that close, the filter does not claim convergence. With amcl-cube "
+                  "(--lf-combine or --beam-combine) the ratio is of the cube sum's weights, a far smaller scale (6 in the README's "
                   "cautious recipe)")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")

@@ -239,7 +239,8 @@ nlohmann::json MrptSettingsJson(const DelibotSettings& s) {
                   {"rayTracing_stdHit_m", s.beam.sigma_hit_m},
                   {"rayTracing_decimation", s.mcl.beams.beam_step},
                   {"rayTracing_useDistanceFilter", false},
-                  {"no_counterpart", {"z_short", "z_max", "z_rand", "lambda_short_per_m"}}};
+                  {"no_counterpart", {"z_short", "z_max", "z_rand", "lambda_short_per_m"}},
+                  {"differs", "beams combined as a product (log domain) whatever --beam-combine says"}};
   else
     likelihood = {{"likelihoodMethod", "lmLikelihoodField_Thrun (LF_Trun)"},
                   {"LF_stdHit_m", s.likelihood.sigma_hit_m},
