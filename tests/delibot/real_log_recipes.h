@@ -17,14 +17,14 @@ inline DelibotSettings RealLogRecipe() {
 
 // The cautious recipe (README, "A recipe whose claims hold"): nav2's cube
 // sum with unknown space as an edge, 2,000,000 first particles, a
-// 500-particle floor in an 8-nat window, a set growing to 20000 while rivals
+// 500-particle floor in a 6-nat window, a set growing to 20000 while rivals
 // are alive.
 inline DelibotSettings CautiousRealLogRecipe() {
   DelibotSettings s = RealLogRecipe();
   s.likelihood.combination = BeamCombination::kAmclCubeSum;
   s.likelihood.unknown_is_edge = true;
   s.mcl.initial_particle_count = 2000000;
-  s.mcl.hypothesis_floor = {500, 8.0};
+  s.mcl.hypothesis_floor = {500, 6.0};
   s.mcl.max_particle_count = 20000;
   return s;
 }
