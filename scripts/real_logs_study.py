@@ -27,6 +27,8 @@ itself claimed convergence without ground truth (mode weight and scan
 consistency), the fraction within 1 m from that claim on, and two verdicts:
 right (converged in the first half, then >= 95 % of records within 1 m) and
 right by its own claim (the same from the filter's own claim), with totals,
+(the CSV also has standing_claim_record and claims_withdrawn: the claim
+standing at the end, after the filter withdrew the ones it contradicted),
 and what became of the own claims whenever they came (claim_outcome: held,
 wrong, or none when the filter never claimed; - without a reference).
 rcbench's own err_xy_m timeline column must agree with the error computed
@@ -95,6 +97,8 @@ def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
     conv = int(a["convergence_iteration"])
     claim = int(a.get("convergence_iteration_without_ground_truth", conv))
     row = {"log": log_name, "seed": seed, "records": len(it), "converged_record": conv, "own_claim_record": claim,
+           "standing_claim_record": int(a.get("standing_claim_iteration", -1)),
+           "claims_withdrawn": int(a.get("claims_withdrawn", 0)),
            "converged_at_end": int(bool(a["converged_at_end"])),
            "median_consistency": a["median_consistency_after_convergence"],
            "jumps_after_convergence": a["jumps_after_convergence"],

@@ -71,6 +71,45 @@ TEST(DelibotSummaryTest, NoClaimWhileARivalHypothesisIsAlive) {
   EXPECT_EQ(judged.self_convergence_iteration, 12);
 }
 
+// A claim stands until the filter contradicts it: a jump of the estimate or
+// injected random particles after it withdraw it, and the claim standing at
+// the end needs 10 more localized updates. A dip in consistency breaks a
+// run being built but withdraws nothing.
+TEST(DelibotSummaryTest, AJumpOrAnInjectionAfterAClaimWithdrawsIt) {
+  const DelibotSettings s;
+  std::vector<DelibotRow> rows = GoodThen(std::vector<std::pair<double, double>>(40, {0.95, 0.9}));
+  const DelibotSummary clean = SummarizeDelibot(rows, s);
+  EXPECT_EQ(clean.standing_claim_iteration, 0);
+  EXPECT_EQ(clean.claims_withdrawn, 0);
+  // Claimed at 0; at record 25 the estimate jumps 3 m (and stays there).
+  for (DelibotRow& r : rows) r.estimate.x = r.iteration >= 25 ? 3.0 : 0.0;
+  const DelibotSummary jumped = SummarizeDelibot(rows, s);
+  EXPECT_EQ(jumped.self_convergence_iteration, 0);
+  EXPECT_EQ(jumped.claims_withdrawn, 1);
+  EXPECT_EQ(jumped.standing_claim_iteration, 25);
+  EXPECT_TRUE(jumped.converged);
+  // Then particles injected at record 50: withdrawn again; with only 10
+  // updates left (50-59) the new claim is made on the last of them.
+  rows[50].injected = 30;
+  const DelibotSummary injected = SummarizeDelibot(rows, s);
+  EXPECT_EQ(injected.claims_withdrawn, 2);
+  EXPECT_EQ(injected.standing_claim_iteration, 50);
+  // Injected at 55: no claim stands at the end, so without ground truth
+  // the run is not localized at the end, whatever the last updates say.
+  rows[55].injected = 30;
+  const DelibotSummary none = SummarizeDelibot(rows, s);
+  EXPECT_EQ(none.claims_withdrawn, 2);  // the claim being built at 50-54 was never made
+  EXPECT_EQ(none.standing_claim_iteration, -1);
+  EXPECT_EQ(none.convergence_iteration, 0);
+  EXPECT_FALSE(none.converged);
+  // A dip below the consistency threshold after a claim withdraws nothing.
+  std::vector<DelibotRow> dip = GoodThen(std::vector<std::pair<double, double>>(20, {0.95, 0.9}));
+  dip[30].consistency = 0.1;
+  const DelibotSummary dipped = SummarizeDelibot(dip, s);
+  EXPECT_EQ(dipped.claims_withdrawn, 0);
+  EXPECT_EQ(dipped.standing_claim_iteration, 0);
+}
+
 TEST(DelibotSummaryTest, RecordsWithoutASensorUpdateAreNotEvidence) {
   const DelibotSettings s;
   // A robot standing still: 30 records, one sensor update. It has not

@@ -158,6 +158,8 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
     for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
   json accuracy = {{"convergence_iteration", m.convergence_iteration},
                    {"convergence_iteration_without_ground_truth", m.self_convergence_iteration},
+                   {"standing_claim_iteration", m.standing_claim_iteration},
+                   {"claims_withdrawn", m.claims_withdrawn},
                    {"converged_at_end", m.converged},
                    {"end_median_mode_weight", m.end_mode_weight},
                    {"end_median_consistency", m.end_consistency},
@@ -241,7 +243,8 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     emit("converged at record     %ld (not confirmed at the end: last 10 updates' median mode weight %.2f, "
          "consistency %.2f; %s)",
          m.convergence_iteration, m.end_mode_weight, m.end_consistency,
-         m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
+         m.standing_claim_iteration < 0 ? "its claim was withdrawn and none stands"
+         : m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
          : m.end_hypotheses_alive > 1.0 ? "a rival hypothesis is still alive"
                                         : "scans disagree with the map: wrong pose or wrong map");
   } else
@@ -257,13 +260,29 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
       emit("filter's own claim      never (mode weight >= %.2f and consistency >= %.2f%s for 10 updates)",
            s.converged_mode_weight, s.converged_consistency, rivals);
   }
-  emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
-       m.median_consistency, s.consistency_sigmas);
-  emit("jumps after convergence %ld (estimate moved > %.1f m between two records)", m.jumps_after_convergence,
-       s.jump_threshold_m);
+  // A claim the filter later contradicted (a jump, injected particles) is
+  // not one a user should keep trusting; say so, and which claim stands.
+  if (m.claims_withdrawn > 0 || m.standing_claim_iteration != m.self_convergence_iteration) {
+    const std::string standing = m.standing_claim_iteration >= 0
+                                     ? "the claim standing at the end is from record " +
+                                           std::to_string(m.standing_claim_iteration)
+                                     : std::string("no claim stands at the end");
+    emit("claims withdrawn        %ld (the estimate jumped > %.1f m or random particles were injected after a "
+         "claim); %s",
+         m.claims_withdrawn, s.jump_threshold_m, standing.c_str());
+  }
+  if (m.convergence_iteration >= 0) {
+    emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
+         m.median_consistency, s.consistency_sigmas);
+    emit("jumps after convergence %ld (estimate moved > %.1f m between two records)", m.jumps_after_convergence,
+         s.jump_threshold_m);
+  }
   if (!result.rows.empty() && result.rows.front().has_ground_truth) {
-    emit("error after convergence %.3f m median, %.3f m p95, %.4f rad median heading", m.median_err_xy_m,
-         m.p95_err_xy_m, m.median_err_theta_rad);
+    if (m.convergence_iteration >= 0)
+      emit("error after convergence %.3f m median, %.3f m p95, %.4f rad median heading", m.median_err_xy_m,
+           m.p95_err_xy_m, m.median_err_theta_rad);
+    else
+      emit("error after convergence none (never converged)");
     emit("final error             %.3f m, %.4f rad", m.final_err_xy_m, m.final_err_theta_rad);
   }
   if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");

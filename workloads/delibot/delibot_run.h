@@ -114,6 +114,15 @@ struct DelibotSummary {
   // filter itself claims to be localized, which is all a user without
   // ground truth sees. Equal to convergence_iteration without ground truth.
   long self_convergence_iteration = -1;
+  // A claim stands until the filter itself contradicts it: after the claim
+  // its estimate jumps (> jump_threshold_m between two records) or it
+  // injects random particles (augmented MCL's sign that the recent scans fit
+  // worse than the long-run average). A contradicted claim is withdrawn, and
+  // a new one needs kSustainRecords more localized updates. The record from
+  // which the claim standing at the end was made (-1: none stands), and how
+  // many claims were withdrawn before it.
+  long standing_claim_iteration = -1;
+  long claims_withdrawn = 0;
   bool converged = false;        // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
   // Medians over the last 10 sensor updates, which the ground-truth-free
   // verdict at the end rests on: a low mode weight means the belief is
