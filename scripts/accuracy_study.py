@@ -59,14 +59,18 @@ def first_pose(gt_path):
     return f"{x!r},{y!r},{theta!r}"
 
 
-def claim_held(timeline, claim):
+def read_errors(timeline):
+    """The timeline's (iteration, err_xy_m) rows."""
+    try:
+        return read_timeline_rows(timeline, ("iteration", "err_xy_m"))
+    except InputError as e:
+        sys.exit(f"accuracy_study: {e}")
+
+
+def claim_held(rows, claim):
     """At least 95 % of the records from the claim on within 1 m of the truth."""
     if claim < 0:
         return False
-    try:
-        rows = read_timeline_rows(timeline, ("iteration", "err_xy_m"))
-    except InputError as e:
-        sys.exit(f"accuracy_study: {e}")
     after = [float(r["err_xy_m"]) for r in rows if int(r["iteration"]) >= claim]
     return bool(after) and sum(e < 1.0 for e in after) >= 0.95 * len(after)
 
@@ -123,10 +127,11 @@ def main():
                 if mode == "global":
                     claim = a["convergence_iteration_without_ground_truth"]
                     result["global_own_claim_record"] = claim
-                    result["global_own_claim_held"] = int(claim_held(timeline, claim))
+                    errors = read_errors(timeline)
+                    result["global_own_claim_held"] = int(claim_held(errors, claim))
                     standing = a.get("standing_claim_iteration", -1)
                     result["global_standing_claim_record"] = standing
-                    result["global_standing_claim_held"] = int(claim_held(timeline, standing))
+                    result["global_standing_claim_held"] = int(claim_held(errors, standing))
             rows.append(result)
             print(f"{name} seed {seed}: global converged={result['global_converged']} "
                   f"(record {result['global_convergence_iteration']}), tracking median "

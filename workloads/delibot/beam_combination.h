@@ -1,6 +1,7 @@
 #pragma once
 // How the per-beam scores of one scan make the scan's likelihood. Both
 // sensor models offer the same two rules, so the choice is one concept here.
+#include <cmath>
 #include <string>
 
 namespace rc {
@@ -23,5 +24,24 @@ enum class BeamCombination {
 const char* ToString(BeamCombination combination);
 // "product" | "amcl-cube"; throws std::invalid_argument otherwise.
 BeamCombination ParseBeamCombination(const std::string& name);
+
+// One scan's log-likelihood, built beam by beam under a combination: the
+// product adds each beam's log density, the cube sum adds pz^3 to 1 and
+// takes the log at the end. A model asks cube_sum() which of the two
+// per-beam quantities to compute.
+class ScanLikelihood {
+ public:
+  explicit ScanLikelihood(BeamCombination combination)
+      : cube_sum_(combination == BeamCombination::kAmclCubeSum) {}
+  bool cube_sum() const { return cube_sum_; }
+  void AddLogDensity(double log_density) { log_product_ += log_density; }
+  void AddProbability(double pz) { cube_total_ += pz * pz * pz; }
+  double Log() const { return cube_sum_ ? std::log(cube_total_) : log_product_; }
+
+ private:
+  bool cube_sum_;
+  double log_product_ = 0.0;
+  double cube_total_ = 1.0;
+};
 
 }  // namespace rc

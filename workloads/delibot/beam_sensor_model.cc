@@ -90,21 +90,18 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
   else
     CastRayBatch(*scene_, batch, work.hits);
   log_likelihoods.resize(particles.size());
-  const bool cube_sum = combination == BeamCombination::kAmclCubeSum;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    double log_product = 0.0, cube_sum_p = 1.0;
+    ScanLikelihood scan_likelihood(combination);
     for (int k = 0; k < beams_per_particle; ++k) {
       const RayHit& hit = work.hits[static_cast<std::size_t>(i) * beams_per_particle + k];
       const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
-      if (cube_sum) {
-        const double pz = BeamCubeProbability(params_, z, hit.range_m);
-        cube_sum_p += pz * pz * pz;
-      } else {
-        log_product += BeamLogDensity(params_, z, hit.range_m);
-      }
+      if (scan_likelihood.cube_sum())
+        scan_likelihood.AddProbability(BeamCubeProbability(params_, z, hit.range_m));
+      else
+        scan_likelihood.AddLogDensity(BeamLogDensity(params_, z, hit.range_m));
     }
-    log_likelihoods[i] = cube_sum ? std::log(cube_sum_p) : log_product;
+    log_likelihoods[i] = scan_likelihood.Log();
   }
   work.rays = batch.queries.size();
   work.beams_scored = beams_per_particle;

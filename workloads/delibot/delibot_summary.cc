@@ -59,6 +59,12 @@ long FirstSustained(const std::vector<DelibotRow>& rows, const Localized& locali
   return -1;
 }
 
+// The estimate moved more than the jump threshold since the previous record.
+bool Jumped(const DelibotRow* previous, const DelibotRow& r, double jump_threshold_m) {
+  return previous &&
+         std::hypot(r.estimate.x - previous->estimate.x, r.estimate.y - previous->estimate.y) > jump_threshold_m;
+}
+
 struct ClaimHistory {
   long standing_from = -1;
   long withdrawn = 0;
@@ -73,30 +79,24 @@ struct ClaimHistory {
 template <typename Localized>
 ClaimHistory ReplayClaims(const std::vector<DelibotRow>& rows, const Localized& localized, double jump_threshold_m) {
   ClaimHistory h;
-  bool standing = false;
   int run = 0;
   long run_start = -1;
   const DelibotRow* previous = nullptr;
   for (const auto& r : rows) {
-    const bool jumped = previous && std::hypot(r.estimate.x - previous->estimate.x,
-                                               r.estimate.y - previous->estimate.y) > jump_threshold_m;
+    const bool doubted = Jumped(previous, r, jump_threshold_m) || r.injected > 0;
     previous = &r;
-    if (jumped || r.injected > 0) {
-      if (standing) ++h.withdrawn;
-      standing = false;
+    if (doubted) {
+      if (h.standing_from >= 0) ++h.withdrawn;
       h.standing_from = -1;
       run = 0;
     }
-    if (standing || !r.sensor_updated) continue;
+    if (h.standing_from >= 0 || !r.sensor_updated) continue;
     if (!localized(r)) {
       run = 0;
       continue;
     }
     if (run++ == 0) run_start = r.iteration;
-    if (run == kSustainRecords) {
-      standing = true;
-      h.standing_from = run_start;
-    }
+    if (run == kSustainRecords) h.standing_from = run_start;
   }
   return h;
 }
@@ -141,9 +141,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     const DelibotRow* previous = nullptr;
     for (const auto& r : rows) {
       if (r.iteration < sum.convergence_iteration) continue;
-      if (previous && std::hypot(r.estimate.x - previous->estimate.x, r.estimate.y - previous->estimate.y) >
-                          s.jump_threshold_m)
-        ++sum.jumps_after_convergence;
+      if (Jumped(previous, r, s.jump_threshold_m)) ++sum.jumps_after_convergence;
       previous = &r;
       if (gt) {
         exy.push_back(r.err_xy_m);

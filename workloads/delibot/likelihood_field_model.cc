@@ -105,14 +105,13 @@ void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const Lase
   log_likelihoods.resize(particles.size());
   const double gauss_norm = params_.z_hit * kInvSqrt2Pi / params_.sigma_hit_m;
   const double floor_density = params_.z_rand / params_.max_range_m;
-  const bool cube_sum = combination == BeamCombination::kAmclCubeSum;
   long used_beams = 0;
   for (int k = 0; k < beams_per_particle; ++k)
     used_beams += scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step] < params_.max_range_m;
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const Pose2 sensor = SensorPose(particles[i], geometry);
-    double log_product = 0.0, cube_sum_p = 1.0;
+    ScanLikelihood scan_likelihood(combination);
     for (int k = 0; k < beams_per_particle; ++k) {
       const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
       if (z >= params_.max_range_m) continue;
@@ -120,14 +119,12 @@ void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const Lase
       const double d = DistanceAt(sensor.x + z * std::cos(a), sensor.y + z * std::sin(a));
       const double e = d / params_.sigma_hit_m;
       const double gauss = std::exp(-0.5 * e * e);
-      if (cube_sum) {
-        const double pz = params_.z_hit * gauss + floor_density;
-        cube_sum_p += pz * pz * pz;
-      } else {
-        log_product += std::log(gauss_norm * gauss + floor_density);
-      }
+      if (scan_likelihood.cube_sum())
+        scan_likelihood.AddProbability(params_.z_hit * gauss + floor_density);
+      else
+        scan_likelihood.AddLogDensity(std::log(gauss_norm * gauss + floor_density));
     }
-    log_likelihoods[i] = cube_sum ? std::log(cube_sum_p) : log_product;
+    log_likelihoods[i] = scan_likelihood.Log();
   }
   work.batch.queries.clear();
   work.hits.clear();

@@ -44,13 +44,13 @@ std::vector<std::size_t> SystematicResample(const std::vector<double>& normalize
 
 namespace {
 
-// Systematic pass over `members` (indices into log_weights, in this order),
-// whose weights sum to exp(log_mass), writing `slots` ancestors.
 // A cluster of this log mass is alive: within window_nats of the heaviest.
 bool WithinWindow(double log_mass, double heaviest, double window_nats) {
   return std::isfinite(log_mass) && log_mass >= heaviest - window_nats;
 }
 
+// Systematic pass over `members` (indices into log_weights, in this order),
+// whose weights sum to exp(log_mass), writing `slots` ancestors.
 void SystematicOver(const std::vector<double>& log_weights, const std::vector<std::size_t>& members,
                     double log_mass, std::size_t slots, double u01, std::vector<std::size_t>& out) {
   std::vector<double> local(members.size());
