@@ -1,6 +1,7 @@
 #include "backends/backend.h"
 
 #include <chrono>
+#include <exception>
 #include <iomanip>
 #include <ostream>
 #include <stdexcept>
@@ -74,11 +75,47 @@ template BatchCost Backend::RunCollisions(const FlatBoxTree<float>&, const std::
 template BatchCost Backend::RunCollisions(const FlatBoxTree<double>&, const std::vector<Obb<double>>&,
                                           std::vector<CollisionResult>&, const CollisionOptions<double>&) const;
 
+BatchCost& BatchCost::operator+=(const BatchCost& more) {
+  // SIMT efficiency is active lanes over issued lanes, so the sum is the
+  // issued-instruction-weighted mean.
+  const double wa = static_cast<double>(warp_instructions), wb = static_cast<double>(more.warp_instructions);
+  if (wa + wb > 0) simt_efficiency = (simt_efficiency * wa + more.simt_efficiency * wb) / (wa + wb);
+  host_seconds += more.host_seconds;
+  queries += more.queries;
+  nodes += more.nodes;
+  cycles += more.cycles;
+  launch_cycles += more.launch_cycles;
+  seconds += more.seconds;
+  energy_joules += more.energy_joules;
+  memory += more.memory;
+  for (std::size_t k = 0; k < micro_ops.size(); ++k) micro_ops[k] += more.micro_ops[k];
+  predicated_off_micro_ops += more.predicated_off_micro_ops;
+  interconnect_hops += more.interconnect_hops;
+  ctrl_exits += more.ctrl_exits;
+  warp_instructions += more.warp_instructions;
+  thread_instructions += more.thread_instructions;
+  nodes_counted += more.nodes_counted;
+  return *this;
+}
+
 std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends,
                                 const KernelRecord& record) {
+  // The backends price in parallel: those sharing a memory replay wait for
+  // the one that runs it, the others replay at the same time. Each
+  // backend's price does not depend on the order.
   PricingContext context(record);
-  std::vector<BatchCost> costs;
-  for (const Backend* b : backends) costs.push_back(b->Price(record, context));
+  std::vector<BatchCost> costs(backends.size());
+  std::vector<std::exception_ptr> errors(backends.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long i = 0; i < static_cast<long>(backends.size()); ++i) {
+    try {
+      costs[i] = backends[i]->Price(record, context);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   return costs;
 }
 

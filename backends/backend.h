@@ -66,6 +66,11 @@ struct BatchCost {
   std::string bound;              // what limited the busiest SM
   std::string l1_model;
   std::string l2_model;
+
+  // Adds another launch's cost (every count and time; SIMT efficiency as
+  // the issued-instruction-weighted mean). The descriptive fields (backend,
+  // bound, models, clock) stay this one's.
+  BatchCost& operator+=(const BatchCost& more);
 };
 
 void PrintBatchCost(std::ostream& out, const BatchCost& cost);

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <sstream>
 
 #include "backends/cache_model.h"
@@ -150,11 +152,10 @@ class SmReplay {
   template <class Write>
   void Scatter(Write write) {
     const std::uint64_t* offsets = record_.fetch_offsets.data();
-    const std::uint64_t* addresses = record_.fetch_addresses.data();
     std::uint32_t* cursor = cursor_.data();
     for (std::size_t j = 0; j < lane_query_.size(); ++j) {
       const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
-      const std::uint64_t* a = addresses + offsets[q];
+      const std::uint64_t* a = record_.addresses(q);
       const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
       for (std::uint32_t k = 0; k < nodes; ++k)
         if (write(cursor[k], a[k], lane_owner, k)) ++cursor[k];
@@ -259,6 +260,119 @@ class SmReplay {
   std::vector<std::uint64_t> address_;
 };
 
+// The memory of the SMs a sampled record did not keep, estimated from the
+// sampled ones. Each unsampled warp borrows from a "twin", a warp of a
+// sampled SM at the same position in its SM's warp list (the sampled SMs
+// taken in turn): its memory cycles beyond the L1 latency per unit of work
+// (a warp step when coalesced; per thread, lane by lane, a node fetch),
+// applied to its own unit count. Borrowing whole warps, rather than a
+// mean, keeps the spread of memory latency over lanes and warps that a
+// warp's slowest lane and an SM's busiest slot depend on. Sector requests
+// per SM take the sampled SMs' mean per unit (a sum, which a mean
+// estimates without bias). The totals scale by the ratio of all units to
+// the sampled units, except DRAM accesses when the L2 holds the footprint:
+// those are exactly the sectors the whole batch touched, which the record
+// counts. Exact in what needs no addresses (node counts, steps, exits),
+// approximate in what the addresses decide; the error against exact
+// replay is measured in tests/backends/sampled_pricing_test.cc.
+void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
+                       const std::vector<std::vector<std::uint32_t>>& sm_warps,
+                       const std::vector<std::uint32_t>& steps, const std::vector<int>& replayed,
+                       std::uint64_t l1_latency, bool l2_holds_footprint, MemoryProfile& profile) {
+  const std::size_t n = record.query_count();
+  const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
+  std::vector<bool> sampled_sm(gpu.sms, false);
+  for (int sm : replayed) sampled_sm[sm] = true;
+  std::vector<std::uint64_t>& owner_cycles =
+      pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
+  auto units_of_query = [&](std::size_t q) -> std::uint64_t { return q < n ? record.nodes(q) : 0; };
+  auto units_of_warp = [&](std::uint32_t w) -> std::uint64_t {
+    if (pattern.coalesced) return steps[w];
+    std::uint64_t u = 0;
+    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q) u += units_of_query(q);
+    return u;
+  };
+  auto extra_of_query = [&](std::size_t q) { return owner_cycles[q] - l1_latency * record.nodes(q); };
+
+  std::vector<std::uint64_t> sm_units(gpu.sms, 0);
+  std::uint64_t all_units = 0, sampled_units = 0, sampled_extra = 0, sampled_requests = 0;
+  std::vector<std::uint32_t> twins;  // the sampled SMs' warps, interleaved SM by SM
+  for (std::size_t j = 0;; ++j) {
+    bool any = false;
+    for (int sm : replayed)
+      if (j < sm_warps[sm].size()) {
+        twins.push_back(sm_warps[sm][j]);
+        any = true;
+      }
+    if (!any) break;
+  }
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    for (std::uint32_t w : sm_warps[sm]) sm_units[sm] += units_of_warp(w);
+    all_units += sm_units[sm];
+    if (!sampled_sm[sm]) continue;
+    sampled_units += sm_units[sm];
+    sampled_requests += profile.sm_sector_requests[sm];
+    for (std::uint32_t w : sm_warps[sm]) {
+      if (pattern.coalesced) {
+        sampled_extra += owner_cycles[w] - l1_latency * steps[w];
+        continue;
+      }
+      for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
+        sampled_extra += extra_of_query(q);
+    }
+  }
+  if (sampled_units == 0 || all_units == sampled_units || twins.empty()) return;
+  const double mean_extra = static_cast<double>(sampled_extra) / static_cast<double>(sampled_units);
+  const double requests_per_unit = static_cast<double>(sampled_requests) / static_cast<double>(sampled_units);
+  // Cycles beyond the L1 per unit of `twin` (a warp, or a query), or the
+  // sampled mean when the twin did no work.
+  auto rate = [&](std::uint64_t extra, std::uint64_t units) {
+    return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
+  };
+  auto add = [](std::uint64_t& cycles, double extra) { cycles += static_cast<std::uint64_t>(std::llround(extra)); };
+  // A warp's queries in order of node count (ties in launch order).
+  std::vector<std::size_t> mine, theirs;
+  auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
+    out.clear();
+    for (std::size_t q = std::size_t{warp} * lanes; q < std::min(n, (std::size_t{warp} + 1) * lanes); ++q) out.push_back(q);
+    std::stable_sort(out.begin(), out.end(), [&](std::size_t a, std::size_t b) { return record.nodes(a) < record.nodes(b); });
+  };
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    if (sampled_sm[sm]) continue;
+    profile.sm_sector_requests[sm] =
+        static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(sm_units[sm])));
+    for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
+      const std::uint32_t w = sm_warps[sm][k], twin = twins[k % twins.size()];
+      if (pattern.coalesced) {
+        add(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
+        continue;
+      }
+      // Per thread: lanes paired with the twin's by rank of node count (the
+      // longest query with the twin's longest, ...), each borrowing its
+      // partner's cycles per node. The pairing keeps the lanes' spread and
+      // its tie to query length, which decide the warp's slowest lane.
+      ByNodes(w, mine);
+      ByNodes(twin, theirs);
+      for (std::size_t i = 0; i < mine.size(); ++i) {
+        const std::size_t q = mine[i];
+        const bool paired = i < theirs.size() && record.nodes(theirs[i]) > 0;
+        add(owner_cycles[q], (paired ? rate(extra_of_query(theirs[i]), record.nodes(theirs[i])) : mean_extra) *
+                                 record.nodes(q));
+      }
+    }
+  }
+  const double scale = static_cast<double>(all_units) / static_cast<double>(sampled_units);
+  MemoryCounters& c = profile.totals;
+  auto scaled = [&](std::uint64_t v) { return static_cast<std::uint64_t>(std::llround(static_cast<double>(v) * scale)); };
+  c.sector_requests = 0;
+  for (std::uint64_t r : profile.sm_sector_requests) c.sector_requests += r;
+  c.l2_accesses = std::min(scaled(c.l2_accesses), c.sector_requests);
+  c.dram_accesses = l2_holds_footprint && record.touched_sectors > 0 ? record.touched_sectors : scaled(c.dram_accesses);
+  c.dram_accesses = std::min(c.dram_accesses, c.l2_accesses);
+  c.l2_hits = c.l2_accesses - c.dram_accesses;
+  c.l1_hits = c.sector_requests - c.l2_accesses;
+}
+
 std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
   std::ostringstream key;
   key << g.sms << ' ' << g.warp_size << ' ' << g.warps_per_block << ' ' << g.sector_bytes << ' '
@@ -269,6 +383,15 @@ std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
 }
 
 }  // namespace
+
+MemoryCounters& MemoryCounters::operator+=(const MemoryCounters& more) {
+  sector_requests += more.sector_requests;
+  l1_hits += more.l1_hits;
+  l2_accesses += more.l2_accesses;
+  l2_hits += more.l2_hits;
+  dram_accesses += more.dram_accesses;
+  return *this;
+}
 
 int SmOfWarp(std::size_t warp, const GpuParams& gpu) {
   return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) %
@@ -285,9 +408,13 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
 // through the shared L2, wave round by wave round, SMs in order, charging
 // each group with a miss when its last miss is served. Each SM's work is
 // independent and the L2 order is fixed, so the result does not depend on
-// the thread count.
+// the thread count. A sampled record replays its sampled SMs only, and
+// EstimateUnsampled fills in the rest.
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
                            const AccessPattern& pattern) {
+  const AddressSample& sample = record.address_sample;
+  if (record.sampled() && !sample.SamePlacement(gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes))
+    throw std::logic_error("ReplayMemory: the record's address sample was taken for another placement of warps on SMs");
   MemoryProfile profile;
   CacheHierarchy caches(gpu, record.footprint_begin(),
                         std::max(record.footprint_end(), record.footprint_begin()));
@@ -314,10 +441,14 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
   for (std::size_t i = 0; i < owner_cycles.size(); ++i)
     owner_cycles[i] = latency[0] * (pattern.coalesced ? steps[i] : record.nodes(i));
 
+  std::vector<int> replayed;
+  for (int sm = 0; sm < gpu.sms; ++sm)
+    if (!record.sampled() || sample.KeepsSm(sm)) replayed.push_back(sm);
   std::vector<SmMisses> sms(gpu.sms);
   const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int sm = 0; sm < gpu.sms; ++sm) {
+  for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
+    const int sm = replayed[i];
     SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
     const std::vector<std::uint32_t>& list = sm_warps[sm];
     for (std::size_t lo = 0; lo < list.size(); lo += wave) replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
@@ -327,8 +458,17 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
   for (const SmMisses& s : sms) rounds = std::max(rounds, s.wave_end.size());
   std::vector<std::size_t> next_miss(gpu.sms, 0);
   CacheLevel& l2 = caches.L2();
+  // A sampled record's L2 sees only the sampled SMs' misses, so a sector
+  // the unsampled SMs would already have brought in misses to DRAM. When
+  // the L2 holds the footprint, the batch misses exactly its touched
+  // sectors, of which the sampled SMs' share is theirs by work; a group
+  // whose slowest miss went to DRAM is then charged the L2 latency plus
+  // that share of the DRAM latency (settled below, once the count of such
+  // groups is known).
+  const bool share_dram = record.sampled() && l2.cold() && record.touched_sectors > 0;
+  std::vector<std::uint32_t> dram_groups(share_dram ? owner_cycles.size() : 0, 0);
   for (std::size_t r = 0; r < rounds; ++r)
-    for (int sm = 0; sm < gpu.sms; ++sm) {
+    for (int sm : replayed) {
       SmMisses& s = sms[sm];
       if (r >= s.wave_end.size()) continue;
       std::size_t& m = next_miss[sm];
@@ -338,15 +478,38 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
         ++(level == 1 ? s.l2_hits : s.dram);
         slowest = std::max(slowest, level);
         if (s.group_end[m]) {
+          if (share_dram && slowest == 2) {
+            ++dram_groups[s.owner[m]];
+            slowest = 1;
+          }
           owner_cycles[s.owner[m]] += latency[slowest] - latency[0];
           slowest = 1;
         }
       }
     }
+  if (share_dram) {
+    std::uint64_t sampled_units = 0, all_units = 0, sampled_dram = 0;
+    for (std::size_t w = 0; w < warps; ++w) {
+      const std::uint64_t units = pattern.coalesced ? steps[w] : 0;
+      std::uint64_t lane_units = 0;
+      if (!pattern.coalesced)
+        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q) lane_units += record.nodes(q);
+      const std::uint64_t u = pattern.coalesced ? units : lane_units;
+      all_units += u;
+      if (sample.KeepsSm(SmOfWarp(w, gpu))) sampled_units += u;
+    }
+    for (int sm : replayed) sampled_dram += sms[sm].dram;
+    const double expected = static_cast<double>(record.touched_sectors) * static_cast<double>(sampled_units) /
+                            static_cast<double>(std::max<std::uint64_t>(1, all_units));
+    const double p = sampled_dram > 0 ? std::min(1.0, expected / static_cast<double>(sampled_dram)) : 0.0;
+    const double extra = p * static_cast<double>(latency[2] - latency[1]);
+    for (std::size_t i = 0; i < dram_groups.size(); ++i)
+      if (dram_groups[i]) owner_cycles[i] += static_cast<std::uint64_t>(std::llround(extra * dram_groups[i]));
+  }
 
   profile.sm_sector_requests.assign(gpu.sms, 0);
   MemoryCounters& c = profile.totals;
-  for (int sm = 0; sm < gpu.sms; ++sm) {
+  for (int sm : replayed) {
     const SmMisses& s = sms[sm];
     profile.sm_sector_requests[sm] = s.requests;
     c.sector_requests += s.requests;
@@ -355,23 +518,75 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
     c.l2_hits += s.l2_hits;
     c.dram_accesses += s.dram;
   }
+  if (record.sampled())
+    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, replayed, latency[0], caches.L2().cold(), profile);
   return profile;
 }
 
+namespace {
+
+// Finds or starts the computation of `key` in `pending` (under `mutex`);
+// the caller that starts it computes it outside the lock, the others wait.
+template <class T, class Compute>
+std::shared_ptr<const T> Once(std::mutex& mutex, std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& pending,
+                              const std::string& key, Compute compute) {
+  std::promise<std::shared_ptr<const T>> promise;
+  std::shared_future<std::shared_ptr<const T>> future;
+  bool mine = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = pending.find(key);
+    if (it == pending.end()) {
+      future = promise.get_future().share();
+      pending.emplace(key, future);
+      mine = true;
+    } else {
+      future = it->second;
+    }
+  }
+  if (mine) {
+    try {
+      promise.set_value(std::make_shared<const T>(compute()));
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  }
+  return future.get();
+}
+
+}  // namespace
+
 std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu,
                                                            const AccessPattern& pattern) {
-  const std::string key = MemoryKey(gpu, pattern);
-  std::lock_guard<std::mutex> lock(mutex_);
-  auto it = profiles_.find(key);
-  if (it == profiles_.end())
-    it = profiles_.emplace(key, std::make_shared<const MemoryProfile>(ReplayMemory(record_, gpu, pattern)))
-             .first;
-  return it->second;
+  return Once(mutex_, profiles_, MemoryKey(gpu, pattern), [&] { return ReplayMemory(record_, gpu, pattern); });
 }
 
 ExitProfile ProfileExits(const KernelRecord& record) {
   const std::size_t n = record.query_count();
   const std::uint64_t* offsets = record.fetch_offsets.data();
+  if (record.exits_per_query()) {
+    // Every pass but the last has no exit: at most two variants per query,
+    // in the order the general scan below gives them.
+    ExitProfile profile;
+    profile.offsets.assign(n + 1, 0);
+    profile.variant.reserve(2 * n);
+    profile.passes.reserve(2 * n);
+    for (std::size_t q = 0; q < n; ++q) {
+      const std::uint32_t m = record.nodes(q);
+      const std::uint8_t last = record.last_exits[q];
+      const std::uint32_t quiet = last == kNoExit ? m : m - 1;
+      if (quiet > 0) {
+        profile.variant.push_back(0);
+        profile.passes.push_back(quiet);
+      }
+      if (m > 0 && last != kNoExit) {
+        profile.variant.push_back(static_cast<std::uint8_t>(1 + last));
+        profile.passes.push_back(1);
+      }
+      profile.offsets[q + 1] = profile.variant.size();
+    }
+    return profile;
+  }
   const std::uint8_t* exits = record.node_exits.data();
   // Distinct exits of query q: "no exit" first (most passes have none),
   // then the rare exits in first-seen order. One scan that skips whole
@@ -435,9 +650,7 @@ ExitProfile ProfileExits(const KernelRecord& record) {
 }
 
 std::shared_ptr<const ExitProfile> PricingContext::Exits() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (!exits_) exits_ = std::make_shared<const ExitProfile>(ProfileExits(record_));
-  return exits_;
+  return Once(mutex_, exits_, "exits", [&] { return ProfileExits(record_); });
 }
 
 }  // namespace rc

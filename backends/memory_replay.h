@@ -22,6 +22,7 @@
 // A node wider than a sector requests each of its sectors; its latency is
 // its slowest sector's.
 #include <cstdint>
+#include <future>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -44,6 +45,7 @@ struct MemoryCounters {
   std::uint64_t l2_accesses = 0;      // L1 misses
   std::uint64_t l2_hits = 0;
   std::uint64_t dram_accesses = 0;    // L2 misses, one sector each
+  MemoryCounters& operator+=(const MemoryCounters& more);
 };
 
 struct MemoryProfile {
@@ -78,8 +80,10 @@ ExitProfile ProfileExits(const KernelRecord& record);
 // Shared work of several backends pricing one record: the memory replay
 // depends only on the GPU's memory system and the access pattern, so TTA+,
 // TTA+-p, TTA+-cr and RoboCore (same pattern) replay it once; the exit
-// profile depends on the record alone. Thread-safe. The record must outlive
-// the context and stay unchanged.
+// profile depends on the record alone. Thread-safe: the first caller of a
+// profile computes it while later callers of the same one wait for it, and
+// callers of different profiles run at once. The record must outlive the
+// context and stay unchanged.
 class PricingContext {
  public:
   explicit PricingContext(const KernelRecord& record) : record_(record) {}
@@ -88,10 +92,12 @@ class PricingContext {
   std::shared_ptr<const ExitProfile> Exits();
 
  private:
+  template <class T>
+  using Pending = std::shared_future<std::shared_ptr<const T>>;
   const KernelRecord& record_;
   std::mutex mutex_;
-  std::map<std::string, std::shared_ptr<const MemoryProfile>> profiles_;
-  std::shared_ptr<const ExitProfile> exits_;
+  std::map<std::string, Pending<MemoryProfile>> profiles_;
+  std::map<std::string, Pending<ExitProfile>> exits_;
 };
 
 }  // namespace rc

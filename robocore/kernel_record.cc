@@ -46,12 +46,27 @@ void KernelRecord::Validate() const {
   if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone))
     fail("leaf program and leaf kind disagree");
   if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
-  if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
-  if (node_exits.size() != fetch_addresses.size()) fail("one exit per fetch expected");
+  if (exits_per_query() ? (last_exits.size() != query_count() || !node_exits.empty())
+                        : node_exits.size() != fetch_offsets.back())
+    fail("one exit per fetch (or, last-pass exits, one per query) expected");
   for (std::size_t i = 1; i < fetch_offsets.size(); ++i)
     if (fetch_offsets[i] < fetch_offsets[i - 1]) fail("offsets decrease");
+  if (!sampled()) {
+    if (!address_sample.KeepsAll()) fail("a sample without address offsets");
+    if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
+  } else {
+    if (address_offsets.size() != fetch_offsets.size() || address_offsets.front() != 0)
+      fail("address offsets: one per query plus one, from 0");
+    for (std::size_t q = 0; q < query_count(); ++q) {
+      const std::uint64_t kept = address_offsets[q + 1] - address_offsets[q];
+      if (address_offsets[q + 1] < address_offsets[q] ||
+          kept != (address_sample.KeepsQuery(q) ? nodes(q) : 0))
+        fail("query " + std::to_string(q) + " keeps addresses against its sample");
+    }
+    if (address_offsets.back() != fetch_addresses.size()) fail("address offsets do not end at the address count");
+  }
   const int returns = program->ReturnIfCount(ProgramSection::kLoop);
-  for (std::uint8_t e : node_exits)
+  for (std::uint8_t e : exits_per_query() ? last_exits : node_exits)
     if (e != kNoExit && e >= returns)
       fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" +
            program->name() + "' has " + std::to_string(returns));

@@ -10,14 +10,20 @@
 // entry per query plus one; query i's fetches are
 // [fetch_offsets[i], fetch_offsets[i+1]).
 //
-// Memory: 9 bytes per fetch (8-byte address + 1-byte exit) + 8 bytes per
-// query. A Wean-sized DeliBot update (90,000 rays, about 26 nodes each)
-// records about 21 MB.
+// Addresses may be kept for a sample of the queries only (address_sample,
+// robocore/address_sample.h): node counts and exits are always kept for
+// every query, which is all the cost models need besides the memory replay.
+//
+// Memory: 1 byte per fetch (exit) + 8 bytes per kept address + 8 bytes per
+// query (+ 8 more with a sample). A Wean-sized DeliBot update (90,000 rays,
+// about 26 nodes each) records about 21 MB with every address, 5 MB with
+// one SM of eight sampled.
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "robocore/address_sample.h"
 #include "robocore/micro_program.h"
 #include "robocore/ray_cast.h"
 #include "robocore/section_timing.h"
@@ -80,19 +86,49 @@ struct KernelRecord {
   std::uint32_t node_bytes = 1;       // bytes of one fetched node (one kind per kernel)
 
   std::vector<std::uint64_t> fetch_offsets{0};  // size queries + 1
-  std::vector<std::uint64_t> fetch_addresses;   // device byte addresses
-  std::vector<std::uint8_t> node_exits;         // RETURN_IF that fired per fetch, or kNoExit
+  // The RETURN_IF that fired in each node's pass, or kNoExit: per fetch in
+  // node_exits; or, for kernels whose loop can exit only in a query's last
+  // pass (the ray casts), per query in last_exits (kNoExit for a query
+  // without nodes), node_exits then empty. ExitAt reads either.
+  std::vector<std::uint8_t> node_exits;
+  std::vector<std::uint8_t> last_exits;
+  std::vector<std::uint64_t> fetch_addresses;   // device byte addresses of the kept queries
+  // Which queries' addresses are kept. With every query kept
+  // (address_sample.KeepsAll()), address_offsets is empty and query i's
+  // addresses sit at its exits' positions, [fetch_offsets[i],
+  // fetch_offsets[i+1]). Otherwise address_offsets has one entry per query
+  // plus one, and a kept query's nodes(i) addresses are
+  // [address_offsets[i], address_offsets[i+1]) (an empty range for the
+  // others).
+  AddressSample address_sample;
+  std::vector<std::uint64_t> address_offsets;
+  // With a sample: how many distinct sectors (address_sample.sector_bytes,
+  // numbered from footprint_begin()) the whole batch touched, which is what
+  // an L2 that holds the footprint misses (0: not counted).
+  std::uint64_t touched_sectors = 0;
 
   std::size_t query_count() const { return fetch_offsets.size() - 1; }
   std::uint32_t nodes(std::size_t query) const {
     return static_cast<std::uint32_t>(fetch_offsets[query + 1] - fetch_offsets[query]);
   }
-  std::uint64_t total_nodes() const { return fetch_addresses.size(); }
+  std::uint64_t total_nodes() const { return fetch_offsets.back(); }
+  bool sampled() const { return !address_offsets.empty(); }
+  bool exits_per_query() const { return !last_exits.empty(); }
+  // The exit of query q's pass over its k-th node (k < nodes(q)).
+  std::uint8_t ExitAt(std::size_t query, std::uint32_t k) const {
+    if (exits_per_query()) return k + 1 == nodes(query) ? last_exits[query] : kNoExit;
+    return node_exits[fetch_offsets[query] + k];
+  }
+  // Query i's addresses (nodes(i) of them); only for a kept query.
+  const std::uint64_t* addresses(std::size_t query) const {
+    return fetch_addresses.data() + (sampled() ? address_offsets[query] : fetch_offsets[query]);
+  }
   // Lowest address and one past the highest byte of all regions.
   std::uint64_t footprint_begin() const;
   std::uint64_t footprint_end() const;
 
-  // Throws std::logic_error if the arrays disagree, an address lies outside
+  // Throws std::logic_error if the arrays disagree (a sampled record must
+  // keep exactly the queries its sample names), an address lies outside
   // every region, or an exit names a RETURN_IF the loop does not have.
   void Validate() const;
 };

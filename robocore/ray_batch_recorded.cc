@@ -12,28 +12,58 @@ std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
 
-// Writes the device address of every fetch into the query's slot and
-// remembers the last index, so the caller can tell whether the last node
+// Remembers the last fetch, so the caller can tell whether the last node
 // stopped the ray.
-struct RecordingVisitor {
-  std::uint64_t* next = nullptr;
-  std::uint64_t base[2];
-  std::uint32_t element_bytes[2];
+struct LastFetchVisitor {
   std::uint32_t last_index = 0;
   FetchKind last_kind = FetchKind::kGridCell;
+  void Fetch(FetchKind kind, std::uint32_t index) {
+    last_index = index;
+    last_kind = kind;
+  }
+};
+
+// Also marks, in a bitset of the footprint's sectors, the sector of every
+// fetch (a sampled record counts the sectors the whole batch touched).
+struct MarkingVisitor : LastFetchVisitor {
+  std::uint64_t* touched = nullptr;
+  std::uint64_t offset[2];  // region base - footprint begin
+  std::uint32_t element_bytes[2];
+  int sector_shift = 5;
 
   void Fetch(FetchKind kind, std::uint32_t index) {
     const int k = static_cast<int>(kind);
-    *next++ = base[k] + std::uint64_t{index} * element_bytes[k];
-    last_index = index;
-    last_kind = kind;
+    const std::uint64_t sector = (offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift;
+    touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
+    LastFetchVisitor::Fetch(kind, index);
+  }
+};
+
+// Also appends the device address of every fetch to a block's buffer (and
+// marks its sector when `touched` is set).
+struct RecordingVisitor : LastFetchVisitor {
+  std::vector<std::uint64_t>* out = nullptr;
+  std::uint64_t* touched = nullptr;
+  std::uint64_t base[2];
+  std::uint64_t offset[2];
+  std::uint32_t element_bytes[2];
+  int sector_shift = 5;
+
+  void Fetch(FetchKind kind, std::uint32_t index) {
+    const int k = static_cast<int>(kind);
+    out->push_back(base[k] + std::uint64_t{index} * element_bytes[k]);
+    if (touched) {
+      const std::uint64_t sector = (offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift;
+      touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
+    }
+    LastFetchVisitor::Fetch(kind, index);
   }
 };
 
 // The RETURN_IF that ended the query's last loop pass (exit contract in
 // kernel_record.h): the fetched cell stopped the ray, or the next one is out
 // of range or off the map.
-std::uint8_t LastPassExit(const RayCastScene& scene, const RecordingVisitor& v) {
+std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) {
   const bool stops = v.last_kind == FetchKind::kDistanceCell
                          ? scene.distance_field()->values()[v.last_index] == 0.0f
                          : scene.grid().cells()[v.last_index] != CellState::kFree;
@@ -68,37 +98,98 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
   record.regions = RayCastRegions(scene, options.layout);
   record.node_bytes = record.regions.front().element_bytes;
 
-  // Pass 1, the functional kernel itself: the hits, and each query's node
-  // count, which sizes its slot. A prefix sum places the slots.
-  CastRayBatch(scene, batch, hits);
+  // One pass of the functional kernel, parallel over blocks of queries:
+  // each query's hit, node count and last pass's exit, and for the blocks
+  // whose addresses the sample keeps, the addresses in a buffer per block.
+  // A block is the GPU's (warps_per_block warps), so a block is kept or not
+  // as a whole; the buffers are joined in launch order afterwards, so the
+  // record does not depend on the thread count or the schedule.
+  const AddressSample& sample = options.sample;
   const long n = static_cast<long>(batch.queries.size());
-  record.fetch_offsets.assign(batch.queries.size() + 1, 0);
-  for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
-  // resize keeps the capacity of a record reused across batches.
-  record.fetch_addresses.resize(record.fetch_offsets.back());
-  record.node_exits.resize(record.fetch_offsets.back());
-
-  // Pass 2: every query writes its fetches into its own slot, so the record
-  // does not depend on the thread count or the schedule.
+  const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);
+  const long blocks = (n + block - 1) / block;
+  hits.resize(batch.queries.size());
+  std::vector<std::uint8_t>& last_exit = record.last_exits;
+  last_exit.assign(batch.queries.size(), kNoExit);
+  record.node_exits.clear();
+  std::vector<std::vector<std::uint64_t>> block_addresses(static_cast<std::size_t>(blocks));
+  // A sample also counts the sectors the whole batch touches: one bitset of
+  // the footprint's sectors per thread, ORed together afterwards.
+  const bool mark = !sample.KeepsAll();
+  int sector_shift = 0;
+  while ((1 << sector_shift) < sample.sector_bytes) ++sector_shift;
+  const std::uint64_t footprint_begin = record.footprint_begin();
+  const std::uint64_t sectors =
+      mark ? ((record.footprint_end() - footprint_begin) >> sector_shift) + 1 : 0;
+  std::vector<std::vector<std::uint64_t>> touched;
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
-    prototype.base[static_cast<int>(r.kind)] = r.base;
-    prototype.element_bytes[static_cast<int>(r.kind)] = r.element_bytes;
+    const int k = static_cast<int>(r.kind);
+    prototype.base[k] = r.base;
+    prototype.offset[k] = r.base - footprint_begin;
+    prototype.element_bytes[k] = r.element_bytes;
   }
-  bool mismatch = false;
-#pragma omp parallel for schedule(dynamic, 256) reduction(|| : mismatch)
-  for (long i = 0; i < n; ++i) {
-    const RayQuery& q = batch.queries[i];
-    RecordingVisitor visitor = prototype;
-    visitor.next = record.fetch_addresses.data() + record.fetch_offsets[i];
-    CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, visitor);
-    const std::uint64_t begin = record.fetch_offsets[i], end = record.fetch_offsets[i + 1];
-    mismatch = mismatch || visitor.next != record.fetch_addresses.data() + end;
-    if (end == begin) continue;
-    std::fill(record.node_exits.begin() + begin, record.node_exits.begin() + end - 1, kNoExit);
-    record.node_exits[end - 1] = LastPassExit(scene, visitor);
+  prototype.sector_shift = sector_shift;
+#pragma omp parallel
+  {
+    std::vector<std::uint64_t> mine(mark ? (sectors + 63) / 64 : 0, 0);
+#pragma omp for schedule(dynamic, 1)
+    for (long b = 0; b < blocks; ++b) {
+      const long lo = b * block, hi = std::min(n, lo + block);
+      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
+      RecordingVisitor recording = prototype;
+      recording.out = &block_addresses[static_cast<std::size_t>(b)];
+      recording.touched = mark ? mine.data() : nullptr;
+      MarkingVisitor marking;
+      marking.touched = mine.data();
+      for (int k = 0; k < 2; ++k) {
+        marking.offset[k] = prototype.offset[k];
+        marking.element_bytes[k] = prototype.element_bytes[k];
+      }
+      marking.sector_shift = sector_shift;
+      if (keep) recording.out->reserve(static_cast<std::size_t>(hi - lo) * 32);
+      for (long i = lo; i < hi; ++i) {
+        const RayQuery& q = batch.queries[i];
+        if (keep) {
+          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, recording);
+          if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
+        } else {
+          marking.last_index = 0;
+          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, marking);
+          if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);
+        }
+      }
+    }
+#pragma omp critical(rc_touched_sectors)
+    touched.push_back(std::move(mine));
   }
-  if (mismatch) throw std::logic_error("CastRayBatchRecorded: the kernel fetched differently twice");
+  record.touched_sectors = 0;
+  if (mark) {
+    for (std::size_t w = 0; w < (sectors + 63) / 64; ++w) {
+      std::uint64_t bits = 0;
+      for (const auto& t : touched) bits |= t[w];
+      record.touched_sectors += static_cast<std::uint64_t>(__builtin_popcountll(bits));
+    }
+  }
+
+  record.fetch_offsets.assign(batch.queries.size() + 1, 0);
+  for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
+  record.address_sample = sample;
+  record.address_offsets.clear();
+  if (!sample.KeepsAll()) {
+    record.address_offsets.assign(batch.queries.size() + 1, 0);
+    for (long i = 0; i < n; ++i)
+      record.address_offsets[i + 1] =
+          record.address_offsets[i] + (sample.KeepsQuery(static_cast<std::size_t>(i)) ? hits[i].nodes : 0);
+  }
+  std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);
+  for (long b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + block_addresses[b].size();
+  const std::uint64_t kept = sample.KeepsAll() ? record.fetch_offsets.back() : record.address_offsets.back();
+  if (block_start.back() != kept) throw std::logic_error("CastRayBatchRecorded: a kept block lost fetches");
+  record.fetch_addresses.resize(kept);
+#pragma omp parallel for schedule(static)
+  for (long b = 0; b < blocks; ++b)
+    std::copy(block_addresses[b].begin(), block_addresses[b].end(), record.fetch_addresses.begin() + block_start[b]);
 }
 
 }  // namespace rc

@@ -3,12 +3,14 @@
 // record every backend prices (robocore/kernel_record.h).
 //
 // Two passes, parallel over queries with OpenMP and deterministic: the
-// functional kernel (CastRayBatch, which also gives each query's node
-// count), a prefix sum of the counts into per-query slots (the CSR
-// offsets), then the kernel again with a visitor that writes each query's
-// fetches into its own slot. The record does not depend on the thread
-// count. Cost: about twice CastRayBatch plus one 9-byte store per fetch;
-// a record reused across batches keeps its capacity.
+// functional kernel for every query (its hit, its node count and which exit
+// ended its last pass), a prefix sum of the counts into per-query slots
+// (the CSR offsets), then the kernel again, for the queries whose addresses
+// the sample keeps only, with a visitor that writes each fetch into the
+// query's own slot. The record does not depend on the thread count. Cost:
+// CastRayBatch, plus the kept fraction of it again, plus one 1-byte store
+// per fetch and one 8-byte store per kept fetch; a record reused across
+// batches keeps its capacity.
 #include <vector>
 
 #include "robocore/kernel_record.h"
@@ -26,6 +28,8 @@ struct RecordOptions {
   // (ConfigRoboCore) must keep the exit contract of kRayHitReturn and
   // kRayEndReturn.
   std::shared_ptr<const MicroProgram> program;
+  // Whose addresses the record keeps (default: every query's).
+  AddressSample sample;
 };
 
 void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,

@@ -34,7 +34,8 @@ std::uint64_t MicroOpsExecuted(const BatchCost& cost) {
 double AverageComputationCycles(const KernelRecord& record, const DatapathConfig& datapath) {
   const ProgramTiming timing(*record.program, record.leaf.get(), datapath);
   double cycles = static_cast<double>(timing.once().cycles) * static_cast<double>(record.query_count());
-  for (std::uint8_t exit : record.node_exits) cycles += timing.loop.Cost(exit).cycles;
+  for (std::size_t q = 0; q < record.query_count(); ++q)
+    for (std::uint32_t k = 0; k < record.nodes(q); ++k) cycles += timing.loop.Cost(record.ExitAt(q, k)).cycles;
   return cycles / static_cast<double>(record.query_count());
 }
 

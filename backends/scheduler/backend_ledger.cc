@@ -6,59 +6,67 @@
 namespace rc {
 namespace {
 
-OnlineScheduler MakeOnline(const SchedulerOptions& policy) {
+OnlineScheduler MakeOnline(const SchedulerOptions& policy, const std::vector<std::string>& candidates) {
   // The oracle is graded after the run; online it behaves like adaptive so
   // that the timeline still shows what an online policy would have done.
   SchedulerOptions online = policy;
   if (online.kind == SchedulerKind::kOracle) online.kind = SchedulerKind::kAdaptive;
-  return OnlineScheduler(online);
+  return OnlineScheduler(online, candidates);
 }
 
-// Sums two launches' costs. SIMT efficiency is active lanes over issued
-// lanes, so the sum is the issued-instruction-weighted mean.
-void AddCost(BatchCost& total, const BatchCost& more) {
-  const double wa = static_cast<double>(total.warp_instructions), wb = static_cast<double>(more.warp_instructions);
-  if (wa + wb > 0) total.simt_efficiency = (total.simt_efficiency * wa + more.simt_efficiency * wb) / (wa + wb);
-  total.host_seconds += more.host_seconds;
-  total.queries += more.queries;
-  total.nodes += more.nodes;
-  total.cycles += more.cycles;
-  total.launch_cycles += more.launch_cycles;
-  total.seconds += more.seconds;
-  total.energy_joules += more.energy_joules;
-  total.memory.sector_requests += more.memory.sector_requests;
-  total.memory.l1_hits += more.memory.l1_hits;
-  total.memory.l2_accesses += more.memory.l2_accesses;
-  total.memory.l2_hits += more.memory.l2_hits;
-  total.memory.dram_accesses += more.memory.dram_accesses;
-  for (std::size_t k = 0; k < total.micro_ops.size(); ++k) total.micro_ops[k] += more.micro_ops[k];
-  total.predicated_off_micro_ops += more.predicated_off_micro_ops;
-  total.interconnect_hops += more.interconnect_hops;
-  total.ctrl_exits += more.ctrl_exits;
-  total.warp_instructions += more.warp_instructions;
-  total.thread_instructions += more.thread_instructions;
-  total.nodes_counted += more.nodes_counted;
+// Grades the backends the policy ran (`ran`, per iteration) against the
+// oracle's choices in `s`, over the priced iterations (an iteration without
+// kernel work costs nothing on any backend).
+void GradeAgainstOracle(const std::vector<LedgerIteration>& iterations, const std::vector<std::string>& ran,
+                        LedgerSummary& s) {
+  std::vector<std::size_t> priced;
+  for (std::size_t i = 0; i < iterations.size(); ++i)
+    if (iterations[i].priced) priced.push_back(i);
+  if (priced.empty()) return;
+  std::size_t agree = 0;
+  for (std::size_t i : priced) agree += ran[i] == s.oracle_choice[i];
+  s.oracle_agreement_percent = 100.0 * static_cast<double>(agree) / static_cast<double>(priced.size());
+  const std::size_t lasting = LedgerSummary::kLastingIterations;
+  for (std::size_t j = 1; j < priced.size(); ++j) {
+    const std::string& now = s.oracle_choice[priced[j]];
+    if (now == s.oracle_choice[priced[j - 1]]) continue;
+    std::size_t length = 0;
+    while (j + length < priced.size() && s.oracle_choice[priced[j + length]] == now) ++length;
+    if (length < lasting) continue;
+    ++s.oracle_lasting_changes;
+    for (std::size_t k = j; k < j + lasting; ++k)
+      if (ran[priced[k]] == now) {
+        ++s.oracle_lasting_changes_followed;
+        break;
+      }
+  }
 }
 
 }  // namespace
 
 BackendLedger::BackendLedger(const BackendParameters& params, LedgerOptions options)
-    : options_(std::move(options)), online_(MakeOnline(options_.policy)) {
+    : options_(std::move(options)), params_(params),
+      online_(MakeOnline(options_.policy.kind == SchedulerKind::kStatic ? options_.policy : SchedulerOptions{},
+                         Backend::ModelledNames())) {
   for (const std::string& name : Backend::ModelledNames()) {
     backends_.push_back(Backend::Create(name, params));
     backend_ptrs_.push_back(backends_.back().get());
     names_.push_back(name);
   }
-  for (const std::string* n : {&options_.policy.static_backend, &options_.policy.high_backend,
-                               &options_.policy.low_backend})
+  candidates_ = options_.policy.candidates.empty() ? names_ : options_.policy.candidates;
+  std::vector<const std::string*> named = {&options_.policy.static_backend, &options_.policy.high_backend,
+                                           &options_.policy.low_backend};
+  for (const std::string& c : candidates_) named.push_back(&c);
+  for (const std::string* n : named)
     if (std::find(names_.begin(), names_.end(), *n) == names_.end())
       throw std::invalid_argument("the scheduler names '" + *n + "', which has no cost model");
-  switch_cost_cycles_ = options_.switch_cost_cycles >= 0.0 ? options_.switch_cost_cycles
-                                                           : static_cast<double>(params.gpu.kernel_launch_cycles);
+  for (const std::string& c : candidates_) candidate_index_.push_back(IndexOf(c));
+  if (!(options_.switch_cost_cycles >= 0.0)) throw std::invalid_argument("the switch cost must be >= 0 cycles");
+  switch_cost_cycles_ = options_.switch_cost_cycles;
   options_.policy.switch_cost_cycles = switch_cost_cycles_;
-  threshold_known_ = options_.threshold_overridden || options_.policy.kind == SchedulerKind::kStatic;
+  threshold_known_ = options_.threshold_overridden || options_.policy.kind != SchedulerKind::kThreshold;
   threshold_has_crossing_ = options_.threshold_overridden;
-  online_ = MakeOnline(options_.policy);
+  online_ = MakeOnline(options_.policy, candidates_);
 }
 
 std::size_t BackendLedger::IndexOf(const std::string& name) const {
@@ -67,19 +75,30 @@ std::size_t BackendLedger::IndexOf(const std::string& name) const {
   return static_cast<std::size_t>(it - names_.begin());
 }
 
-void BackendLedger::PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch) {
+AddressSample BackendLedger::RecordSample() const {
+  AddressSample sample;
+  sample.warp_size = params_.gpu.warp_size;
+  sample.warps_per_block = params_.gpu.warps_per_block;
+  sample.sms = params_.gpu.sms;
+  sample.sector_bytes = params_.gpu.sector_bytes;
+  sample.sampled_sms = options_.replay_sms;
+  return sample;
+}
+
+void BackendLedger::PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch,
+                                     std::uint32_t max_nodes) {
   if (threshold_known_) return;
-  const CrossoverResult crossing =
-      DeriveCrossoverThreshold(*backends_[IndexOf(options_.policy.high_backend)],
-                               *backends_[IndexOf(options_.policy.low_backend)], template_record, queries_per_batch);
+  const CrossoverResult crossing = DeriveCrossoverThreshold(
+      *backends_[IndexOf(options_.policy.high_backend)], *backends_[IndexOf(options_.policy.low_backend)],
+      template_record, queries_per_batch, max_nodes, RecordSample());
   options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
   threshold_has_crossing_ = crossing.has_crossing;
   threshold_known_ = true;
-  online_ = MakeOnline(options_.policy);
+  online_ = MakeOnline(options_.policy, candidates_);
 }
 
 const std::string& BackendLedger::BeginIteration() {
-  pending_backend_ = online_.Choose(last_nodes_per_query_);
+  pending_backend_ = online_.Choose(last_);
   return pending_backend_;
 }
 
@@ -89,10 +108,11 @@ void BackendLedger::AddLaunch(const KernelRecord& record) {
   // one. No counter was seen before it, so the policy is still on its
   // initial choice and the fresh one PrepareThreshold makes continues there.
   PrepareThreshold(record, record.query_count());
+  any_sampled_ = any_sampled_ || record.sampled();
   std::vector<BatchCost> costs = PriceAll(backend_ptrs_, record);
   if (open_costs_.empty()) open_costs_ = std::move(costs);
   else
-    for (std::size_t b = 0; b < costs.size(); ++b) AddCost(open_costs_[b], costs[b]);
+    for (std::size_t b = 0; b < costs.size(); ++b) open_costs_[b] += costs[b];
   open_queries_ += record.query_count();
   open_nodes_ += record.total_nodes();
 }
@@ -100,9 +120,10 @@ void BackendLedger::AddLaunch(const KernelRecord& record) {
 const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
   LedgerIteration it;
   it.backend = pending_backend_.empty() ? online_.current() : pending_backend_;
-  it.nodes_per_query_prev = last_nodes_per_query_;
+  it.nodes_per_query_prev = last_.nodes_per_query;
   it.switched = !previous_backend_.empty() && it.backend != previous_backend_;
   if (record) AddLaunch(*record);
+  last_ = IterationObservation{};
   if (open_queries_ > 0) {
     it.priced = true;
     it.costs = std::move(open_costs_);
@@ -110,22 +131,17 @@ const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
     const BatchCost& chosen = it.costs[IndexOf(it.backend)];
     it.chosen_cycles = static_cast<double>(chosen.cycles);
     it.chosen_energy_j = chosen.energy_joules;
-    last_nodes_per_query_ = it.nodes_per_query;
-  } else {
-    last_nodes_per_query_ = -1.0;
+    last_.ran = true;
+    last_.nodes_per_query = it.nodes_per_query;
+    for (std::size_t k : candidate_index_) last_.candidate_cycles.push_back(static_cast<double>(it.costs[k].cycles));
   }
   open_costs_.clear();
   open_queries_ = open_nodes_ = 0;
   if (it.switched) it.chosen_cycles += switch_cost_cycles_;
-  if (options_.policy.kind != SchedulerKind::kStatic) it.threshold = options_.policy.threshold_nodes_per_query;
+  if (options_.policy.kind == SchedulerKind::kThreshold) it.threshold = options_.policy.threshold_nodes_per_query;
   previous_backend_ = it.backend;
   iterations_.push_back(std::move(it));
   return iterations_.back();
-}
-
-std::vector<std::string> BackendLedger::OracleCandidates() const {
-  if (options_.policy.kind == SchedulerKind::kStatic) return names_;
-  return {options_.policy.low_backend, options_.policy.high_backend};
 }
 
 LedgerSummary BackendLedger::Finish() const {
@@ -133,17 +149,16 @@ LedgerSummary BackendLedger::Finish() const {
   s.backends = names_;
   s.static_total_cycles.assign(names_.size(), 0.0);
   s.switch_cost_cycles = switch_cost_cycles_;
-  s.threshold = options_.policy.kind == SchedulerKind::kStatic ? s.threshold : options_.policy.threshold_nodes_per_query;
+  s.replay_sms = any_sampled_ ? options_.replay_sms : 0;
+  if (options_.policy.kind == SchedulerKind::kThreshold) s.threshold = options_.policy.threshold_nodes_per_query;
   s.threshold_has_crossing = threshold_has_crossing_;
-  s.oracle_candidates = OracleCandidates();
-  std::vector<std::size_t> candidate_index;
-  for (const auto& c : s.oracle_candidates) candidate_index.push_back(IndexOf(c));
+  s.oracle_candidates = candidates_;
   std::vector<std::vector<double>> candidate_cycles;
   for (const LedgerIteration& it : iterations_) {
-    std::vector<double> row(candidate_index.size(), 0.0);
+    std::vector<double> row(candidate_index_.size(), 0.0);
     if (it.priced) {
       for (std::size_t b = 0; b < names_.size(); ++b) s.static_total_cycles[b] += it.costs[b].cycles;
-      for (std::size_t k = 0; k < candidate_index.size(); ++k) row[k] = it.costs[candidate_index[k]].cycles;
+      for (std::size_t k = 0; k < candidate_index_.size(); ++k) row[k] = it.costs[candidate_index_[k]].cycles;
     }
     candidate_cycles.push_back(row);
     s.policy_total_cycles += it.chosen_cycles;
@@ -158,12 +173,16 @@ LedgerSummary BackendLedger::Finish() const {
     s.oracle_choice.push_back(s.oracle_candidates[oracle[i]]);
   }
   s.oracle_total_cycles = cumulative;
+  std::vector<std::string> ran;  // per iteration, the backend the policy ran
+  for (const LedgerIteration& it : iterations_) ran.push_back(it.backend);
   if (options_.policy.kind == SchedulerKind::kOracle) {
-    // The oracle policy's own total is the oracle's.
+    // The oracle policy's own total and choices are the oracle's.
     s.policy_total_cycles = s.oracle_total_cycles;
     s.switches = 0;
     for (std::size_t i = 1; i < oracle.size(); ++i) s.switches += oracle[i] != oracle[i - 1];
+    ran = s.oracle_choice;
   }
+  GradeAgainstOracle(iterations_, ran, s);
   const auto best = std::min_element(s.static_total_cycles.begin(), s.static_total_cycles.end());
   if (best != s.static_total_cycles.end()) s.best_static = names_[static_cast<std::size_t>(best - s.static_total_cycles.begin())];
   s.gap_to_oracle_percent =

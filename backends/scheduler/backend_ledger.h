@@ -18,11 +18,22 @@ namespace rc {
 
 struct LedgerOptions {
   SchedulerOptions policy;
-  // Adaptive threshold: derived from the cost models when not set.
+  // Threshold policy: the threshold was given (else derived from the cost
+  // models before the first iteration).
   bool threshold_overridden = false;
-  // Switch cost (core cycles); negative: one kernel launch of the GPU model
-  // (reconfiguring which unit runs the kernel costs at least a relaunch).
-  double switch_cost_cycles = -1.0;
+  // Cycles a change of backend adds to the iteration that changes (core
+  // cycles, >= 0). Default 0, an assumption: every iteration launches its
+  // kernel anyway, and each backend's cycles already include its launch and,
+  // on the RT units, the program and decode configuration at every launch
+  // (backends/README.md), so a change of backend adds nothing of its own.
+  // A positive value models a cost beyond that (e.g. one kernel launch,
+  // 5000 cycles, if a switch drained the GPU).
+  double switch_cost_cycles = 0.0;
+  // SMs whose memory traffic is replayed exactly (backends/memory_replay.h);
+  // the others' is estimated from them. 0 (or >= the GPU's SMs): every SM,
+  // exact. Recording keeps only the replayed SMs' addresses
+  // (RecordSample()).
+  int replay_sms = 0;
 };
 
 struct LedgerIteration {
@@ -30,7 +41,7 @@ struct LedgerIteration {
   std::string backend;                     // the one the policy chose
   double nodes_per_query = -1.0;           // this iteration (-1 if none)
   double nodes_per_query_prev = -1.0;      // what the decision saw
-  double threshold = std::numeric_limits<double>::quiet_NaN();  // adaptive only
+  double threshold = std::numeric_limits<double>::quiet_NaN();  // threshold policy only
   bool switched = false;
   std::vector<BatchCost> costs;            // one per ledger backend (empty if !priced)
   double chosen_cycles = 0.0;              // incl. a switch cost if switched
@@ -41,7 +52,7 @@ struct LedgerSummary {
   std::vector<std::string> backends;
   std::vector<double> static_total_cycles;   // per backend
   double policy_total_cycles = 0.0;          // the chosen policy, switches included
-  double oracle_total_cycles = 0.0;          // over {low, high} for adaptive/oracle, else all
+  double oracle_total_cycles = 0.0;          // hindsight over the candidates
   std::vector<std::string> oracle_candidates;
   long switches = 0;
   double switch_cost_cycles = 0.0;
@@ -49,20 +60,36 @@ struct LedgerSummary {
   bool threshold_has_crossing = false;
   std::string best_static;
   double gap_to_oracle_percent = 0.0;        // (policy - oracle) / oracle
+  // Priced iterations on which the policy ran the backend the oracle chose
+  // (percent; NaN with none priced).
+  double oracle_agreement_percent = std::numeric_limits<double>::quiet_NaN();
+  // The oracle's changes of backend that last at least kLastingIterations
+  // priced iterations, and how many of them the policy followed (it ran the
+  // oracle's new backend within kLastingIterations of the change).
+  static constexpr int kLastingIterations = 5;
+  long oracle_lasting_changes = 0;
+  long oracle_lasting_changes_followed = 0;
   std::vector<double> oracle_cumulative_cycles;  // per iteration
   std::vector<std::string> oracle_choice;        // per iteration
+  int replay_sms = 0;  // SMs replayed exactly when a priced record was sampled; 0 = every SM
 };
 
 class BackendLedger {
  public:
   BackendLedger(const BackendParameters& params, LedgerOptions options);
   const std::vector<std::string>& backend_names() const { return names_; }
+  const std::vector<std::string>& candidates() const { return candidates_; }
   std::size_t IndexOf(const std::string& name) const;
-  // Derives the adaptive threshold before the first iteration from a record
-  // with the workload's program and memory layout (its fetches do not
-  // matter) and the workload's batch size. Without this call, the threshold
-  // is derived at the first priced iteration instead.
-  void PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch);
+  // Whose addresses a recorder must keep for this ledger's replay.
+  AddressSample RecordSample() const;
+  // Threshold policy: derives the threshold before the first iteration from
+  // a record with the workload's program and memory layout (its fetches do
+  // not matter), the workload's batch size, and the most nodes a query of
+  // the workload can fetch. Without this call, the threshold is derived at
+  // the first priced iteration instead (max_nodes 1024). Other policies:
+  // nothing to do.
+  void PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch,
+                        std::uint32_t max_nodes = 1024);
   // The backend for the coming iteration, from the previous iteration's
   // counter.
   const std::string& BeginIteration();
@@ -75,24 +102,27 @@ class BackendLedger {
   const std::vector<LedgerIteration>& iterations() const { return iterations_; }
   LedgerSummary Finish() const;
   const SchedulerOptions& policy() const { return options_.policy; }
+  const LedgerOptions& options() const { return options_; }
 
  private:
-  std::vector<std::string> OracleCandidates() const;
-
   LedgerOptions options_;
+  BackendParameters params_;
   std::vector<std::unique_ptr<Backend>> backends_;
   std::vector<const Backend*> backend_ptrs_;
   std::vector<std::string> names_;
+  std::vector<std::string> candidates_;
+  std::vector<std::size_t> candidate_index_;
   OnlineScheduler online_;
   double switch_cost_cycles_ = 0.0;
   bool threshold_known_ = false;
   bool threshold_has_crossing_ = false;
-  double last_nodes_per_query_ = -1.0;
+  IterationObservation last_;
   std::string pending_backend_;
   std::string previous_backend_;
   std::vector<LedgerIteration> iterations_;
   std::vector<BatchCost> open_costs_;  // launches added to the iteration in progress
   std::uint64_t open_queries_ = 0, open_nodes_ = 0;
+  bool any_sampled_ = false;  // a priced record kept a sample of its addresses
 };
 
 }  // namespace rc

@@ -14,6 +14,8 @@ SchedulerOptions ParseSchedulerPolicy(const std::string& text, const std::vector
   SchedulerOptions options;
   if (text == "adaptive") {
     options.kind = SchedulerKind::kAdaptive;
+  } else if (text == "threshold") {
+    options.kind = SchedulerKind::kThreshold;
   } else if (text == "oracle") {
     options.kind = SchedulerKind::kOracle;
   } else {
@@ -21,9 +23,9 @@ SchedulerOptions ParseSchedulerPolicy(const std::string& text, const std::vector
     const std::string name = text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
     if (!known(name)) {
       std::string list;
-      for (const auto& n : backend_names) list += (list.empty() ? "" : ", ") + n;
-      throw std::invalid_argument("unknown backend policy '" + text + "' (expected adaptive, oracle, or static:<" +
-                                  list + ">)");
+      for (const auto& n : backend_names) list += (list.empty() ? "" : "|") + n;
+      throw std::invalid_argument("unknown backend policy '" + text +
+                                  "' (expected adaptive, threshold, oracle, or static:<" + list + ">)");
     }
     options.kind = SchedulerKind::kStatic;
     options.static_backend = name;
@@ -31,38 +33,91 @@ SchedulerOptions ParseSchedulerPolicy(const std::string& text, const std::vector
   return options;
 }
 
+std::vector<std::string> ParseCandidates(const std::string& text, const std::vector<std::string>& backend_names) {
+  std::vector<std::string> out;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string name = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    if (std::find(backend_names.begin(), backend_names.end(), name) == backend_names.end())
+      throw std::invalid_argument("unknown candidate backend '" + name + "'");
+    if (std::find(out.begin(), out.end(), name) != out.end())
+      throw std::invalid_argument("candidate backend '" + name + "' named twice");
+    out.push_back(name);
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  return out;
+}
+
 std::string ToString(const SchedulerOptions& options) {
   switch (options.kind) {
     case SchedulerKind::kStatic: return "static:" + options.static_backend;
     case SchedulerKind::kAdaptive: return "adaptive";
+    case SchedulerKind::kThreshold: return "threshold";
     case SchedulerKind::kOracle: return "oracle";
   }
   return "?";
 }
 
-OnlineScheduler::OnlineScheduler(SchedulerOptions options) : options_(std::move(options)) {
+OnlineScheduler::OnlineScheduler(SchedulerOptions options, std::vector<std::string> candidates)
+    : options_(std::move(options)), candidates_(std::move(candidates)) {
   if (options_.kind == SchedulerKind::kOracle)
     throw std::invalid_argument("the oracle is not an online policy; use OracleSchedule");
   if (!(options_.hysteresis_nodes_per_query >= 0.0))
     throw std::invalid_argument("hysteresis must be >= 0 nodes per query");
-  // Before anything was measured the adaptive policy starts on the
-  // traversal unit: the first iterations of a global localization cast the
-  // longest rays (the paper's narrative). If the cost models have no
-  // crossover because the CUDA cores win at every length (threshold +inf),
-  // it starts, and stays, on them.
-  if (options_.kind == SchedulerKind::kStatic)
-    current_ = options_.static_backend;
-  else
-    current_ = std::isinf(options_.threshold_nodes_per_query) ? options_.low_backend : options_.high_backend;
+  if (!(options_.switch_cost_cycles >= 0.0)) throw std::invalid_argument("switch cost must be >= 0 cycles");
+  switch (options_.kind) {
+    case SchedulerKind::kStatic:
+      current_ = options_.static_backend;
+      break;
+    case SchedulerKind::kAdaptive:
+      if (candidates_.empty()) throw std::invalid_argument("the adaptive policy needs at least one candidate");
+      current_ = candidates_.front();
+      regret_.assign(candidates_.size(), 0.0);
+      break;
+    default:
+      // Before anything was measured the threshold policy starts on the
+      // traversal unit: the first iterations of a global localization cast
+      // the longest rays (the paper's narrative). If the cost models have
+      // no crossover because the CUDA cores win at every length (threshold
+      // +inf), it starts, and stays, on them.
+      current_ = std::isinf(options_.threshold_nodes_per_query) ? options_.low_backend : options_.high_backend;
+  }
 }
 
-const std::string& OnlineScheduler::Choose(double previous_nodes_per_query) {
-  if (options_.kind != SchedulerKind::kAdaptive || previous_nodes_per_query < 0.0) return current_;
-  const double t = options_.threshold_nodes_per_query, h = options_.hysteresis_nodes_per_query;
-  if (current_ == options_.high_backend) {
-    if (previous_nodes_per_query <= t - h) current_ = options_.low_backend;
-  } else {
-    if (previous_nodes_per_query > t + h) current_ = options_.high_backend;
+const std::string& OnlineScheduler::Choose(const IterationObservation& previous) {
+  if (!previous.ran) return current_;
+  if (options_.kind == SchedulerKind::kThreshold) {
+    const double n = previous.nodes_per_query;
+    const double t = options_.threshold_nodes_per_query, h = options_.hysteresis_nodes_per_query;
+    if (current_ == options_.high_backend) {
+      if (n <= t - h) current_ = options_.low_backend;
+    } else {
+      if (n > t + h) current_ = options_.high_backend;
+    }
+  } else if (options_.kind == SchedulerKind::kAdaptive) {
+    if (previous.candidate_cycles.size() != candidates_.size())
+      throw std::invalid_argument("the adaptive policy needs one predicted cost per candidate");
+    const std::size_t now = static_cast<std::size_t>(
+        std::find(candidates_.begin(), candidates_.end(), current_) - candidates_.begin());
+    // Regret: what each rival would have saved over the current backend in
+    // the iterations since the last switch, never below zero (a rival is
+    // not held back by the iterations it lost). The rival with the most
+    // regret is taken once that pays for the switch; ties keep the earlier
+    // candidate, so the choice is unique.
+    std::size_t best = now;
+    for (std::size_t b = 0; b < candidates_.size(); ++b) {
+      if (b == now) continue;
+      regret_[b] = std::max(0.0, regret_[b] + previous.candidate_cycles[now] - previous.candidate_cycles[b]);
+      if (regret_[b] > 0.0 && regret_[b] >= options_.switch_cost_cycles &&
+          (best == now || regret_[b] > regret_[best]))
+        best = b;
+    }
+    if (best != now) {
+      current_ = candidates_[best];
+      std::fill(regret_.begin(), regret_.end(), 0.0);
+    }
   }
   return current_;
 }

@@ -2,60 +2,87 @@
 // Per-iteration backend selection (the RoboGPU paper's DeliBot result:
 // switching between RoboCore and the CUDA cores every iteration beats both).
 //
-// Policies:
+// Policies, each deciding an iteration from what the previous iterations
+// measured, never from the iteration it decides:
 //   static:<backend>  always the same backend;
-//   adaptive          the previous iteration's average nodes per query
-//                     (RoboCore's PUSH counter; on SIMT the kernel's own
-//                     count) against a threshold: long traversals go to the
-//                     traversal unit (high_backend), short ones to the CUDA
-//                     cores (low_backend), which do not pay its launch and
-//                     hand-off overhead. Hysteresis keeps a noisy counter
-//                     from flapping: once on one side, the counter must cross
-//                     the threshold by the hysteresis margin to switch back.
-//   oracle            hindsight: the cheapest sequence of backends over the
-//                     whole run, switch costs included (a shortest path over
-//                     iterations x backends). Used only for grading.
-// A switch costs switch_cost_cycles, charged to the iteration that switches.
+//   adaptive          (default) a cost predictor: each candidate's modelled
+//                     cycles on the previous iteration's recorded work
+//                     predict its cycles on the next. What decides the
+//                     winner in these models (divergence, locality, ray
+//                     length, launch) is in that prediction, which a
+//                     threshold on one counter cannot see. A switch is made
+//                     once the predicted savings of a rival, summed over
+//                     consecutive iterations, pay for the switch ("rent or
+//                     buy": regret against the current backend, reset by
+//                     every switch), so a change lasting a few iterations
+//                     is not chased;
+//   threshold         the paper's policy: the previous iteration's average
+//                     nodes per query (RoboCore's PUSH counter) against a
+//                     threshold; long traversals go to high_backend, short
+//                     ones to low_backend; hysteresis keeps a noisy counter
+//                     from flapping;
+//   oracle            hindsight: the cheapest sequence over the whole run,
+//                     switch costs included (a shortest path over iterations
+//                     x candidates). Used only for grading.
+// The adaptive policy and the oracle choose among the same candidates
+// (default: every modelled backend). A switch costs switch_cost_cycles,
+// charged to the iteration that switches.
 //
-// The adaptive policy cannot beat static when the counter does not predict
-// the next iteration's cost (the workload changes faster than one
-// iteration), or when one backend is cheaper at every counter value (no
-// crossover: the threshold falls outside the observed range).
+// The adaptive policy cannot beat static when the previous iteration does
+// not predict the next (the workload changes faster than one iteration),
+// and lags a lasting change by about switch_cost / (per-iteration saving)
+// iterations.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 namespace rc {
 
-enum class SchedulerKind { kStatic, kAdaptive, kOracle };
+enum class SchedulerKind { kStatic, kAdaptive, kThreshold, kOracle };
 
 struct SchedulerOptions {
-  SchedulerKind kind = SchedulerKind::kStatic;
+  SchedulerKind kind = SchedulerKind::kAdaptive;
   std::string static_backend = "robocore";
-  std::string high_backend = "robocore";  // adaptive: above the threshold
-  std::string low_backend = "simt";       // adaptive: at or below the threshold
-  double threshold_nodes_per_query = 0.0; // adaptive: the crossover
-  double hysteresis_nodes_per_query = 0.0;// adaptive: margin around the threshold, >= 0
-  double switch_cost_cycles = 0.0;        // charged on every change of backend
+  // adaptive and oracle: the backends they choose among (empty: every
+  // modelled backend). The first one is where the adaptive policy starts.
+  std::vector<std::string> candidates;
+  // threshold: the two backends and the counter's threshold.
+  std::string high_backend = "robocore";   // above the threshold
+  std::string low_backend = "simt";        // at or below it
+  double threshold_nodes_per_query = 0.0;  // the crossover
+  double hysteresis_nodes_per_query = 0.0; // margin around the threshold, >= 0
+  double switch_cost_cycles = 0.0;         // charged on every change of backend
 };
 
-// Parses "static:<backend>", "adaptive", "oracle", or a bare backend name
-// (= static). Throws std::invalid_argument otherwise.
+// Parses "static:<backend>", "adaptive", "threshold", "oracle", or a bare
+// backend name (= static). Throws std::invalid_argument otherwise.
 SchedulerOptions ParseSchedulerPolicy(const std::string& text, const std::vector<std::string>& backend_names);
+// Parses a comma-separated candidate list, each a known backend, no
+// repeats. Throws std::invalid_argument otherwise.
+std::vector<std::string> ParseCandidates(const std::string& text, const std::vector<std::string>& backend_names);
 std::string ToString(const SchedulerOptions& options);
 
-// The online policies (static, adaptive): one decision per iteration from
-// what the previous iteration measured.
+// What an iteration measured, as the next decision sees it.
+struct IterationObservation {
+  bool ran = false;               // false: no kernel work; the choice stays
+  double nodes_per_query = -1.0;  // the traversal counter
+  std::vector<double> candidate_cycles;  // modelled cycles on each candidate (adaptive)
+};
+
+// The online policies (static, adaptive, threshold): one decision per
+// iteration from what the previous iteration measured.
 class OnlineScheduler {
  public:
-  explicit OnlineScheduler(SchedulerOptions options);
-  // The backend for the next iteration. `previous_nodes_per_query` < 0 means
-  // the previous iteration ran no query (or there was none): the choice stays.
-  const std::string& Choose(double previous_nodes_per_query);
+  // `candidates`: the adaptive policy's (the oracle's too), in order.
+  OnlineScheduler(SchedulerOptions options, std::vector<std::string> candidates);
+  // The backend for the next iteration, from the previous iteration.
+  const std::string& Choose(const IterationObservation& previous);
   const std::string& current() const { return current_; }
 
  private:
   SchedulerOptions options_;
+  std::vector<std::string> candidates_;
+  std::vector<double> regret_;  // adaptive: per candidate, predicted savings not yet acted on
   std::string current_;
 };
 

@@ -4,7 +4,8 @@
 
 namespace rc {
 
-KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::uint32_t nodes) {
+KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::uint32_t nodes,
+                              const AddressSample& sample) {
   KernelRecord probe;
   probe.step_kind = t.step_kind;
   probe.leaf_kind = t.leaf_kind;
@@ -14,29 +15,31 @@ KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::u
   probe.node_bytes = t.node_bytes;
   const MemoryRegion& region = t.regions.at(0);
   const std::uint64_t elements = region.elements > 0 ? region.elements : 1;
-  probe.fetch_offsets.assign(1, 0);
-  probe.fetch_addresses.reserve(queries * nodes);
-  probe.node_exits.reserve(queries * nodes);
+  probe.address_sample = sample;
+  probe.fetch_offsets.resize(queries + 1);
+  probe.last_exits.assign(queries, nodes > 0 ? kRayHitReturn : kNoExit);
+  if (!sample.KeepsAll()) probe.address_offsets.assign(1, 0);
   // Queries start spread over the structure (a large odd stride) and walk
   // consecutive elements, like rays crossing cells of one row.
   constexpr std::uint64_t kStartStride = 7919;
   for (std::size_t q = 0; q < queries; ++q) {
-    for (std::uint32_t j = 0; j < nodes; ++j) {
-      const std::uint64_t element = (q * kStartStride + j) % elements;
-      probe.fetch_addresses.push_back(region.base + element * region.element_bytes);
-      probe.node_exits.push_back(j + 1 == nodes ? kRayHitReturn : kNoExit);
-    }
-    probe.fetch_offsets.push_back(probe.fetch_addresses.size());
+    probe.fetch_offsets[q + 1] = (q + 1) * nodes;
+    if (sample.KeepsQuery(q))
+      for (std::uint32_t j = 0; j < nodes; ++j) {
+        const std::uint64_t element = (q * kStartStride + j) % elements;
+        probe.fetch_addresses.push_back(region.base + element * region.element_bytes);
+      }
+    if (!sample.KeepsAll()) probe.address_offsets.push_back(probe.fetch_addresses.size());
   }
   return probe;
 }
 
 CrossoverResult DeriveCrossoverThreshold(const Backend& high, const Backend& low, const KernelRecord& t,
-                                         std::size_t queries, std::uint32_t max_nodes) {
+                                         std::size_t queries, std::uint32_t max_nodes, const AddressSample& sample) {
   CrossoverResult result;
   // advantage(n) > 0 when the high backend is cheaper at n nodes per query.
   auto advantage = [&](std::uint32_t n) {
-    const KernelRecord probe = MakeUniformProbe(t, queries, n);
+    const KernelRecord probe = MakeUniformProbe(t, queries, n, sample);
     ++result.probes_priced;
     return static_cast<double>(low.Price(probe).cycles) - static_cast<double>(high.Price(probe).cycles);
   };

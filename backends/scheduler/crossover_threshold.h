@@ -22,8 +22,10 @@
 namespace rc {
 
 // A probe record: `queries` queries of `nodes` fetches each, with the
-// template's program, leaf, regions and node size.
-KernelRecord MakeUniformProbe(const KernelRecord& template_record, std::size_t queries, std::uint32_t nodes);
+// template's program, leaf, regions and node size; addresses kept for the
+// queries `sample` keeps.
+KernelRecord MakeUniformProbe(const KernelRecord& template_record, std::size_t queries, std::uint32_t nodes,
+                              const AddressSample& sample = {});
 
 struct CrossoverResult {
   double threshold_nodes_per_query = 0.0;  // 0 or +inf when there is no crossing
@@ -31,7 +33,11 @@ struct CrossoverResult {
   int probes_priced = 0;
 };
 
+// max_nodes: the most nodes a query of the workload can fetch (the search's
+// upper end). The probes keep the addresses `sample` keeps (the ledger's
+// replay sample), so a sampled ledger prices them as cheaply as its batches.
 CrossoverResult DeriveCrossoverThreshold(const Backend& high, const Backend& low, const KernelRecord& template_record,
-                                         std::size_t queries, std::uint32_t max_nodes = 1024);
+                                         std::size_t queries, std::uint32_t max_nodes = 1024,
+                                         const AddressSample& sample = {});
 
 }  // namespace rc

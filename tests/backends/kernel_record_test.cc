@@ -41,11 +41,12 @@ TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
       const std::uint64_t index = (record.fetch_addresses[f] - region.base) / region.element_bytes;
       ASSERT_EQ((record.fetch_addresses[f] - region.base) % region.element_bytes, 0u);
       ASSERT_LT(index, grid.cell_count());
+      const auto k = static_cast<std::uint32_t>(f - lo);
       if (f + 1 < hi) {
-        ASSERT_EQ(record.node_exits[f], kNoExit);
+        ASSERT_EQ(record.ExitAt(i, k), kNoExit);
       } else {
         const bool stops = grid.cells()[index] != CellState::kFree;
-        ASSERT_EQ(record.node_exits[f], stops ? kRayHitReturn : kRayEndReturn) << i;
+        ASSERT_EQ(record.ExitAt(i, k), stops ? kRayHitReturn : kRayEndReturn) << i;
         hit_exits += stops;
       }
     }
@@ -70,6 +71,37 @@ TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   EXPECT_EQ(one.fetch_offsets, two.fetch_offsets);
   EXPECT_EQ(one.fetch_addresses, two.fetch_addresses);
   EXPECT_EQ(one.node_exits, two.node_exits);
+  EXPECT_EQ(one.last_exits, two.last_exits);
+}
+
+// A sampled record keeps exactly the addresses of the queries on the
+// sampled SMs, equal to the full record's, and everything else in full.
+TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
+  const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 120, 37, 5.0, 9);  // 4440 queries: 17+ blocks of 256
+  std::vector<RayHit> hits_full, hits_sampled;
+  KernelRecord full, sampled;
+  CastRayBatchRecorded(scene, batch, hits_full, full);
+  RecordOptions options;
+  options.sample.sampled_sms = 2;  // SMs 0 and 4 of 8
+  CastRayBatchRecorded(scene, batch, hits_sampled, sampled, options);
+  ASSERT_NO_THROW(sampled.Validate());
+  ASSERT_TRUE(sampled.sampled());
+  EXPECT_EQ(sampled.fetch_offsets, full.fetch_offsets);
+  EXPECT_EQ(sampled.last_exits, full.last_exits);
+  std::size_t kept = 0;
+  for (std::size_t q = 0; q < full.query_count(); ++q) {
+    ASSERT_EQ(hits_sampled[q].range_m, hits_full[q].range_m) << q;
+    const int sm = static_cast<int>((q / 32 / 8) % 8);
+    const bool keeps = sm == 0 || sm == 4;
+    ASSERT_EQ(sampled.address_offsets[q + 1] - sampled.address_offsets[q], keeps ? full.nodes(q) : 0u) << q;
+    if (!keeps) continue;
+    ++kept;
+    for (std::uint32_t k = 0; k < full.nodes(q); ++k) ASSERT_EQ(sampled.addresses(q)[k], full.addresses(q)[k]);
+  }
+  EXPECT_GT(kept, 0u);
+  EXPECT_LT(kept, full.query_count() / 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRayCasters, RecordTest,
@@ -89,7 +121,7 @@ TEST(KernelRecord, AddressIsBasePlusIndexTimesElementSize) {
     CastRayBatchRecorded(scene, batch, hits, record);
     const MemoryRegion& r = record.regions[0];
     EXPECT_EQ(record.fetch_addresses[0], r.base + grid.Index(10, 4) * r.element_bytes);
-    EXPECT_EQ(record.node_exits.back(), kRayEndReturn);  // left the map
+    EXPECT_EQ(record.ExitAt(0, record.nodes(0) - 1), kRayEndReturn);  // left the map
     if (m == RayCastMethod::kRayMarching) {
       // The distance field is placed after the grid: distinct bases.
       EXPECT_GE(r.base, DeviceLayout{}.first_base + grid.cell_count());

@@ -2,7 +2,8 @@
 # End-to-end check of `rcbench carribot --backend`: on a tiny map a footprint
 # robot plans the same path under every backend policy, every kernel launch
 # is priced (cycles per backend in the timeline), the adaptive policy prints
-# the scheduler summary, and an unreachable goal exits with code 3.
+# the scheduler summary with its agreement with the oracle, the threshold
+# policy its threshold, and an unreachable goal exits with code 3.
 # Usage: carribot_backends.sh <path to rcbench>
 set -u
 RCBENCH="$1"
@@ -16,7 +17,7 @@ printf 'type octile\nheight 6\nwidth 10\nmap\n..........\n..........\n....@.....
 query=(carribot --map tiny.map --start 1,1 --goal 8,4 --footprint 0.6x1.2 --quiet)
 
 # Every policy per expansion; two in precomputed mode (one launch set-up).
-runs="per-expansion:adaptive per-expansion:oracle per-expansion:static:simt per-expansion:static:ttaplus
+runs="per-expansion:adaptive per-expansion:threshold per-expansion:oracle per-expansion:static:simt per-expansion:static:ttaplus
       per-expansion:static:ttaplus-p per-expansion:static:ttaplus-cr per-expansion:static:robocore
       precomputed:adaptive precomputed:static:robocore"
 for run in $runs; do
@@ -34,7 +35,8 @@ for run in $runs; do
     grep -q "oracle" "$name.out" || fail "$name: no oracle line"
   }
 done
-grep -q "threshold .* nodes per query" per-expansion_adaptive.out || fail "adaptive: no threshold line"
+grep -q "threshold .* nodes per kernel query" per-expansion_threshold.out || fail "threshold: no threshold line"
+grep -q "same choice as the oracle in" per-expansion_adaptive.out || fail "adaptive: no agreement with the oracle"
 # Precomputed: a set-up row (the kernel fills the configuration space), then the query.
 [ "$(grep -c ',setup,' precomputed_adaptive.timeline.csv)" -eq 1 ] || fail "precomputed: no setup row"
 

@@ -1,4 +1,4 @@
-// The adaptive threshold is the crossover of the backends' cost models:
+// The threshold policy's threshold is the crossover of the backends' cost models:
 // a linear scan over nodes per query, pricing the same probe batches by
 // hand, must find the same n as the bisection.
 #include <cmath>
@@ -59,7 +59,7 @@ TEST(CrossoverTest, BisectionFindsTheCrossoverALinearScanFinds) {
   EXPECT_GT(Advantage(*high, *low, layout, queries, scanned + 1), 0.0);
 }
 
-TEST(CrossoverTest, WithoutACrossingAdaptiveStaysOnTheCheaperBackend) {
+TEST(CrossoverTest, WithoutACrossingTheThresholdPolicyStaysOnTheCheaperBackend) {
   const OccupancyGrid grid(200, 200, 0.05);
   const KernelRecord layout = LayoutRecord(grid, RayCastMethod::kDda);
   const BackendParameters params;  // defaults: SIMT cheaper at every length
@@ -69,7 +69,7 @@ TEST(CrossoverTest, WithoutACrossingAdaptiveStaysOnTheCheaperBackend) {
   EXPECT_FALSE(found.has_crossing);
   EXPECT_TRUE(std::isinf(found.threshold_nodes_per_query));
   LedgerOptions options;
-  options.policy.kind = SchedulerKind::kAdaptive;
+  options.policy.kind = SchedulerKind::kThreshold;
   BackendLedger ledger(params, options);
   ledger.PrepareThreshold(layout, 4096);
   for (double npr : {-1.0, 5.0, 500.0}) EXPECT_EQ(ledger.BeginIteration(), "simt") << npr;

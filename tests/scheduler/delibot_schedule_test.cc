@@ -1,7 +1,11 @@
 // Regression tests of the adaptive policy on DeliBot runs with fixed seeds:
 // on the real Wean logs (when ../shared/data is present) and on a simulated
-// trace, adaptive's total modelled cycles are at most the best static
-// backend's and within 2% of the hindsight oracle.
+// trace, adaptive is graded as issue #20's acceptance asks: within 2% of the
+// hindsight oracle's total, the oracle's choice in at least 90% of priced
+// updates, and every lasting change of the oracle's choice followed. (An
+// online policy that pays for switches cannot promise to stay at or below
+// the best static backend's total on every run: a one-update spike it
+// follows costs it the switch back.)
 #include <algorithm>
 #include <string>
 
@@ -32,8 +36,10 @@ void ExpectAdaptiveGrades(const DelibotResult& r, const std::string& what) {
   const LedgerSummary& l = r.pricing;
   const double best_static = *std::min_element(l.static_total_cycles.begin(), l.static_total_cycles.end());
   EXPECT_GT(best_static, 0.0) << what;
-  EXPECT_LE(l.policy_total_cycles, best_static) << what;
+  EXPECT_LE(l.policy_total_cycles, 1.02 * best_static) << what;
   EXPECT_LE(l.gap_to_oracle_percent, 2.0) << what;
+  EXPECT_GE(l.oracle_agreement_percent, 90.0) << what;
+  EXPECT_EQ(l.oracle_lasting_changes_followed, l.oracle_lasting_changes) << what;
   EXPECT_GE(l.policy_total_cycles, l.oracle_total_cycles) << what << ": nothing beats hindsight";
 }
 

@@ -1,6 +1,8 @@
-// Switching decisions of the backend scheduler on scripted counter
-// sequences: the exact iterations at which the adaptive policy switches,
-// hysteresis against flapping, and the hindsight oracle against brute force.
+// Switching decisions of the backend scheduler on scripted sequences: the
+// exact iterations at which the threshold policy switches on a counter and
+// the adaptive policy on predicted costs, hysteresis against flapping, the
+// switch cost paid back before a switch, and the hindsight oracle against
+// brute force.
 #include <cmath>
 #include <vector>
 
@@ -11,22 +13,27 @@
 namespace rc {
 namespace {
 
-SchedulerOptions Adaptive(double threshold, double hysteresis) {
+SchedulerOptions Threshold(double threshold, double hysteresis) {
   SchedulerOptions o;
-  o.kind = SchedulerKind::kAdaptive;
+  o.kind = SchedulerKind::kThreshold;
   o.threshold_nodes_per_query = threshold;
   o.hysteresis_nodes_per_query = hysteresis;
   return o;
 }
 
-// Runs the online policy over a counter sequence: iteration i is scheduled
-// from iteration i-1's counter. Returns the iterations at which it switched.
-std::vector<int> SwitchIterations(OnlineScheduler& s, const std::vector<double>& nodes_per_query,
+OnlineScheduler ThresholdPolicy(double threshold, double hysteresis) {
+  return OnlineScheduler(Threshold(threshold, hysteresis), {});
+}
+
+// Runs the online policy over a sequence of observations: iteration i is
+// scheduled from iteration i-1's. Returns the iterations at which it
+// switched.
+std::vector<int> SwitchIterations(OnlineScheduler& s, const std::vector<IterationObservation>& observed,
                                   std::vector<std::string>* choices = nullptr) {
   std::vector<int> switches;
   std::string previous = s.current();
-  for (std::size_t i = 0; i < nodes_per_query.size(); ++i) {
-    const std::string& chosen = s.Choose(i == 0 ? -1.0 : nodes_per_query[i - 1]);
+  for (std::size_t i = 0; i < observed.size(); ++i) {
+    const std::string& chosen = s.Choose(i == 0 ? IterationObservation{} : observed[i - 1]);
     if (choices) choices->push_back(chosen);
     if (chosen != previous) switches.push_back(static_cast<int>(i));
     previous = chosen;
@@ -34,11 +41,25 @@ std::vector<int> SwitchIterations(OnlineScheduler& s, const std::vector<double>&
   return switches;
 }
 
+std::vector<int> SwitchIterations(OnlineScheduler& s, const std::vector<double>& nodes_per_query,
+                                  std::vector<std::string>* choices = nullptr) {
+  std::vector<IterationObservation> observed;
+  for (double n : nodes_per_query) observed.push_back({true, n, {}});
+  return SwitchIterations(s, observed, choices);
+}
+
+// Observations carrying each candidate's modelled cycles.
+std::vector<IterationObservation> Costs(const std::vector<std::vector<double>>& cycles) {
+  std::vector<IterationObservation> observed;
+  for (const auto& row : cycles) observed.push_back({true, 10.0, row});
+  return observed;
+}
+
 TEST(SchedulerTest, LongShortLongPhasesSwitchAtTheExactIterations) {
   // Iterations 0-9 long rays (40 nodes), 10-19 short (5), 20-29 long again.
   std::vector<double> npr;
   for (int i = 0; i < 30; ++i) npr.push_back(i < 10 || i >= 20 ? 40.0 : 5.0);
-  OnlineScheduler s(Adaptive(12.0, 0.0));
+  OnlineScheduler s = ThresholdPolicy(12.0, 0.0);
   std::vector<std::string> choices;
   EXPECT_EQ(SwitchIterations(s, npr, &choices), (std::vector<int>{11, 21}));
   EXPECT_EQ(choices[0], "robocore");
@@ -51,30 +72,85 @@ TEST(SchedulerTest, LongShortLongPhasesSwitchAtTheExactIterations) {
 TEST(SchedulerTest, HysteresisSuppressesFlappingOnANoisyCounter) {
   std::vector<double> npr;
   for (int i = 0; i < 40; ++i) npr.push_back(12.0 + (i % 2 == 0 ? 1.5 : -1.5));  // 13.5, 10.5, ...
-  OnlineScheduler without(Adaptive(12.0, 0.0));
+  OnlineScheduler without = ThresholdPolicy(12.0, 0.0);
   EXPECT_GE(SwitchIterations(without, npr).size(), 30u) << "no hysteresis: switches nearly every iteration";
-  OnlineScheduler with(Adaptive(12.0, 2.0));
+  OnlineScheduler with = ThresholdPolicy(12.0, 2.0);
   EXPECT_EQ(SwitchIterations(with, npr).size(), 0u) << "a 2-node margin absorbs +-1.5 of noise";
   // A real change still gets through the margin.
   npr.insert(npr.end(), 5, 4.0);
-  OnlineScheduler with_change(Adaptive(12.0, 2.0));
+  OnlineScheduler with_change = ThresholdPolicy(12.0, 2.0);
   EXPECT_EQ(SwitchIterations(with_change, npr), (std::vector<int>{41}));
 }
 
 TEST(SchedulerTest, StaticNeverSwitchesAndIgnoresTheCounter) {
   SchedulerOptions o = ParseSchedulerPolicy("static:simt", {"cpu", "simt", "robocore"});
-  OnlineScheduler s(o);
-  EXPECT_TRUE(SwitchIterations(s, {100, 1, 100, 1}).empty());
+  OnlineScheduler s(o, {"simt", "robocore"});
+  EXPECT_TRUE(SwitchIterations(s, std::vector<double>{100, 1, 100, 1}).empty());
   EXPECT_EQ(s.current(), "simt");
 }
 
 TEST(SchedulerTest, ParsesPolicies) {
   const std::vector<std::string> names = {"cpu", "simt", "robocore"};
   EXPECT_EQ(ParseSchedulerPolicy("adaptive", names).kind, SchedulerKind::kAdaptive);
+  EXPECT_EQ(ParseSchedulerPolicy("threshold", names).kind, SchedulerKind::kThreshold);
   EXPECT_EQ(ParseSchedulerPolicy("oracle", names).kind, SchedulerKind::kOracle);
   EXPECT_EQ(ParseSchedulerPolicy("robocore", names).static_backend, "robocore");
   EXPECT_THROW(ParseSchedulerPolicy("static:gpu", names), std::invalid_argument);
   EXPECT_THROW(ParseSchedulerPolicy("fastest", names), std::invalid_argument);
+}
+
+TEST(SchedulerTest, ParsesCandidates) {
+  const std::vector<std::string> names = {"simt", "ttaplus-cr", "robocore"};
+  EXPECT_EQ(ParseCandidates("robocore,simt", names), (std::vector<std::string>{"robocore", "simt"}));
+  EXPECT_THROW(ParseCandidates("robocore,gpu", names), std::invalid_argument);
+  EXPECT_THROW(ParseCandidates("simt,simt", names), std::invalid_argument);
+  EXPECT_THROW(ParseCandidates("", names), std::invalid_argument);
+}
+
+TEST(SchedulerTest, AdaptiveFollowsThePreviousIterationsCheapestCandidate) {
+  // Candidates {simt, robocore}; robocore cheaper in iterations 3-7.
+  std::vector<std::vector<double>> cycles;
+  for (int i = 0; i < 12; ++i) cycles.push_back(i >= 3 && i < 8 ? std::vector<double>{100, 60} : std::vector<double>{60, 100});
+  SchedulerOptions o = ParseSchedulerPolicy("adaptive", {"simt", "robocore"});
+  o.switch_cost_cycles = 0.0;
+  OnlineScheduler s(o, {"simt", "robocore"});
+  std::vector<std::string> choices;
+  // It starts on the first candidate, and each change is seen one
+  // iteration late: iteration 4 is the first scheduled from a cheaper
+  // robocore, iteration 9 the first from a cheaper simt.
+  EXPECT_EQ(SwitchIterations(s, Costs(cycles), &choices), (std::vector<int>{4, 9}));
+  EXPECT_EQ(choices.front(), "simt");
+  EXPECT_EQ(choices[4], "robocore");
+}
+
+TEST(SchedulerTest, AdaptiveSwitchesOnlyOnceTheSavingsPayForTheSwitch) {
+  // robocore saves 10 cycles per iteration from iteration 0 on; a switch
+  // costs 35, so the policy waits until 4 iterations of savings (40 >= 35)
+  // have been seen: it switches at iteration 4.
+  std::vector<std::vector<double>> cycles(10, {110, 100});
+  SchedulerOptions o = ParseSchedulerPolicy("adaptive", {"simt", "robocore"});
+  o.switch_cost_cycles = 35.0;
+  OnlineScheduler s(o, {"simt", "robocore"});
+  EXPECT_EQ(SwitchIterations(s, Costs(cycles)), (std::vector<int>{4}));
+  // Savings that alternate with losses never add up: no switch.
+  std::vector<std::vector<double>> alternating;
+  for (int i = 0; i < 20; ++i) alternating.push_back(i % 2 ? std::vector<double>{110, 100} : std::vector<double>{100, 130});
+  OnlineScheduler t(o, {"simt", "robocore"});
+  EXPECT_TRUE(SwitchIterations(t, Costs(alternating)).empty());
+}
+
+TEST(SchedulerTest, AdaptivePicksTheRivalWithTheMostRegretAmongSeveral) {
+  // Three candidates; both rivals are cheaper than ttaplus, robocore by more.
+  std::vector<std::vector<double>> cycles(3, {100, 90, 70});
+  SchedulerOptions o = ParseSchedulerPolicy("adaptive", {"ttaplus", "simt", "robocore"});
+  o.switch_cost_cycles = 0.0;
+  OnlineScheduler s(o, {"ttaplus", "simt", "robocore"});
+  std::vector<std::string> choices;
+  EXPECT_EQ(SwitchIterations(s, Costs(cycles), &choices), (std::vector<int>{1}));
+  EXPECT_EQ(choices[1], "robocore");
+  // An iteration without kernel work leaves the choice where it is.
+  EXPECT_EQ(s.Choose(IterationObservation{}), "robocore");
+  EXPECT_THROW(s.Choose({true, 5.0, {1.0, 2.0}}), std::invalid_argument) << "one cost per candidate";
 }
 
 double BruteForceBest(const std::vector<std::vector<double>>& cycles, double switch_cost) {

@@ -1,5 +1,7 @@
 #include "workloads/carribot/carribot_report.h"
 
+#include "backends/scheduler/scheduler_cli.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -110,24 +112,7 @@ void PrintCarribotPricing(std::ostream& out, const CarribotResult& result, const
   emit("collision kernel        %llu launches, %llu OBB queries, %.1f nodes per query",
        static_cast<unsigned long long>(total.launches), static_cast<unsigned long long>(total.queries),
        total.NodesPerQuery());
-  emit("modelled time (every launch priced on every backend; %s policy):", ToString(s.ledger.policy).c_str());
-  const double clock_hz = s.backend_params.gpu.core_clock_hz;
-  for (std::size_t b = 0; b < l.backends.size(); ++b)
-    emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
-         l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
-  emit("  %-19s %14.0f cycles  %9.4f s  (%ld switches, %.0f cycles each)", ToString(s.ledger.policy).c_str(),
-       l.policy_total_cycles, l.policy_total_cycles / clock_hz, l.switches, l.switch_cost_cycles);
-  const std::string over = l.oracle_candidates.size() == l.backends.size()
-                               ? std::string("all backends")
-                               : "{" + l.oracle_candidates[0] + ", " + l.oracle_candidates[1] + "}";
-  emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,
-       l.oracle_total_cycles / clock_hz, over.c_str());
-  if (s.ledger.policy.kind != SchedulerKind::kStatic)
-    emit("  threshold %.1f nodes per query (%s), gap to oracle %.2f%%", l.threshold,
-         s.ledger.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"),
-         l.gap_to_oracle_percent);
-  else
-    emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
+  PrintLedgerSummary(out, l, s.ledger, s.backend_params.gpu.core_clock_hz, "launch", "tree nodes per kernel query");
   double host_s = result.setup_wall_s;
   for (const CarribotRow& r : result.rows) host_s += r.result.wall_s;
   emit("pricing host time       %.3f s (%.2fx the planner's own)", result.pricing_wall_s,

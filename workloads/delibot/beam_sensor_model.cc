@@ -85,10 +85,13 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
       q.angle_rad = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
     }
   }
-  if (work.record_kernel)
-    CastRayBatchRecorded(*scene_, batch, work.hits, work.record);
-  else
+  if (work.record_kernel) {
+    RecordOptions record_options;
+    record_options.sample = work.record_sample;
+    CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
+  } else {
     CastRayBatch(*scene_, batch, work.hits);
+  }
   log_likelihoods.resize(particles.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
 #include "traces/csv_table.h"
 
@@ -182,27 +183,12 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
     accuracy["final_err_theta_rad"] = m.final_err_theta_rad;
   }
   json out = {{"workload", "delibot"}, {"config", config}, {"totals", totals}, {"accuracy", accuracy}};
-  if (result.priced) out["backends"] = LedgerSummaryJson(result.pricing, s.ledger.policy, result.pricing_wall_s, m.wall_s);
+  if (result.priced) {
+    out["backends"] = LedgerSummaryJson(result.pricing, s.ledger);
+    out["backends"]["pricing_host_s"] = result.pricing_wall_s;
+    out["backends"]["filter_host_s"] = m.wall_s;
+  }
   return out;
-}
-
-nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const SchedulerOptions& policy, double pricing_wall_s,
-                                 double kernel_wall_s) {
-  nlohmann::json statics = nlohmann::json::object();
-  for (std::size_t b = 0; b < l.backends.size(); ++b) statics[l.backends[b]] = l.static_total_cycles[b];
-  return {{"policy", ToString(policy)},
-          {"static_total_cycles", statics},
-          {"policy_total_cycles", l.policy_total_cycles},
-          {"oracle_total_cycles", l.oracle_total_cycles},
-          {"oracle_candidates", l.oracle_candidates},
-          {"best_static", l.best_static},
-          {"switches", l.switches},
-          {"switch_cost_cycles", l.switch_cost_cycles},
-          {"threshold_nodes_per_query", std::isfinite(l.threshold) ? nlohmann::json(l.threshold) : nlohmann::json(nullptr)},
-          {"threshold_has_crossing", l.threshold_has_crossing},
-          {"gap_to_oracle_percent", l.gap_to_oracle_percent},
-          {"pricing_host_s", pricing_wall_s},
-          {"filter_host_s", kernel_wall_s}};
 }
 
 void WriteJsonFile(const std::string& path, const nlohmann::json& json) {
@@ -287,22 +273,7 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   }
   if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");
   if (!result.priced) return;
-  const LedgerSummary& l = result.pricing;
-  emit("modelled time (every update priced on every backend; %s policy):", ToString(s.ledger.policy).c_str());
-  const double clock_hz = s.backend_params.gpu.core_clock_hz;
-  for (std::size_t b = 0; b < l.backends.size(); ++b)
-    emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
-         l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
-  emit("  %-19s %14.0f cycles  %9.4f s  (%ld switches, %.0f cycles each)", ToString(s.ledger.policy).c_str(),
-       l.policy_total_cycles, l.policy_total_cycles / clock_hz, l.switches, l.switch_cost_cycles);
-  emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,
-       l.oracle_total_cycles / clock_hz, (l.oracle_candidates.size() == l.backends.size() ? "all backends" : "{" + l.oracle_candidates[0] + ", " + l.oracle_candidates[1] + "}").c_str());
-  if (s.ledger.policy.kind != SchedulerKind::kStatic)
-    emit("  threshold %.1f nodes per ray (%s), gap to oracle %.2f%%", l.threshold,
-         s.ledger.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"),
-         l.gap_to_oracle_percent);
-  else
-    emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
+  PrintLedgerSummary(out, result.pricing, s.ledger, s.backend_params.gpu.core_clock_hz, "update", "nodes per ray");
   emit("pricing host time       %.3f s (%.2fx the filter's own)", result.pricing_wall_s,
        m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
 }

@@ -29,8 +29,6 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result);
 
 nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& settings,
                                   const DelibotProvenance& provenance);
-nlohmann::json LedgerSummaryJson(const LedgerSummary& ledger, const SchedulerOptions& policy, double pricing_wall_s,
-                                 double kernel_wall_s);
 void WriteJsonFile(const std::string& path, const nlohmann::json& json);
 
 void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const DelibotSettings& settings);

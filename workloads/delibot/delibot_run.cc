@@ -59,10 +59,10 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
   const bool price = settings.price_backends && settings.sensor_model == SensorModelKind::kBeam;
   MclOptions mcl_options = settings.mcl;
   mcl_options.record_kernel = price;
-  MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
   std::unique_ptr<BackendLedger> ledger;
   if (price) {
     ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
+    mcl_options.record_sample = ledger->RecordSample();
     // The threshold depends on the kernel's program, its memory layout and
     // the batch size (launch overhead is amortized over the batch), all
     // known before the first update: record one ray for the layout.
@@ -76,10 +76,17 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
       std::vector<RayHit> hits;
       KernelRecord layout;
       CastRayBatchRecorded(scene, one, hits, layout);
-      ledger->PrepareThreshold(layout, static_cast<std::size_t>(settings.mcl.particle_count) *
-                                           settings.mcl.beams.Count(trace.geometry.beam_count));
+      // A ray of length L crosses at most sqrt(2) L / r + 2 cells (march
+      // samples fewer; rm fetches a subset of dda's cells).
+      const auto max_nodes = static_cast<std::uint32_t>(
+          std::ceil(std::sqrt(2.0) * settings.beam.max_range_m / grid.resolution_m()) + 2);
+      ledger->PrepareThreshold(layout,
+                               static_cast<std::size_t>(settings.mcl.particle_count) *
+                                   settings.mcl.beams.Count(trace.geometry.beam_count),
+                               max_nodes);
     }
   }
+  MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
   if (settings.initial_pose)
     mcl.InitializeAround(*settings.initial_pose, settings.initial_sigma_xy_m, settings.initial_sigma_theta_rad);
   else

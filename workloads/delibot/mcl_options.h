@@ -102,6 +102,7 @@ struct MclOptions {
   // Record every ray's node fetches (robocore/kernel_record.h) so that the
   // backends can price the update; off, the kernel runs without the hook.
   bool record_kernel = false;
+  AddressSample record_sample;  // whose node addresses the record keeps (default: all)
 
   bool IsValid(std::string* error) const;
 };

@@ -23,6 +23,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
   free_cells_ = grid_.FreeCellIndices();
   work_.record_kernel = options_.record_kernel;
   check_work_.record_kernel = options_.record_kernel;
+  work_.record_sample = check_work_.record_sample = options_.record_sample;
   if (free_cells_.empty())
     throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }

@@ -33,6 +33,7 @@ struct SensorUpdateWork {
   // When record_kernel is set, ray-casting models also fill `record` with
   // every query's node fetches (run once), for the backends to price.
   bool record_kernel = false;
+  AddressSample record_sample;  // whose addresses the record keeps
   KernelRecord record;
 };
 

@@ -20,6 +20,7 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
+#include "backends/scheduler/scheduler_cli.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "traces/csv_table.h"
@@ -54,10 +55,7 @@ struct CarribotCli {
   std::uint64_t max_expansions = 0;
   std::string timeline_path, path_path, plot_path;
   bool quiet = false;
-  std::string backend_policy = "adaptive", backend_params_path;
-  double threshold = -1.0;
-  bool no_pricing = false;
-  LedgerOptions ledger;
+  SchedulerCli scheduler;
 };
 
 using Query = CarribotQuery;
@@ -186,25 +184,13 @@ int Run(const CarribotCli& cli) {
   CarribotSettings settings;
   settings.planner = options;
   settings.checker = ParseFootprintCheckerKind(cli.checker);
-  settings.ledger = cli.ledger;
-  try {
-    const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend_policy, Backend::ModelledNames());
-    settings.ledger.policy.kind = parsed.kind;
-    settings.ledger.policy.static_backend = parsed.static_backend;
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--backend: ") + e.what());
-  }
-  if (!(cli.ledger.policy.hysteresis_nodes_per_query >= 0.0))
-    throw UsageError("--hysteresis must be >= 0 nodes per query");
-  if (cli.threshold >= 0.0) {
-    settings.ledger.policy.threshold_nodes_per_query = cli.threshold;
-    settings.ledger.threshold_overridden = true;
-  }
-  if (!cli.backend_params_path.empty()) settings.backend_params = LoadBackendParameters(cli.backend_params_path);
-  settings.price_backends = !cli.no_pricing;
-  if (!options.footprint && !cli.no_pricing)
+  settings.ledger = ToLedgerOptions(cli.scheduler);
+  settings.backend_params = BackendParametersOf(cli.scheduler);
+  const bool no_pricing = cli.scheduler.no_pricing;
+  settings.price_backends = !no_pricing;
+  if (!options.footprint && !no_pricing)
     std::cout << "note: a point robot checks grid cells directly; no collision kernel runs, nothing is priced\n";
-  if (options.footprint && settings.checker == FootprintCheckerKind::kRasterized && !cli.no_pricing)
+  if (options.footprint && settings.checker == FootprintCheckerKind::kRasterized && !no_pricing)
     std::cout << "note: the rasterized checker is the CPU reference; nothing is priced\n";
 
   CarribotResult run;
@@ -314,21 +300,7 @@ void AddCarribotCommand(CLI::App& app) {
       ->check(CLI::IsMember({"kernel", "rasterized"}))
       ->needs(footprint)
       ->capture_default_str();
-  cmd->add_option("--backend", cli->backend_policy,
-                  "Backend that runs each iteration (a query, or the configuration-space set-up): adaptive | oracle | "
-                  "static:<simt|ttaplus|ttaplus-p|ttaplus-cr|robocore> (every backend is priced regardless)")
-      ->capture_default_str();
-  cmd->add_option("--threshold", cli->threshold,
-                  "Adaptive switch threshold (tree nodes per kernel query); default: the cost models' crossover");
-  cmd->add_option("--hysteresis", cli->ledger.policy.hysteresis_nodes_per_query,
-                  "Adaptive margin around the threshold (nodes per query)")
-      ->capture_default_str();
-  cmd->add_option("--switch-cost", cli->ledger.switch_cost_cycles,
-                  "Cost of one backend switch (core cycles); negative: one kernel launch")
-      ->capture_default_str();
-  cmd->add_option("--backend-params", cli->backend_params_path,
-                  "JSON file overriding backend cost parameters (see rcbench backends)");
-  cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price kernel launches on the modelled backends");
+  AddSchedulerOptions(*cmd, cli->scheduler, "tree nodes per kernel query");
   cmd->add_option("--max-expansions", cli->max_expansions, "Stop a query after N expansions (count; 0 = no limit)")
       ->capture_default_str();
   cmd->add_option("--resolution,--map-resolution", cli->resolution_m,

@@ -7,7 +7,7 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
-#include "backends/scheduler/backend_scheduler.h"
+#include "backends/scheduler/scheduler_cli.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "maps/mrpt/mrpt_map_dispatch.h"
@@ -41,9 +41,7 @@ struct DelibotCli {
   std::string timeline_path, summary_path;
   int threads = 0;
   bool quiet = false;
-  std::string backend_policy = "adaptive", backend_params_path;
-  double threshold = -1.0;
-  bool no_pricing = false;
+  SchedulerCli scheduler;
   std::string engine = "ours";
   DelibotSettings settings;
 };
@@ -60,17 +58,9 @@ void Run(DelibotCli& cli) {
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
   const DelibotEngine engine = ParseDelibotEngine(cli.engine);
   // MRPT casts its own rays: there is no kernel record to price.
-  s.price_backends = !cli.no_pricing && engine == DelibotEngine::kOurs;
-  if (!cli.backend_params_path.empty()) s.backend_params = LoadBackendParameters(cli.backend_params_path);
-  {
-    const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend_policy, Backend::ModelledNames());
-    s.ledger.policy.kind = parsed.kind;
-    s.ledger.policy.static_backend = parsed.static_backend;
-  }
-  if (cli.threshold >= 0.0) {
-    s.ledger.policy.threshold_nodes_per_query = cli.threshold;
-    s.ledger.threshold_overridden = true;
-  }
+  s.price_backends = !cli.scheduler.no_pricing && engine == DelibotEngine::kOurs;
+  s.ledger = ToLedgerOptions(cli.scheduler);
+  s.backend_params = BackendParametersOf(cli.scheduler);
   if (s.price_backends && s.sensor_model != SensorModelKind::kBeam)
     std::cout << "note: the likelihood-field model casts no rays; backend pricing is off for this run\n";
   std::string error;
@@ -266,21 +256,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--timeline", cli->timeline_path, "Write the per-record timeline CSV here");
   cmd->add_option("--summary", cli->summary_path, "Write the run summary JSON here");
   cmd->add_flag("--quiet", cli->quiet, "No progress bar");
-  cmd->add_option("--backend", cli->backend_policy,
-                  "Backend that runs each update: adaptive | oracle | static:<simt|ttaplus|ttaplus-p|ttaplus-cr|robocore>"
-                  " (every backend is priced every update regardless)")
-      ->capture_default_str();
-  cmd->add_option("--threshold", cli->threshold,
-                  "Adaptive switch threshold (nodes per ray); default: the cost models' crossover");
-  cmd->add_option("--hysteresis", s.ledger.policy.hysteresis_nodes_per_query,
-                  "Adaptive margin around the threshold (nodes per ray)")
-      ->capture_default_str();
-  cmd->add_option("--switch-cost", s.ledger.switch_cost_cycles,
-                  "Cost of one backend switch (core cycles); negative: one kernel launch")
-      ->capture_default_str();
-  cmd->add_option("--backend-params", cli->backend_params_path,
-                  "JSON file overriding backend cost parameters (see rcbench backends)");
-  cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price updates on the modelled backends");
+  AddSchedulerOptions(*cmd, cli->scheduler, "nodes per ray");
   cmd->add_option("--engine", cli->engine,
                   "ours | mrpt: MRPT's CMonteCarloLocalization2D with our settings mapped onto its own "
                   "(workloads/delibot/mrpt/mrpt_localizer.h); no backend pricing")

@@ -24,7 +24,7 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
-#include "backends/scheduler/backend_scheduler.h"
+#include "backends/scheduler/scheduler_cli.h"
 #include "common/input_error.h"
 #include "robocore/collision/octree_from_octomap.h"
 #include "workloads/movebot/movebot_report.h"
@@ -45,10 +45,11 @@ struct MovebotCli {
   std::vector<double> start, goal;
   std::uint64_t iterations = 0;
   double time_s = 0.0;
-  std::string backend = "adaptive", backend_params_path, nn = "gnat";
+  std::string nn = "gnat";
+  SchedulerCli scheduler;
   std::string timeline_path, anytime_path, ompl_log_path, path_path;
   double verify_resolution_rad = 0.0;
-  bool no_pricing = false, ompl_verbose = false;
+  bool ompl_verbose = false;
   MoveBotSettings settings;
 };
 
@@ -92,13 +93,9 @@ int Run(MovebotCli& cli) {
   s.start = ToConfiguration(cli.start, kRowildStart);
   s.goal = ToConfiguration(cli.goal, kRowildGoal);
   s.nn = ParseNnKind(cli.nn);
-  s.price_backends = !cli.no_pricing;
-  if (!cli.backend_params_path.empty()) s.backend_params = LoadBackendParameters(cli.backend_params_path);
-  {
-    const SchedulerOptions parsed = ParseSchedulerPolicy(cli.backend, Backend::ModelledNames());
-    s.ledger.policy.kind = parsed.kind;
-    s.ledger.policy.static_backend = parsed.static_backend;
-  }
+  s.price_backends = !cli.scheduler.no_pricing;
+  s.ledger = ToLedgerOptions(cli.scheduler);
+  s.backend_params = BackendParametersOf(cli.scheduler);
   std::string error;
   if (!s.IsValid(&error)) throw UsageError(error);
   const double verify_resolution =
@@ -205,12 +202,7 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--nn", cli->nn, "Nearest-neighbour structure: gnat (OMPL's default) | p-ray | p-sphere")
       ->check(CLI::IsMember({"gnat", "p-ray", "p-sphere"}))
       ->capture_default_str();
-  cmd->add_option("--backend", cli->backend,
-                  "Backend policy per timeline row: adaptive | oracle | static:<backend> | <backend> "
-                  "(simt, ttaplus, ttaplus-p, ttaplus-cr, robocore)")
-      ->capture_default_str();
-  cmd->add_option("--backend-params", cli->backend_params_path, "JSON file overriding backend cost parameters");
-  cmd->add_flag("--no-pricing", cli->no_pricing, "Do not price the kernel batches on the backends");
+  AddSchedulerOptions(*cmd, cli->scheduler, "nodes per query");
   cmd->add_option("--timeline", cli->timeline_path, "Timeline CSV, one row per batch of iterations");
   cmd->add_option("--anytime", cli->anytime_path, "Anytime curve CSV: time_s, iterations, best_cost_rad");
   cmd->add_option("--ompl-log", cli->ompl_log_path, "OMPL benchmark log (ompl_benchmark_statistics.py, Planner Arena)");

@@ -1,0 +1,135 @@
+#include "backends/scheduler/scheduler_cli.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "backends/backend.h"
+#include "common/input_error.h"
+
+namespace rc {
+
+void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string& counter) {
+  std::string names;
+  for (const std::string& n : Backend::ModelledNames()) names += (names.empty() ? "" : "|") + n;
+  command.add_option("--backend", cli.policy,
+                     "Backend that runs each iteration: adaptive (predicts each candidate's cycles from the "
+                     "previous iteration's) | threshold (the paper's: " + counter + " against a threshold) | "
+                     "oracle (hindsight) | static:<" + names + "> (every backend is priced regardless)")
+      ->capture_default_str();
+  command.add_option("--candidates", cli.candidates,
+                     "Backends the adaptive policy and the oracle choose among, comma-separated (default: all)");
+  command.add_option("--threshold", cli.threshold,
+                     "Threshold policy's switch point (" + counter + "); default: the cost models' crossover");
+  command.add_option("--hysteresis", cli.hysteresis, "Threshold policy's margin around the threshold (" + counter + ")")
+      ->capture_default_str();
+  command.add_option("--switch-cost", cli.switch_cost,
+                     "Cycles a change of backend adds beyond the launch every iteration pays anyway (core cycles, "
+                     ">= 0; see backends/scheduler/backend_ledger.h)")
+      ->capture_default_str();
+  command.add_option("--replay-sms", cli.replay_sms,
+                     "SMs whose memory traffic is replayed exactly (count; the others are estimated from them; "
+                     "0 = every SM, exact)")
+      ->capture_default_str();
+  command.add_option("--backend-params", cli.backend_params,
+                     "JSON file overriding backend cost parameters (see rcbench backends)");
+  command.add_flag("--no-pricing", cli.no_pricing, "Do not price the kernels on the modelled backends");
+}
+
+LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
+  LedgerOptions options;
+  const std::vector<std::string> names = Backend::ModelledNames();
+  try {
+    options.policy = ParseSchedulerPolicy(cli.policy, names);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--backend: ") + e.what());
+  }
+  try {
+    if (!cli.candidates.empty()) options.policy.candidates = ParseCandidates(cli.candidates, names);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--candidates: ") + e.what());
+  }
+  if (!(cli.hysteresis >= 0.0)) throw UsageError("--hysteresis must be >= 0");
+  if (!(cli.switch_cost >= 0.0 && std::isfinite(cli.switch_cost)))
+    throw UsageError("--switch-cost must be a finite number of cycles >= 0");
+  if (cli.replay_sms < 0) throw UsageError("--replay-sms must be >= 0");
+  options.policy.hysteresis_nodes_per_query = cli.hysteresis;
+  if (cli.threshold >= 0.0) {
+    options.policy.threshold_nodes_per_query = cli.threshold;
+    options.threshold_overridden = true;
+  }
+  options.switch_cost_cycles = cli.switch_cost;
+  options.replay_sms = cli.replay_sms;
+  return options;
+}
+
+BackendParameters BackendParametersOf(const SchedulerCli& cli) {
+  return cli.backend_params.empty() ? BackendParameters{} : LoadBackendParameters(cli.backend_params);
+}
+
+namespace {
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerOptions& options, double clock_hz,
+                        const std::string& what, const std::string& counter) {
+  char line[320];
+  auto emit = [&](const char* fmt, auto... args) {
+    std::snprintf(line, sizeof line, fmt, args...);
+    out << line << "\n";
+  };
+  const std::string policy = ToString(options.policy);
+  emit("modelled time (every %s priced on every backend; %s policy; %s):", what.c_str(), policy.c_str(),
+       l.replay_sms > 0 ? ("memory replayed on " + std::to_string(l.replay_sms) + " SM(s), the rest estimated").c_str()
+                        : "memory replayed on every SM");
+  for (std::size_t b = 0; b < l.backends.size(); ++b)
+    emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
+         l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
+  emit("  %-19s %14.0f cycles  %9.4f s  (%ld switches, %.0f cycles each)", policy.c_str(), l.policy_total_cycles,
+       l.policy_total_cycles / clock_hz, l.switches, l.switch_cost_cycles);
+  const std::string over = l.oracle_candidates.size() == l.backends.size() ? std::string("all backends")
+                                                                           : "{" + Join(l.oracle_candidates) + "}";
+  emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,
+       l.oracle_total_cycles / clock_hz, over.c_str());
+  if (options.policy.kind == SchedulerKind::kThreshold)
+    emit("  threshold %.1f %s (%s)", l.threshold, counter.c_str(),
+         options.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"));
+  if (std::isnan(l.oracle_agreement_percent)) {
+    emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
+    return;
+  }
+  emit("  gap to oracle %.2f%%, same choice as the oracle in %.1f%% of priced %ss, followed %ld of its %ld lasting "
+       "changes (>= %d %ss)",
+       l.gap_to_oracle_percent, l.oracle_agreement_percent, what.c_str(), l.oracle_lasting_changes_followed,
+       l.oracle_lasting_changes, LedgerSummary::kLastingIterations, what.c_str());
+}
+
+nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& options) {
+  nlohmann::json statics = nlohmann::json::object();
+  for (std::size_t b = 0; b < l.backends.size(); ++b) statics[l.backends[b]] = l.static_total_cycles[b];
+  auto number_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"policy", ToString(options.policy)},
+          {"candidates", l.oracle_candidates},
+          {"static_total_cycles", statics},
+          {"policy_total_cycles", l.policy_total_cycles},
+          {"oracle_total_cycles", l.oracle_total_cycles},
+          {"oracle_candidates", l.oracle_candidates},
+          {"best_static", l.best_static},
+          {"switches", l.switches},
+          {"switch_cost_cycles", l.switch_cost_cycles},
+          {"threshold_nodes_per_query", number_or_null(l.threshold)},
+          {"threshold_has_crossing", l.threshold_has_crossing},
+          {"gap_to_oracle_percent", l.gap_to_oracle_percent},
+          {"oracle_agreement_percent", number_or_null(l.oracle_agreement_percent)},
+          {"oracle_lasting_changes", l.oracle_lasting_changes},
+          {"oracle_lasting_changes_followed", l.oracle_lasting_changes_followed},
+          {"replay_sms", l.replay_sms}};
+}
+
+}  // namespace rc
