@@ -45,6 +45,7 @@ void KernelRecord::Validate() const {
   if (!program || !program->has_loop()) fail("no step program with a loop");
   if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone))
     fail("leaf program and leaf kind disagree");
+  if (scalar_bytes != 4 && scalar_bytes != 8) fail("scalar_bytes must be 4 (float) or 8 (double)");
   if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
   if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
   if (node_exits.size() != fetch_addresses.size()) fail("one exit per fetch expected");

@@ -9,8 +9,8 @@ fetches one node per pass, and counts the instructions of every section:
   prologue   blocks outside that loop from which it can be reached
   loop       the loop's blocks: one loop pass
   epilogue   the other blocks reachable from the entry
-  beam_leaf  ray kernels only: epilogue(kernel with the beam leaf) minus
-             epilogue(kernel without it)
+  beam_leaf  ray kernels only, for the docs: prologue + epilogue of the
+             kernel with a beam leaf minus those of the kernel without
 
 Each block counts once (a static count): a warp whose lanes take both
 sides of a branch issues both, which is what a loop pass costs a divergent
@@ -55,17 +55,20 @@ CLASSES = ["fp32", "fp64", "int", "fp32_div", "fp64_div", "int_div", "sfu", "loa
 
 SOURCES = ["ray_cast_kernels.cu", "sact_kernel.cu", "sphere_kernel.cu", "ball_query_kernels.cu"]
 
-# Shipped step program (robocore/programs) -> entry point prefix, and the
-# prefix of its variant with the beam leaf.
+# Shipped step program (robocore/programs) -> entry point prefix; the ray
+# programs also have kernels with the max-log beam leaf of beam_leaf.asm
+# (_beam) and with the host's exact beam density (_beam_exact).
 PROGRAMS = {
-    "grid_march.asm": ("rc_march", "rc_march_beam"),
-    "dda_step.asm": ("rc_dda", "rc_dda_beam"),
-    "rm_step.asm": ("rc_rm", "rc_rm_beam"),
-    "sact_obb_aabb.asm": ("rc_sact", None),
-    "sphere_aabb.asm": ("rc_sphere", None),
-    "ball_query_psphere.asm": ("rc_ball_query_psphere", None),
-    "ball_query_pray.asm": ("rc_ball_query_pray", None),
+    "grid_march.asm": "rc_march",
+    "dda_step.asm": "rc_dda",
+    "rm_step.asm": "rc_rm",
+    "sact_obb_aabb.asm": "rc_sact",
+    "sphere_aabb.asm": "rc_sphere",
+    "ball_query_psphere.asm": "rc_ball_query_psphere",
+    "ball_query_pray.asm": "rc_ball_query_pray",
 }
+RAY_PROGRAMS = ("grid_march.asm", "dda_step.asm", "rm_step.asm")
+LEAVES = {"with_beam_leaf": ("_beam", "beam_leaf"), "with_exact_beam_leaf": ("_beam_exact", "exact_beam_leaf")}
 PRECISIONS = ["fp32", "fp64"]
 
 
@@ -451,19 +454,22 @@ def once(s):
 
 def build_table(functions, registers, marks, isas):
     programs = {}
-    for program, (plain, with_leaf) in PROGRAMS.items():
+    for program, prefix in PROGRAMS.items():
         entry = {}
         for precision in PRECISIONS:
-            per = kernel_entry(functions, registers, marks, isas, "%s_%s" % (plain, precision))
-            if with_leaf:
-                leaf = kernel_entry(functions, registers, marks, isas, "%s_%s" % (with_leaf, precision))
-                per["with_beam_leaf"] = leaf
-                # For the docs: what the leaf adds to the once-per-query
-                # sections (the model prices the with-leaf kernel as compiled).
-                for isa in isas:
-                    per[isa]["beam_leaf"] = subtract(once(leaf[isa]), once(per[isa]))
+            per = kernel_entry(functions, registers, marks, isas, "%s_%s" % (prefix, precision))
+            kernels = [per]
+            if program in RAY_PROGRAMS:
+                for key, (suffix, added) in LEAVES.items():
+                    leaf = kernel_entry(functions, registers, marks, isas, "%s%s_%s" % (prefix, suffix, precision))
+                    per[key] = leaf
+                    kernels.append(leaf)
+                    # For the docs: what the leaf adds to the once-per-query
+                    # sections (the model prices the with-leaf kernel as compiled).
+                    for isa in isas:
+                        per[isa][added] = subtract(once(leaf[isa]), once(per[isa]))
             if precision == "fp32":
-                for kernel in [per] + ([per["with_beam_leaf"]] if with_leaf else []):
+                for kernel in kernels:
                     for isa in isas:
                         for section, counts in kernel[isa].items():
                             if counts["fp64"] or counts["fp64_div"]:
@@ -490,7 +496,8 @@ def generate(nvcc, nvdisasm):
             "nvdisasm": (tool_version(nvdisasm) + (" (cubin ELF header rewritten to ABI 7 to be read)"
                                                   if rewritten else "")) if nvdisasm else None,
             "classes": CLASSES,
-            "sections": "prologue/epilogue: once per query; loop: one pass (one node fetch); beam_leaf: once per ray",
+            "sections": "prologue/epilogue: once per query; loop: one pass (one node fetch); "
+                        "beam_leaf, exact_beam_leaf: what the leaf adds, once per ray (docs only)",
             "programs": build_table(functions, registers, marks, isas),
         }
     return table

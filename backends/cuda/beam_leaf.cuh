@@ -1,10 +1,15 @@
 #pragma once
-// The beam-model leaf on the CUDA cores: BeamLogDensity of
-// workloads/delibot/beam_sensor_model.cc, statement for statement (the
-// exact log of the four-part mixture, with exp and log), once per ray after
-// the traversal. programs/beam_leaf.asm describes the same step for the RT
-// units with a max-log approximation, because their ISA has no EXP or LOG;
-// the CUDA cores compute what the host computes.
+// The beam-model leaf on the CUDA cores, once per ray after the traversal,
+// in two forms:
+//   MaxLogBeamLogDensity  what programs/beam_leaf.asm computes on the RT
+//                         units (whose ISA has no EXP or LOG): the max-log
+//                         approximation of the mixture, from constants the
+//                         host precomputes. The SIMT model prices this one
+//                         by default, so every backend prices the same leaf.
+//   BeamLogDensity        the host's exact log of the four-part mixture
+//                         (workloads/delibot/beam_sensor_model.cc), statement
+//                         for statement, with exp and log: the alternative
+//                         simt.beam_leaf = exact.
 #include "backends/cuda/device_common.cuh"
 
 namespace rc_cuda {
@@ -19,7 +24,27 @@ struct BeamParams {
   T sigma_hit_m;         // m
   T lambda_short_per_m;  // 1/m
   T max_range_m;         // m
+  // The max-log leaf's constants (beam_leaf.asm's inputs).
+  T neg_half_inv_var;    // -1 / (2 sigma_hit^2), 1/m^2
+  T neg_lambda;          // -lambda_short, 1/m
+  T log_z_hit;           // log(z_hit / (sigma_hit sqrt(2 pi)))
+  T log_z_rand;          // log(z_rand / max_range)
+  T log_z_max;           // log(z_max)
 };
+
+// beam_leaf.asm: the largest of the hit Gaussian's log, the short
+// exponential's (only for z < z_star), the uniform floor, and the max-range
+// point mass (only for a max reading).
+template <typename T>
+__device__ __forceinline__ T MaxLogBeamLogDensity(const BeamParams<T>& p, T z, T z_star) {
+  const T e = z - z_star;
+  const T lg_hit = e * e * p.neg_half_inv_var;
+  const T lg_short = z < z_star ? z * p.neg_lambda : -T(INFINITY);
+  T lg = Max(lg_hit, lg_short) + p.log_z_hit;
+  lg = Max(lg, p.log_z_rand);
+  if (z >= p.max_range_m) lg = Max(lg, p.log_z_max);
+  return lg;
+}
 
 // What the host adds before the log of a max-range reading: 1e-300 in
 // double; in float, whose smallest normal is about 1.2e-38, 1e-38.

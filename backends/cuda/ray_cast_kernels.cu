@@ -1,8 +1,9 @@
 // DeliBot's ray casters on the CUDA cores, one ray per thread: CastMarch,
 // CastDda and CastRayMarching of robocore/ray_cast.h, statement for
 // statement, with the programs' inputs (grid_march.asm, dda_step.asm,
-// rm_step.asm: origin and unit direction per ray), and optionally the beam
-// leaf (beam_leaf.cuh) after the traversal.
+// rm_step.asm: origin and unit direction per ray), and optionally a beam
+// leaf (beam_leaf.cuh) after the traversal: the max-log leaf of
+// beam_leaf.asm (_beam) or the host's exact density (_beam_exact).
 //
 // Given the host's origins and directions, the double kernels compute the
 // host's ranges bit for bit when compiled with -fmad=false (the host build
@@ -11,7 +12,7 @@
 // d), so the host's cos/sin is not redone here.
 //
 // Entry points (extern "C", one per method, leaf and precision):
-//   rc_{march,dda,rm}[_beam]_{fp32,fp64}
+//   rc_{march,dda,rm}[_beam|_beam_exact]_{fp32,fp64}
 #include "backends/cuda/beam_leaf.cuh"
 #include "backends/cuda/device_common.cuh"
 
@@ -209,8 +210,9 @@ __device__ __forceinline__ RayHit CastRayMarching(const Grid<T>& g, const Distan
 }
 
 enum class Method { kMarch, kDda, kRayMarching };
+enum class Leaf { kNone, kMaxLog, kExact };
 
-template <typename T, Method kMethod, bool kBeamLeaf>
+template <typename T, Method kMethod, Leaf kLeaf>
 __device__ __forceinline__ void CastOneRay(const Grid<T>& g, const DistanceCells& df, const RayLaunch<T>& q) {
   const int i = QueryIndex();
   if (i >= q.count) return;
@@ -225,13 +227,16 @@ __device__ __forceinline__ void CastOneRay(const Grid<T>& g, const DistanceCells
   q.range_m[i] = hit.range_m;
   q.nodes[i] = hit.nodes;
   // The beam leaf scores the float range, as the host scores RayHit::range_m.
-  if (kBeamLeaf) q.log_density[i] = BeamLogDensity(q.beam, q.measured_m[i], static_cast<T>(hit.range_m));
+  if (kLeaf == Leaf::kMaxLog)
+    q.log_density[i] = MaxLogBeamLogDensity(q.beam, q.measured_m[i], static_cast<T>(hit.range_m));
+  if (kLeaf == Leaf::kExact) q.log_density[i] = BeamLogDensity(q.beam, q.measured_m[i], static_cast<T>(hit.range_m));
 }
 
 }  // namespace rc_cuda
 
 using rc_cuda::DistanceCells;
 using rc_cuda::Grid;
+using rc_cuda::Leaf;
 using rc_cuda::Method;
 using rc_cuda::RayLaunch;
 
@@ -239,16 +244,15 @@ using rc_cuda::RayLaunch;
   extern "C" __global__ void name(Grid<T> grid, DistanceCells df, RayLaunch<T> rays) {         \
     rc_cuda::CastOneRay<T, method, leaf>(grid, df, rays);                                      \
   }
-RC_RAY_KERNEL(rc_march_fp32, float, Method::kMarch, false)
-RC_RAY_KERNEL(rc_march_fp64, double, Method::kMarch, false)
-RC_RAY_KERNEL(rc_march_beam_fp32, float, Method::kMarch, true)
-RC_RAY_KERNEL(rc_march_beam_fp64, double, Method::kMarch, true)
-RC_RAY_KERNEL(rc_dda_fp32, float, Method::kDda, false)
-RC_RAY_KERNEL(rc_dda_fp64, double, Method::kDda, false)
-RC_RAY_KERNEL(rc_dda_beam_fp32, float, Method::kDda, true)
-RC_RAY_KERNEL(rc_dda_beam_fp64, double, Method::kDda, true)
-RC_RAY_KERNEL(rc_rm_fp32, float, Method::kRayMarching, false)
-RC_RAY_KERNEL(rc_rm_fp64, double, Method::kRayMarching, false)
-RC_RAY_KERNEL(rc_rm_beam_fp32, float, Method::kRayMarching, true)
-RC_RAY_KERNEL(rc_rm_beam_fp64, double, Method::kRayMarching, true)
+#define RC_RAY_KERNELS(prefix, method)                                                         \
+  RC_RAY_KERNEL(prefix##_fp32, float, method, Leaf::kNone)                                     \
+  RC_RAY_KERNEL(prefix##_fp64, double, method, Leaf::kNone)                                    \
+  RC_RAY_KERNEL(prefix##_beam_fp32, float, method, Leaf::kMaxLog)                              \
+  RC_RAY_KERNEL(prefix##_beam_fp64, double, method, Leaf::kMaxLog)                             \
+  RC_RAY_KERNEL(prefix##_beam_exact_fp32, float, method, Leaf::kExact)                         \
+  RC_RAY_KERNEL(prefix##_beam_exact_fp64, double, method, Leaf::kExact)
+RC_RAY_KERNELS(rc_march, Method::kMarch)
+RC_RAY_KERNELS(rc_dda, Method::kDda)
+RC_RAY_KERNELS(rc_rm, Method::kRayMarching)
+#undef RC_RAY_KERNELS
 #undef RC_RAY_KERNEL
