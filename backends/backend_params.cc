@@ -27,6 +27,9 @@ void ForEachStruct(Params& p, F&& f) {
 }
 
 std::string FormatValue(int v) { return std::to_string(v); }
+std::string FormatValue(SimtPrecision v) { return ToString(v); }
+std::string FormatValue(SimtIsa v) { return ToString(v); }
+std::string FormatValue(SimtBeamLeaf v) { return ToString(v); }
 std::string FormatValue(double v) {
   std::ostringstream out;
   out << std::setprecision(10) << v;
@@ -76,6 +79,24 @@ struct Overrider {
       throw InputError(*file, 0, it->first, "expected a number, got " + it->second.dump());
     field = it->second.get<double>();
     values->erase(it);
+  }
+  // A choice: a JSON string naming one of its values (the unit lists them).
+  template <class Choice>
+  void ChooseFrom(const std::string& name, Choice& field, const char* unit) {
+    const auto it = values->find(prefix + "." + name);
+    if (it == values->end()) return;
+    if (!it->second.is_string() || !ParseChoice(it->second.get<std::string>(), &field))
+      throw InputError(*file, 0, it->first, std::string("expected one of ") + unit + ", got " + it->second.dump());
+    values->erase(it);
+  }
+  void operator()(const std::string& name, SimtPrecision& field, const char* unit, const char*) {
+    ChooseFrom(name, field, unit);
+  }
+  void operator()(const std::string& name, SimtIsa& field, const char* unit, const char*) {
+    ChooseFrom(name, field, unit);
+  }
+  void operator()(const std::string& name, SimtBeamLeaf& field, const char* unit, const char*) {
+    ChooseFrom(name, field, unit);
   }
 };
 
@@ -137,21 +158,68 @@ std::array<int, kOpcodeCount> SimtParams::DefaultInstructionsPerElement() {
   return n;
 }
 
-int SimtParams::ResidentWarps(const GpuParams& gpu) const {
-  const int by_registers = gpu.registers_per_sm / (registers_per_thread * gpu.warp_size);
+int SimtParams::ResidentWarps(const GpuParams& gpu, int registers) const {
+  const int by_registers = gpu.registers_per_sm / (std::max(1, registers) * gpu.warp_size);
   return std::max(1, std::min(gpu.max_warps_per_sm, by_registers));
 }
 
 bool SimtParams::IsValid(std::string* error) const {
-  if (schedulers_per_sm < 1 || issue_per_scheduler_per_cycle < 1 || l1_sectors_per_cycle < 1 ||
-      registers_per_thread < 1 || alu_initiation_cycles < 1)
-    return Fail(error, "simt: schedulers, issue rate, L1 sectors per cycle, registers must be >= 1");
-  if (dependent_instruction_latency_cycles < 0 || loop_branch_instructions < 0 ||
-      instructions_per_load < 1)
-    return Fail(error, "simt: instruction counts and latency must be >= 0 (loads >= 1)");
+  if (schedulers_per_sm < 1 || issue_per_scheduler_per_cycle < 1 || l1_sectors_per_cycle < 1)
+    return Fail(error, "simt: schedulers, issue rate and L1 sectors per cycle must be >= 1");
+  for (int c : {fp32_initiation_cycles, fp64_initiation_cycles, int_initiation_cycles, fp32_div_initiation_cycles,
+                fp64_div_initiation_cycles, int_div_initiation_cycles, sfu_initiation_cycles, other_initiation_cycles})
+    if (c < 1) return Fail(error, "simt: every initiation interval must be >= 1 cycle");
+  for (int c : {fp32_latency_cycles, fp64_latency_cycles, int_latency_cycles, fp32_div_latency_cycles,
+                fp64_div_latency_cycles, int_div_latency_cycles, sfu_latency_cycles, other_latency_cycles})
+    if (c < 0) return Fail(error, "simt: every latency must be >= 0 cycles");
+  if (beam_leaf == SimtBeamLeaf::kNone) return Fail(error, "simt.beam_leaf must be maxlog or exact");
+  if (fp64_units_per_scheduler < 0) return Fail(error, "simt.fp64_units_per_scheduler must be >= 0");
+  if (registers_per_thread < 0 || registers_per_thread > 255 || fallback_registers_per_thread < 1 ||
+      fallback_registers_per_thread > 255)
+    return Fail(error, "simt: registers per thread must be 0 (compiled) to 255; the fallback's 1 to 255");
+  if (loop_branch_instructions < 0 || instructions_per_load < 1)
+    return Fail(error, "simt: loop branch instructions must be >= 0 and instructions per load >= 1");
   for (int n : instructions_per_element)
     if (n < 0) return Fail(error, "simt.instructions_per_element must be >= 0");
   return true;
+}
+
+const char* ToString(SimtPrecision p) {
+  switch (p) {
+    case SimtPrecision::kHost: return "host";
+    case SimtPrecision::kFp32: return "fp32";
+    case SimtPrecision::kFp64: return "fp64";
+  }
+  return "?";
+}
+
+const char* ToString(SimtIsa isa) { return isa == SimtIsa::kPtx ? "ptx" : "sass"; }
+
+bool ParseChoice(const std::string& text, SimtPrecision* out) {
+  for (SimtPrecision p : {SimtPrecision::kHost, SimtPrecision::kFp32, SimtPrecision::kFp64})
+    if (text == ToString(p)) return *out = p, true;
+  return false;
+}
+
+const char* ToString(SimtBeamLeaf leaf) {
+  switch (leaf) {
+    case SimtBeamLeaf::kNone: return "none";
+    case SimtBeamLeaf::kMaxLog: return "maxlog";
+    case SimtBeamLeaf::kExact: return "exact";
+  }
+  return "?";
+}
+
+bool ParseChoice(const std::string& text, SimtBeamLeaf* out) {
+  for (SimtBeamLeaf leaf : {SimtBeamLeaf::kMaxLog, SimtBeamLeaf::kExact})
+    if (text == ToString(leaf)) return *out = leaf, true;
+  return false;
+}
+
+bool ParseChoice(const std::string& text, SimtIsa* out) {
+  for (SimtIsa isa : {SimtIsa::kPtx, SimtIsa::kSass})
+    if (text == ToString(isa)) return *out = isa, true;
+  return false;
 }
 
 bool RtUnitParams::IsValid(std::string* error) const {

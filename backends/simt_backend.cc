@@ -6,13 +6,63 @@
 #include "backends/energy_model.h"
 #include "backends/modelled_backend.h"
 #include "backends/warp_schedule.h"
+#include "robocore/shipped_programs.h"
 
 namespace rc {
 namespace {
 
-// What one thread's execution of a section does, as written in the program.
+enum Pipe : int { kFp32Pipe, kIntPipe, kSfuPipe, kFp64Pipe, kLdStPipe, kPipeCount };
+constexpr const char* kPipeBound[kPipeCount] = {"FP32 pipe", "INT pipe", "SFU pipe", "FP64 pipe", "LD/ST pipe"};
+
+struct ClassTiming {
+  std::uint64_t latency;     // core cycles added to the warp's dependent chain
+  std::uint64_t initiation;  // core cycles the class holds its pipe
+  Pipe pipe;
+};
+
+std::array<ClassTiming, kSimtClassCount> Timings(const SimtParams& s) {
+  auto u = [](int v) { return static_cast<std::uint64_t>(v); };
+  const Pipe fp64_pipe = s.fp64_units_per_scheduler > 0 ? kFp64Pipe : kSfuPipe;
+  std::array<ClassTiming, kSimtClassCount> t{};
+  t[static_cast<int>(SimtClass::kFp32)] = {u(s.fp32_latency_cycles), u(s.fp32_initiation_cycles), kFp32Pipe};
+  t[static_cast<int>(SimtClass::kFp64)] = {u(s.fp64_latency_cycles), u(s.fp64_initiation_cycles), fp64_pipe};
+  t[static_cast<int>(SimtClass::kInt)] = {u(s.int_latency_cycles), u(s.int_initiation_cycles), kIntPipe};
+  t[static_cast<int>(SimtClass::kFp32Div)] = {u(s.fp32_div_latency_cycles), u(s.fp32_div_initiation_cycles), kSfuPipe};
+  t[static_cast<int>(SimtClass::kFp64Div)] = {u(s.fp64_div_latency_cycles), u(s.fp64_div_initiation_cycles), kSfuPipe};
+  t[static_cast<int>(SimtClass::kIntDiv)] = {u(s.int_div_latency_cycles), u(s.int_div_initiation_cycles), kSfuPipe};
+  t[static_cast<int>(SimtClass::kSfu)] = {u(s.sfu_latency_cycles), u(s.sfu_initiation_cycles), kSfuPipe};
+  t[static_cast<int>(SimtClass::kLoad)] = {0, 1, kLdStPipe};
+  t[static_cast<int>(SimtClass::kStore)] = {0, 1, kLdStPipe};
+  t[static_cast<int>(SimtClass::kBranch)] = {u(s.other_latency_cycles), u(s.other_initiation_cycles), kFp32Pipe};
+  t[static_cast<int>(SimtClass::kOther)] = {u(s.other_latency_cycles), u(s.other_initiation_cycles), kFp32Pipe};
+  return t;
+}
+
+// The fallback's class of one micro-op's scalar instructions.
+SimtClass FallbackClass(Opcode op, bool fp64) {
+  switch (op) {
+    case Opcode::kCmp:
+    case Opcode::kAnd:
+    case Opcode::kOr:
+    case Opcode::kXor:
+    case Opcode::kNot: return SimtClass::kOther;
+    case Opcode::kPush: return SimtClass::kInt;
+    case Opcode::kRcp: return SimtClass::kSfu;
+    case Opcode::kReturn:
+    case Opcode::kReturnIf: return SimtClass::kBranch;
+    default: return fp64 ? SimtClass::kFp64 : SimtClass::kFp32;
+  }
+}
+
+const CompiledSections& SectionsOf(const CompiledKernel& k, SimtIsa isa) {
+  if (isa == SimtIsa::kSass && !k.has_sass)
+    throw std::invalid_argument("simt.isa = sass: the instruction table has no SASS for " + k.name);
+  return isa == SimtIsa::kSass ? k.sass : k.ptx;
+}
+
+// What one thread's execution of a section does, as written in the program
+// (micro-op counts and arithmetic energy; instructions come from the mix).
 struct SectionWork {
-  std::uint64_t instructions = 0;
   std::array<std::uint64_t, kOpcodeCount> micro_ops{};
   double arithmetic_joules = 0;
 };
@@ -22,30 +72,81 @@ struct SectionWork {
 SimtBackend::SimtBackend(const BackendParameters& params)
     : gpu_(params.gpu), simt_(params.simt), energy_(params.energy) {
   specs_ = ModelledBackendSpecs("simt", "CUDA cores: warps of 32 queries, coalesced sectors, GTO issue", gpu_);
+  if (simt_.isa == SimtIsa::kSass && !SimtInstructionTable::Shipped().has_sass())
+    throw std::invalid_argument("simt.isa = sass, but the instruction table holds no SASS counts");
 }
 
-std::uint64_t SimtBackend::SectionInstructions(const std::vector<MicroOp>& ops, bool loop) const {
-  std::uint64_t n = loop ? static_cast<std::uint64_t>(simt_.loop_branch_instructions) : 0;
+SimtClassCounts SimtBackend::FallbackInstructions(const std::vector<MicroOp>& ops, bool loop, bool fp64) const {
+  SimtClassCounts n{};
+  if (loop) n[static_cast<int>(SimtClass::kBranch)] += static_cast<std::uint64_t>(simt_.loop_branch_instructions);
+  auto add = [&](Opcode op, int width) {
+    n[static_cast<int>(FallbackClass(op, fp64))] +=
+        static_cast<std::uint64_t>(simt_.instructions_per_element[static_cast<int>(op)] * width);
+  };
   for (const MicroOp& op : ops) {
     if (op.opcode == Opcode::kLoad) {
-      n += static_cast<std::uint64_t>(simt_.instructions_per_load);
+      n[static_cast<int>(SimtClass::kLoad)] += 1;
+      n[static_cast<int>(SimtClass::kInt)] += static_cast<std::uint64_t>(simt_.instructions_per_load - 1);
     } else if (InfoOf(op.opcode).sact) {
-      for (const ExpandedOp& e : TtaPlusExpansion(op.opcode))
-        n += static_cast<std::uint64_t>(simt_.instructions_per_element[static_cast<int>(e.opcode)] * e.width);
+      for (const ExpandedOp& e : TtaPlusExpansion(op.opcode)) add(e.opcode, e.width);
     } else {
-      n += static_cast<std::uint64_t>(simt_.instructions_per_element[static_cast<int>(op.opcode)] * op.width);
+      add(op.opcode, op.width);
     }
   }
   return n;
 }
 
-BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
-  const int resident = simt_.ResidentWarps(gpu_);
-  const auto memory = context.Memory(gpu_, AccessPattern{resident, true});
+SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const {
+  SimtInstructionMix mix;
+  mix.fp64 = simt_.precision == SimtPrecision::kHost ? record.scalar_bytes != 4
+                                                     : simt_.precision == SimtPrecision::kFp64;
+  const char* precision = mix.fp64 ? "fp64" : "fp32";
+  const bool shipped_program = record.program && record.program == ShippedStepProgram(record.step_kind);
+  const bool beam_leaf = record.leaf_kind == LeafProgramKind::kBeamModel && record.leaf &&
+                         record.leaf == ShippedLeafProgram(LeafProgramKind::kBeamModel);
+  const SimtInstructionTable& table = SimtInstructionTable::Shipped();
+  const CompiledKernel* kernel =
+      shipped_program ? table.Find(ShippedProgramFile(record.step_kind), mix.fp64,
+                                   beam_leaf ? simt_.beam_leaf : SimtBeamLeaf::kNone)
+                      : nullptr;
+  const bool leaf_compiled = kernel && (beam_leaf || !record.leaf);
+  if (!kernel && shipped_program && beam_leaf)  // a program compiled without the leaf: the leaf falls back
+    kernel = table.Find(ShippedProgramFile(record.step_kind), mix.fp64, SimtBeamLeaf::kNone);
 
-  auto work_of = [&](const std::vector<MicroOp>& ops, bool loop) {
+  if (kernel) {
+    const CompiledSections& s = SectionsOf(*kernel, simt_.isa);
+    mix.once = s.prologue;
+    mix.once += s.epilogue;
+    mix.pass = s.loop;
+    mix.registers = kernel->registers;
+    mix.compiled = true;
+    mix.source = std::string("compiled ") + kernel->name + " (" + (simt_.isa == SimtIsa::kSass ? "SASS" : "PTX") +
+                 ", " + table.nvcc().substr(table.nvcc().rfind(' ') + 1) + ", " + table.arch() + ")";
+  } else {
+    const MicroProgram& program = *record.program;
+    mix.once = FallbackInstructions(program.section(ProgramSection::kPrologue), false, mix.fp64);
+    mix.once += FallbackInstructions(program.section(ProgramSection::kEpilogue), false, mix.fp64);
+    mix.pass = FallbackInstructions(program.section(ProgramSection::kLoop), true, mix.fp64);
+    mix.registers = simt_.fallback_registers_per_thread;
+    mix.source = std::string("per-op fallback (") + precision + "): program '" + program.name() +
+                 "' has no compiled kernel";
+  }
+  if (record.leaf && !leaf_compiled) {
+    mix.once += FallbackInstructions(record.leaf->section(ProgramSection::kEpilogue), false, mix.fp64);
+    if (kernel) mix.source += "; leaf '" + record.leaf->name() + "' by the per-op fallback";
+  }
+  if (simt_.registers_per_thread > 0) mix.registers = simt_.registers_per_thread;
+  return mix;
+}
+
+BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+  const SimtInstructionMix mix = InstructionMix(record);
+  const int resident = simt_.ResidentWarps(gpu_, mix.registers);
+  const auto memory = context.Memory(gpu_, AccessPattern{resident, true});
+  const auto timing = Timings(simt_);
+
+  auto work_of = [&](const std::vector<MicroOp>& ops) {
     SectionWork w;
-    w.instructions = SectionInstructions(ops, loop);
     for (const MicroOp& op : ops) {
       ++w.micro_ops[static_cast<int>(op.opcode)];
       w.arithmetic_joules += ArithmeticEnergyJoules(ContentOf(op.opcode, op.width), energy_);
@@ -53,41 +154,46 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
     return w;
   };
   const MicroProgram& program = *record.program;
-  SectionWork once = work_of(program.section(ProgramSection::kPrologue), false);
+  SectionWork once = work_of(program.section(ProgramSection::kPrologue));
   for (const std::vector<MicroOp>* ops :
        {&program.section(ProgramSection::kEpilogue),
         record.leaf ? &record.leaf->section(ProgramSection::kEpilogue) : nullptr}) {
     if (!ops) continue;
-    const SectionWork w = work_of(*ops, false);
-    once.instructions += w.instructions;
+    const SectionWork w = work_of(*ops);
     for (int i = 0; i < kOpcodeCount; ++i) once.micro_ops[i] += w.micro_ops[i];
     once.arithmetic_joules += w.arithmetic_joules;
   }
-  const SectionWork pass = work_of(program.section(ProgramSection::kLoop), true);
+  const SectionWork pass = work_of(program.section(ProgramSection::kLoop));
+
+  const std::uint64_t once_total = Total(mix.once), pass_total = Total(mix.pass);
+  std::uint64_t once_latency = 0, pass_latency = 0;
+  for (int c = 0; c < kSimtClassCount; ++c) {
+    once_latency += mix.once[c] * timing[c].latency;
+    pass_latency += mix.pass[c] * timing[c].latency;
+  }
 
   const std::size_t n = record.query_count();
   const std::size_t warps = WarpCount(record, gpu_);
   std::vector<std::vector<std::uint64_t>> sm_latencies(gpu_.sms);
-  std::vector<std::uint64_t> sm_instructions(gpu_.sms, 0);
+  std::vector<SimtClassCounts> sm_classes(gpu_.sms, SimtClassCounts{});
   std::uint64_t warp_instructions = 0, thread_instructions = 0;
   for (std::size_t w = 0; w < warps; ++w) {
     const std::size_t lo = w * gpu_.warp_size, hi = std::min(n, lo + gpu_.warp_size);
     std::uint64_t steps = 0;
     for (std::size_t q = lo; q < hi; ++q) steps = std::max<std::uint64_t>(steps, record.nodes(q));
     const std::uint64_t lane_nodes = record.fetch_offsets[hi] - record.fetch_offsets[lo];
-    const std::uint64_t issued = once.instructions + steps * pass.instructions;
-    warp_instructions += issued;
-    thread_instructions += (hi - lo) * once.instructions + lane_nodes * pass.instructions;
+    warp_instructions += once_total + steps * pass_total;
+    thread_instructions += (hi - lo) * once_total + lane_nodes * pass_total;
     const int sm = SmOfWarp(w, gpu_);
-    sm_instructions[sm] += issued;
-    sm_latencies[sm].push_back(issued * static_cast<std::uint64_t>(simt_.dependent_instruction_latency_cycles) +
-                               memory->warp_memory_cycles[w]);
+    for (int c = 0; c < kSimtClassCount; ++c) sm_classes[sm][c] += mix.once[c] + steps * mix.pass[c];
+    sm_latencies[sm].push_back(once_latency + steps * pass_latency + memory->warp_memory_cycles[w]);
   }
 
   BatchCost cost = ModelledBatchCost(specs_.name, record, gpu_, *memory);
   std::uint64_t busiest = 0;
-  const std::uint64_t issue_rate =
-      static_cast<std::uint64_t>(simt_.schedulers_per_sm) * simt_.issue_per_scheduler_per_cycle;
+  const std::uint64_t schedulers = static_cast<std::uint64_t>(simt_.schedulers_per_sm);
+  const std::uint64_t issue_rate = schedulers * static_cast<std::uint64_t>(simt_.issue_per_scheduler_per_cycle);
+  const std::uint64_t fp64_units = static_cast<std::uint64_t>(std::max(1, simt_.fp64_units_per_scheduler));
   for (int sm = 0; sm < gpu_.sms; ++sm) {
     std::uint64_t cycles = Makespan(sm_latencies[sm], resident);
     std::string bound = "latency (resident warps)";
@@ -97,14 +203,13 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
         bound = what;
       }
     };
-    // Every instruction takes an issue slot; the ALU of each scheduler takes
-    // a new warp instruction every alu_initiation_cycles. Loads and branches
-    // use other units, but they are a minority of these loop bodies, so all
-    // instructions are charged to the ALU (slightly pessimistic).
-    consider(std::max(CeilDiv(sm_instructions[sm], issue_rate),
-                      CeilDiv(sm_instructions[sm] * static_cast<std::uint64_t>(simt_.alu_initiation_cycles),
-                              static_cast<std::uint64_t>(simt_.schedulers_per_sm))),
-             "issue");
+    // Every instruction takes an issue slot; each scheduler's pipe takes a
+    // new warp instruction of a class every initiation interval of it.
+    consider(CeilDiv(Total(sm_classes[sm]), issue_rate), "issue");
+    std::array<std::uint64_t, kPipeCount> busy{};
+    for (int c = 0; c < kSimtClassCount; ++c) busy[timing[c].pipe] += sm_classes[sm][c] * timing[c].initiation;
+    for (int p = 0; p < kPipeCount; ++p)
+      consider(CeilDiv(busy[p], schedulers * (p == kFp64Pipe ? fp64_units : 1)), kPipeBound[p]);
     consider(CeilDiv(memory->sm_sector_requests[sm], static_cast<std::uint64_t>(simt_.l1_sectors_per_cycle)),
              "L1 bandwidth");
     if (cycles >= busiest) {

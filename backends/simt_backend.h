@@ -2,12 +2,17 @@
 // The CUDA-core baseline: one query per thread, warps of 32 consecutive
 // queries, 8 SMs with up to 32 resident warps each, GTO issue (paper).
 //
-// Instructions: each micro-op of the kernel's program (robocore/programs)
-// becomes SimtParams::instructions_per_element[op] x width scalar
-// instructions (SACT micro-ops through their TTA+ expansion, a LOAD
-// instructions_per_load), plus loop_branch_instructions per loop pass. The
-// programs are written from the C++ kernels, so the counts follow the code
-// the GPU would run; the per-op table is an assumption about its SASS.
+// Instructions: what one thread of the kernel issues, by class, from the
+// compiled CUDA kernel of the record's step program (backends/cuda/,
+// simt_instruction_table.h): its prologue and epilogue once per query (the
+// kernel with the beam leaf compiled in when the record has that leaf: by
+// default the max-log leaf of beam_leaf.asm that the RT units price,
+// simt.beam_leaf = exact for the host's exact density), its loop once per
+// node. The precision and ISA are parameters
+// (simt.precision: host follows the kernel that ran; simt.isa: PTX as the
+// artifact simulates, or SASS). A program with no compiled kernel (a
+// ConfigRoboCore program, or a custom leaf) is counted by the per-op
+// fallback of SimtParams, and InstructionMix says so.
 //
 // A warp runs until its slowest lane: it issues the whole loop body on each
 // of its max-lane-nodes steps; a lane is active in step k while it has more
@@ -19,30 +24,52 @@
 // warps); the step waits for its slowest sector.
 //
 // Time, per SM (first-order latency hiding): the largest of
-//   issue     warp instructions / (4 schedulers x 1 per cycle), and x 2
-//             cycles each on the schedulers' ALUs (artifact initiation
-//             interval of FP/INT add, mul, mad)
+//   issue     warp instructions / (4 schedulers x 1 per cycle)
+//   pipes     per pipe, the sum over its classes of warp instructions x
+//             the class's initiation interval, over 4 schedulers: FP32 pipe
+//             (fp32, other, branch), INT pipe (int), SFU pipe (sfu, the
+//             divisions, and fp64 while simt.fp64_units_per_scheduler is 0,
+//             as in the artifact), FP64 pipe (fp64 otherwise), LD/ST pipe
+//             (loads and stores, one per cycle)
 //   L1        sector requests / l1_sectors_per_cycle
 //   latency   list-schedule makespan of the warps' latencies over the
-//             resident slots; a warp's latency = its instructions x the
-//             dependent-instruction latency (the loop body is one
-//             dependent chain) + its steps' memory latencies
+//             resident slots (registers per thread from ptxas); a warp's
+//             latency = the sum over its instructions of their class
+//             latency (the loop body is one dependent chain; loads and
+//             stores add none, the memory replay times the loads) + its
+//             steps' memory latencies
 // and the kernel takes the launch (artifact: 5000 cycles) plus the slowest
-// SM, or DRAM bandwidth if slower. Left out: scoreboard stalls within a
-// chain beyond the fixed latency, register-bank conflicts, instruction
-// cache misses, divergence reconvergence cost, and partial overlap between
-// the bounds (max() is optimistic when they are close).
+// SM, or DRAM bandwidth if slower. Left out: scoreboard stalls beyond the
+// fixed class latencies, dual issue, register-bank conflicts, instruction
+// cache misses, divergence reconvergence cost, the out-of-line slow paths of
+// SASS division and square root, and partial overlap between the bounds
+// (max() is optimistic when they are close).
+#include <string>
+
 #include "backends/backend.h"
+#include "backends/simt_instruction_table.h"
 
 namespace rc {
+
+// What one thread of a record's kernel issues.
+struct SimtInstructionMix {
+  SimtClassCounts once{};  // prologue + epilogue (+ leaf): once per query
+  SimtClassCounts pass{};  // one loop pass: once per node
+  int registers = 0;       // per thread
+  bool fp64 = false;       // the precision priced
+  bool compiled = false;   // false: the per-op fallback (no compiled kernel)
+  std::string source;      // where the counts come from, for reports and tests
+};
 
 class SimtBackend final : public Backend {
  public:
   explicit SimtBackend(const BackendParameters& params);
   const BackendSpecs& specs() const override { return specs_; }
 
-  // Scalar instructions of one execution of `ops` (loop: one pass).
-  std::uint64_t SectionInstructions(const std::vector<MicroOp>& ops, bool loop) const;
+  SimtInstructionMix InstructionMix(const KernelRecord& record) const;
+  // The per-op fallback's instructions for one execution of `ops` (loop:
+  // one pass, with its branches).
+  SimtClassCounts FallbackInstructions(const std::vector<MicroOp>& ops, bool loop, bool fp64) const;
 
  protected:
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;

@@ -45,6 +45,7 @@ void KernelRecord::Validate() const {
   if (!program || !program->has_loop()) fail("no step program with a loop");
   if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone))
     fail("leaf program and leaf kind disagree");
+  if (scalar_bytes != 4 && scalar_bytes != 8) fail("scalar_bytes must be 4 (float) or 8 (double)");
   if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
   if (exits_per_query() ? (last_exits.size() != query_count() || !node_exits.empty())
                         : node_exits.size() != fetch_offsets.back())

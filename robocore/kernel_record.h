@@ -84,6 +84,11 @@ struct KernelRecord {
 
   std::vector<MemoryRegion> regions;  // every region a fetch may address
   std::uint32_t node_bytes = 1;       // bytes of one fetched node (one kind per kernel)
+  // Bytes of the floating-point scalar the host kernel computed in: 8
+  // (double: the ray casters, the ball query, MoveBot's and CarriBot's
+  // collision checks) or 4 (a float collision kernel). The SIMT model prices
+  // the CUDA kernel of that precision by default (simt.precision = host).
+  std::uint8_t scalar_bytes = 8;
 
   std::vector<std::uint64_t> fetch_offsets{0};  // size queries + 1
   // The RETURN_IF that fired in each node's pass, or kNoExit: per fetch in

@@ -13,6 +13,7 @@ KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::u
   probe.leaf = t.leaf;
   probe.regions = t.regions;
   probe.node_bytes = t.node_bytes;
+  probe.scalar_bytes = t.scalar_bytes;
   const MemoryRegion& region = t.regions.at(0);
   const std::uint64_t elements = region.elements > 0 ? region.elements : 1;
   probe.address_sample = sample;

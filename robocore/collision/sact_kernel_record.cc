@@ -30,7 +30,10 @@ KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const Micr
     }
     builder.AddQuery(addresses, exits);
   }
-  return builder.Build();
+  KernelRecord record = builder.Build();
+  record.scalar_bytes = batch.scalar_bytes;
+  record.Validate();
+  return record;
 }
 
 }  // namespace

@@ -78,6 +78,7 @@ SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>& tree, const std::
   batch.robot_model = CollisionRobotModel::kSpheres;
   batch.base_address = base_address;
   batch.node_bytes = tree.node_bytes();
+  batch.scalar_bytes = sizeof(Scalar);
   batch.node_count = tree.nodes().size();
   batch.outcomes.reserve(obbs.size() * spheres_per_obb);
   out.obb_collides.reserve(obbs.size());

@@ -44,6 +44,7 @@ CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<O
   CollisionBatch batch;
   batch.base_address = base_address;
   batch.node_bytes = tree.node_bytes();
+  batch.scalar_bytes = sizeof(Scalar);
   batch.node_count = tree.nodes().size();
   batch.sphere_pretests = options.sact.sphere_pretests;
   batch.outcomes.reserve(obbs.size());

@@ -54,6 +54,7 @@ struct CollisionBatch {
   std::vector<NodeVisit> visits;
   std::uint64_t base_address = kDefaultTreeBase;  // bytes
   std::uint32_t node_bytes = 0;                   // bytes per node fetch
+  std::uint8_t scalar_bytes = 8;                  // sizeof(Scalar) of the kernel that ran
   std::uint64_t node_count = 0;                   // nodes in the array
   bool sphere_pretests = false;
 

@@ -47,11 +47,15 @@ TEST(SimtCost, OneWarpWithKnownLaneStepCounts) {
   EXPECT_EQ(c.memory.sector_requests, 4u);
   EXPECT_EQ(c.memory.l1_hits, 3u);
   EXPECT_EQ(c.memory.dram_accesses, 1u);
-  // Latency: 40 instructions x 4 cycles + 227 + 3 x 20 = 447; issue (10)
-  // and L1 (1) bounds are lower. Plus the 5000-cycle launch.
-  EXPECT_EQ(c.cycles, 5000u + 447u);
+  // A custom program has no compiled kernel: the per-op fallback gives the
+  // pass's classes (double precision, the record's default): LOAD = 1 load
+  // (no latency beyond the memory's) + 5 int (4 cycles each), ADD.1 1 FP64
+  // (8), RETURN_IF and the 2 loop branches 3 x 1 cycle: 31 cycles a pass.
+  // Latency: 4 steps x 31 + 227 + 3 x 20 = 411; issue (10) and the pipes'
+  // and L1's bounds are lower. Plus the 5000-cycle launch.
+  EXPECT_EQ(c.cycles, 5000u + 411u);
   EXPECT_EQ(c.bound, "latency (resident warps)");
-  EXPECT_DOUBLE_EQ(c.seconds, 5447.0 / 1365e6);
+  EXPECT_DOUBLE_EQ(c.seconds, 5411.0 / 1365e6);
   // Energy (pJ): arithmetic 80 x (0.9 + 0.1); icache 40 x 20; registers
   // 800 x 1.5 x 10; L1 4 x 4 x 20; L2 1 x 4 x 100; DRAM 1 x 4 x 1950.
   EXPECT_NEAR(c.energy_joules, (80 + 800 + 12000 + 320 + 400 + 7800) * 1e-12, 1e-15);

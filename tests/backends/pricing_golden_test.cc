@@ -132,10 +132,10 @@ void Check(const GoldenCase& golden, const KernelRecord& record, const BackendPa
 
 TEST(PricingGolden, DdaOnAGridLargerThanTheL1) {
   Check({"dda 400x300", {
-    "simt q=5400 n=150802 cyc=50102 launch=5000 e=0x1.1c91a911210a3p-13"
-    " s=0x1.33e6e04128116p-15 eff=0x1.379000b38840ep-2 mem=77022/66693/10329/6652/3677"
+    "simt q=5400 n=150802 cyc=46008 launch=5000 e=0x1.40b22470babb3p-13"
+    " s=0x1.1abdff907a445p-15 eff=0x1.46a8aff5d3811p-2 mem=77022/66693/10329/6652/3677"
     " ops=317804,156202,156202,10800,770210,323204,5400,0,0,0,0,0,0,161602,457806,0,0,150802,"
-    "5400,301604,150802, pred=0 hops=0 ctrl=0 push=150802 wi=554857 ti=5402270 bound=latency"
+    "5400,301604,150802, pred=0 hops=0 ctrl=0 push=150802 wi=631683 ti=6448278 bound=latency"
     " (resident warps) l1=lru (fully associative) l2=cold (footprint fits: compulsory misses"
     " only)",
     "ttaplus q=5400 n=150802 cyc=78550 launch=5036 e=0x1.cb4ef8d4021dap-14"
@@ -167,10 +167,10 @@ TEST(PricingGolden, MarchWithASetAssociativeL2) {
   small_l2.gpu.l2_bytes = 32768;
   small_l2.gpu.l1_bytes = 8192;
   Check({"march 400x300, L2 32 KiB", {
-    "simt q=2560 n=69849 cyc=38911 launch=5000 e=0x1.dc4132b5a5c0fp-14"
-    " s=0x1.de41502ad57d7p-16 eff=0x1.52cee585673adp-2 mem=40447/10214/30233/22017/8216"
+    "simt q=2560 n=69849 cyc=103028 launch=5000 e=0x1.ffc78cbbdd66cp-14"
+    " s=0x1.3c944d63b44cep-14 eff=0x1.61c875aac8a9cp-2 mem=40447/10214/30233/22017/8216"
     " ops=144818,5120,2560,5120,284516,152498,0,0,0,0,0,0,0,5120,212107,0,0,69849,2560,139698"
-    ",69849, pred=0 hops=0 ctrl=0 push=69849 wi=182717 ti=1934563 bound=latency (resident"
+    ",69849, pred=0 hops=0 ctrl=0 push=69849 wi=221392 ti=2447648 bound=latency (resident"
     " warps) l1=lru (fully associative) l2=lru (set associative)",
     "ttaplus q=2560 n=69849 cyc=57805 launch=5031 e=0x1.6d4a3f3cd9d49p-14"
     " s=0x1.633d9b26c89fdp-15 eff=nan mem=69849/59925/9924/2476/7448"
@@ -197,10 +197,10 @@ TEST(PricingGolden, MarchWithASetAssociativeL2) {
 
 TEST(PricingGolden, RmOnAGridThatFitsTheL1) {
   Check({"rm 120x100", {
-    "simt q=2250 n=41082 cyc=51608 launch=5000 e=0x1.2b0c40c14f3dfp-14"
-    " s=0x1.3d28300816d64p-15 eff=0x1.3f70db6bea77ep-2 mem=24678/18131/6547/5051/1496"
+    "simt q=2250 n=41082 cyc=126904 launch=5000 e=0x1.790724907fb1ep-14"
+    " s=0x1.85f1bcf096768p-14 eff=0x1.49b750cbbbfdcp-2 mem=24678/18131/6547/5051/1496"
     " ops=253242,168828,84414,45582,335406,337656,2250,0,0,0,0,0,0,209910,207660,0,0,41082,22"
-    "50,82164,41082, pred=0 hops=0 ctrl=0 push=41082 wi=301943 ti=3014154 bound=latency"
+    "50,82164,41082, pred=0 hops=0 ctrl=0 push=41082 wi=400122 ti=4122708 bound=latency"
     " (resident warps) l1=cold (footprint fits: compulsory misses only) l2=cold (footprint"
     " fits: compulsory misses only)",
     "ttaplus q=2250 n=41082 cyc=45212 launch=5061 e=0x1.04119925eefb7p-14"
@@ -233,12 +233,12 @@ TEST(PricingGolden, RmOnAGridThatFitsTheL1) {
 // Enough warps per SM that throughput bounds (issue, OP units) can win.
 TEST(PricingGolden, MarchManyRaysOnAGridThatFitsTheL1) {
   Check({"march 250x250, 200 x 180 rays", {
-    "simt q=36000 n=945494 cyc=152614 launch=5000 e=0x1.08e62821d6a65p-11"
-    " s=0x1.d4f1d7a06ae75p-14 eff=0x1.7979b1e68187p-2 mem=331041/315833/15208/13254/1954"
+    "simt q=36000 n=945494 cyc=768710 launch=5000 e=0x1.4539a4fd72b98p-11"
+    " s=0x1.2741b8acb453dp-11 eff=0x1.89c216e00a293p-2 mem=331041/315833/15208/13254/1954"
     " ops=1962988,72000,36000,72000,3853976,2070988,0,0,0,0,0,0,0,72000,2872482,0,0,945494,36"
-    "000,1890988,945494, pred=0 hops=0 ctrl=0 push=945494 wi=2222118 ti=26212338 bound=issue"
-    " l1=cold (footprint fits: compulsory misses only) l2=cold (footprint fits: compulsory"
-    " misses only)",
+    "000,1890988,945494, pred=0 hops=0 ctrl=0 push=945494 wi=2701663 ti=33243808 bound=SFU"
+    " pipe l1=cold (footprint fits: compulsory misses only) l2=cold (footprint fits:"
+    " compulsory misses only)",
     "ttaplus q=36000 n=945494 cyc=174267 launch=5031 e=0x1.7a51a9da54525p-12"
     " s=0x1.0bbd4e6f88cfep-13 eff=nan mem=945494/930286/15208/13254/1954"
     " ops=1962988,72000,36000,72000,3853976,2070988,0,0,0,0,0,0,0,72000,2872482,0,0,945494,36"
@@ -283,11 +283,12 @@ TEST(PricingGolden, WeanDeliBotUpdate) {
   }
   const std::vector<std::vector<std::string>> expected = {
     {
-    "simt q=90000 n=2123645 cyc=199329 launch=5000 e=0x1.18611740b55c5p-10"
-    " s=0x1.323e7e08be52p-13 eff=0x1.4bd61c2c98386p-1 mem=546853/506162/40691/37858/2833"
+    "simt q=90000 n=2123645 cyc=1008490 launch=5000 e=0x1.5c6a2844ea4e6p-10"
+    " s=0x1.835acf857c11fp-11 eff=0x1.547ad473e316ap-1 mem=546853/506378/40475/37642/2833"
     " ops=4427290,180000,90000,180000,8674580,4697290,0,0,0,0,0,0,0,180000,6460935,0,0,212364"
-    "5,90000,4247290,2123645, pred=0 hops=0 ctrl=0 push=2123645 wi=2847110 ti=59048415"
-    " bound=issue l1=lru (fully associative) l2=cold (footprint fits: compulsory misses only)",
+    "5,90000,4247290,2123645, pred=0 hops=0 ctrl=0 push=2123645 wi=3544487 ti=75426640"
+    " bound=SFU pipe l1=lru (fully associative) l2=cold (footprint fits: compulsory misses"
+    " only)",
     "ttaplus q=90000 n=2123645 cyc=303938 launch=5031 e=0x1.a646b0b4a59e4p-11"
     " s=0x1.d2f67843961d9p-13 eff=nan mem=2123645/2083102/40543/37710/2833"
     " ops=4427290,180000,90000,180000,8674580,4697290,0,0,0,0,0,0,0,180000,6460935,0,0,212364"
@@ -311,11 +312,11 @@ TEST(PricingGolden, WeanDeliBotUpdate) {
     " requests l1=lru (fully associative) l2=cold (footprint fits: compulsory misses only)",
     },
     {
-    "simt q=90000 n=2596476 cyc=310766 launch=5000 e=0x1.b5377ed1bf391p-10"
-    " s=0x1.dd74011852237p-13 eff=0x1.4ac3cd5b8acdep-1 mem=837880/797974/39906/37096/2810"
+    "simt q=90000 n=2596476 cyc=182340 launch=5000 e=0x1.fefb8d1cfd434p-10"
+    " s=0x1.182483acbedap-13 eff=0x1.527e47dfd7ca9p-1 mem=837880/797565/40315/37505/2810"
     " ops=5462952,2686476,2686476,180000,13252380,5552952,90000,0,0,0,0,0,0,2776476,7879428,0"
-    ",0,2596476,90000,5192952,2596476, pred=0 hops=0 ctrl=0 push=2596476 wi=4496084"
-    " ti=92946660 bound=issue l1=lru (fully associative) l2=cold (footprint fits: compulsory"
+    ",0,2596476,90000,5192952,2596476, pred=0 hops=0 ctrl=0 push=2596476 wi=5233194"
+    " ti=110712564 bound=issue l1=lru (fully associative) l2=cold (footprint fits: compulsory"
     " misses only)",
     "ttaplus q=90000 n=2596476 cyc=462282 launch=5036 e=0x1.63950c9905c91p-10"
     " s=0x1.631e88cf2394ap-12 eff=nan mem=2596476/2556617/39859/37049/2810"
@@ -342,12 +343,12 @@ TEST(PricingGolden, WeanDeliBotUpdate) {
     " only)",
     },
     {
-    "simt q=90000 n=1013904 cyc=289480 launch=5000 e=0x1.79a4056c20906p-10"
-    " s=0x1.bcbff6ec825c5p-13 eff=0x1.1547ecba5fdb8p-1 mem=368800/271995/96805/88957/7848"
+    "simt q=90000 n=1013904 cyc=723820 launch=5000 e=0x1.f9c766d23a734p-10"
+    " s=0x1.1603c6f6b8a81p-11 eff=0x1.1e99c53b69ba7p-1 mem=368800/271634/97166/89318/7848"
     " ops=6353424,4235616,2117808,1193904,8381232,8471232,90000,0,0,0,0,0,0,5249520,5159520,0"
-    ",0,1013904,90000,2027808,1013904, pred=0 hops=0 ctrl=0 push=1013904 wi=4342229"
-    " ti=75251088 bound=issue l1=lru (fully associative) l2=cold (footprint fits: compulsory"
-    " misses only)",
+    ",0,1013904,90000,2027808,1013904, pred=0 hops=0 ctrl=0 push=1013904 wi=5903516"
+    " ti=105746976 bound=SFU pipe l1=lru (fully associative) l2=cold (footprint fits:"
+    " compulsory misses only)",
     "ttaplus q=90000 n=1013904 cyc=353997 launch=5061 e=0x1.54887f949ea2cp-10"
     " s=0x1.0fefa35fdb74p-12 eff=nan mem=1013904/915340/98564/90716/7848"
     " ops=6353424,4235616,2117808,1193904,8381232,8471232,90000,0,0,0,0,0,0,5249520,5159520,0"
@@ -385,10 +386,10 @@ TEST(PricingGolden, WeanDeliBotUpdate) {
 
 TEST(PricingGolden, SactWideNodesEveryExit) {
   Check({"sact 64-byte nodes", {
-    "simt q=1000 n=5017 cyc=14171 launch=5000 e=0x1.1cef005e481bbp-14 s=0x1.5c59feb4dfd1dp-17"
-    " eff=0x1.16b8e38e38e39p-1 mem=10014/1022/8992/3216/5776"
+    "simt q=1000 n=5017 cyc=15954 launch=5000 e=0x1.1fb256f03236ep-14 s=0x1.882e667d7b851p-17"
+    " eff=0x1.2669466ce7c02p-1 mem=10014/1022/8992/3216/5776"
     " ops=0,0,0,0,0,0,0,0,0,0,5017,30102,45153,0,0,0,0,5017,0,75255,5017, pred=0 hops=0"
-    " ctrl=0 push=5017 wi=57024 ti=993366 bound=latency (resident warps) l1=lru (fully"
+    " ctrl=0 push=5017 wi=56416 ti=1038094 bound=latency (resident warps) l1=lru (fully"
     " associative) l2=cold (footprint fits: compulsory misses only)",
     "ttaplus q=1000 n=5017 cyc=15396 launch=5049 e=0x1.e7bb1923a660fp-15"
     " s=0x1.7a76e91d88d18p-17 eff=nan mem=10034/1056/8978/3202/5776"
@@ -415,10 +416,10 @@ TEST(PricingGolden, SactWideNodesEveryExit) {
   small.gpu.l1_bytes = 4096;
   small.gpu.l2_bytes = 65536;
   Check({"sact 64-byte nodes, small caches", {
-    "simt q=1000 n=5017 cyc=14171 launch=5000 e=0x1.8065b70db5f6cp-14 s=0x1.5c59feb4dfd1dp-17"
-    " eff=0x1.16b8e38e38e39p-1 mem=10014/42/9972/1206/8766"
+    "simt q=1000 n=5017 cyc=15954 launch=5000 e=0x1.83290d9fa012p-14 s=0x1.882e667d7b851p-17"
+    " eff=0x1.2669466ce7c02p-1 mem=10014/42/9972/1206/8766"
     " ops=0,0,0,0,0,0,0,0,0,0,5017,30102,45153,0,0,0,0,5017,0,75255,5017, pred=0 hops=0"
-    " ctrl=0 push=5017 wi=57024 ti=993366 bound=latency (resident warps) l1=lru (fully"
+    " ctrl=0 push=5017 wi=56416 ti=1038094 bound=latency (resident warps) l1=lru (fully"
     " associative) l2=lru (set associative)",
     "ttaplus q=1000 n=5017 cyc=15443 launch=5049 e=0x1.541f7e953465ap-14"
     " s=0x1.7b9eae664de45p-17 eff=nan mem=10034/76/9958/1290/8668"

@@ -104,7 +104,8 @@ TEST_F(CalibrationTest, ReportHasEveryRowFiniteWithAReason) {
 // written down.
 TEST_F(CalibrationTest, EveryOursMovesWithTheParametersItIsPricedFrom) {
   const std::map<std::string, std::vector<std::string>> moves = {
-      {R"({"simt": {"alu_initiation_cycles": 6, "instructions_per_element": {"DOT": 4, "CMP": 3}}})",
+      {R"({"simt": {"isa": "sass", "fp32_latency_cycles": 12, "fp32_initiation_cycles": 6, "fp64_latency_cycles": 24,
+                    "fp64_initiation_cycles": 12, "other_latency_cycles": 3, "other_initiation_cycles": 3}})",
        {"DeliBot MCL (march), RoboCore vs CUDA", "DeliBot MCL (dda), RoboCore vs CUDA",
         "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres}},
       {R"({"robocore": {"cmp_cycles": 4, "return_cycles": 3, "box_normal_cycles": 20, "edge_edge_cycles": 18,

@@ -33,13 +33,16 @@ double Advantage(const Backend& high, const Backend& low, const KernelRecord& t,
 TEST(CrossoverTest, BisectionFindsTheCrossoverALinearScanFinds) {
   const OccupancyGrid grid(200, 200, 0.05);
   const KernelRecord layout = LayoutRecord(grid, RayCastMethod::kDda);
-  // The default models put the RT units behind the CUDA cores at every ray
-  // length (backends/README.md). Make SIMT's loads expensive and give the RT
+  // The default models give no single crossover on dda (with the FP64
+  // kernel, RoboCore is slightly cheaper at one node per ray and SIMT at
+  // longer rays; docs/simt_instruction_counts.md). Price the FP32 kernel,
+  // make SIMT's loads expensive (one L1 sector per cycle) and give the RT
   // unit more OP units and L1 ports, so that a single crossover exists, as
   // the paper's DeliBot has: SIMT wins short rays (the RT unit's program
   // configuration overhead), RoboCore long ones.
   BackendParameters params;
-  params.simt.instructions_per_load = 60;
+  params.simt.precision = SimtPrecision::kFp32;
+  params.simt.l1_sectors_per_cycle = 1;
   params.robocore.unit.intersection_unit_sets = 8;
   params.robocore.unit.sector_requests_per_cycle = 4;
   const auto high = Backend::Create("robocore", params);
@@ -62,7 +65,11 @@ TEST(CrossoverTest, BisectionFindsTheCrossoverALinearScanFinds) {
 TEST(CrossoverTest, WithoutACrossingTheThresholdPolicyStaysOnTheCheaperBackend) {
   const OccupancyGrid grid(200, 200, 0.05);
   const KernelRecord layout = LayoutRecord(grid, RayCastMethod::kDda);
-  const BackendParameters params;  // defaults: SIMT cheaper at every length
+  // The FP32 SIMT kernel is cheaper than RoboCore at every length here (the
+  // FP64 kernel's two prologue divisions make RoboCore 2% cheaper at one
+  // node per ray, so the defaults have no clean "no crossing" case).
+  BackendParameters params;
+  params.simt.precision = SimtPrecision::kFp32;
   const auto high = Backend::Create("robocore", params);
   const auto low = Backend::Create("simt", params);
   const CrossoverResult found = DeriveCrossoverThreshold(*high, *low, layout, 4096, 256);
