@@ -1,6 +1,7 @@
 #include "backends/scheduler/backend_ledger.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace rc {
@@ -14,6 +15,24 @@ OnlineScheduler MakeOnline(const SchedulerOptions& policy, const std::vector<std
   return OnlineScheduler(online, candidates);
 }
 
+// Every modelled backend, robocore first: the adaptive policy starts on the
+// first candidate, and before anything is measured the paper's narrative
+// (long rays in a localization's first updates) favours the traversal unit.
+std::vector<std::string> DefaultCandidates(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  const std::string first = "robocore";
+  if (std::find(names.begin(), names.end(), first) != names.end()) out.push_back(first);
+  for (const std::string& n : names)
+    if (n != first) out.push_back(n);
+  return out;
+}
+
+// An iteration's modelled cycles on the backend named `name`.
+double CyclesOf(const LedgerIteration& it, const std::string& name, const LedgerSummary& s) {
+  const auto b = static_cast<std::size_t>(std::find(s.backends.begin(), s.backends.end(), name) - s.backends.begin());
+  return static_cast<double>(it.costs.at(b).cycles);
+}
+
 // Grades the backends the policy ran (`ran`, per iteration) against the
 // oracle's choices in `s`, over the priced iterations (an iteration without
 // kernel work costs nothing on any backend).
@@ -23,9 +42,14 @@ void GradeAgainstOracle(const std::vector<LedgerIteration>& iterations, const st
   for (std::size_t i = 0; i < iterations.size(); ++i)
     if (iterations[i].priced) priced.push_back(i);
   if (priced.empty()) return;
-  std::size_t agree = 0;
-  for (std::size_t i : priced) agree += ran[i] == s.oracle_choice[i];
+  std::size_t agree = 0, equivalent = 0;
+  for (std::size_t i : priced) {
+    agree += ran[i] == s.oracle_choice[i];
+    const double mine = CyclesOf(iterations[i], ran[i], s), best = CyclesOf(iterations[i], s.oracle_choice[i], s);
+    equivalent += std::abs(mine - best) <= LedgerSummary::kEquivalentPercent / 100.0 * best;
+  }
   s.oracle_agreement_percent = 100.0 * static_cast<double>(agree) / static_cast<double>(priced.size());
+  s.oracle_equivalent_percent = 100.0 * static_cast<double>(equivalent) / static_cast<double>(priced.size());
   const std::size_t lasting = LedgerSummary::kLastingIterations;
   for (std::size_t j = 1; j < priced.size(); ++j) {
     const std::string& now = s.oracle_choice[priced[j]];
@@ -53,7 +77,7 @@ BackendLedger::BackendLedger(const BackendParameters& params, LedgerOptions opti
     backend_ptrs_.push_back(backends_.back().get());
     names_.push_back(name);
   }
-  candidates_ = options_.policy.candidates.empty() ? names_ : options_.policy.candidates;
+  candidates_ = options_.policy.candidates.empty() ? DefaultCandidates(names_) : options_.policy.candidates;
   std::vector<const std::string*> named = {&options_.policy.static_backend, &options_.policy.high_backend,
                                            &options_.policy.low_backend};
   for (const std::string& c : candidates_) named.push_back(&c);
@@ -64,7 +88,6 @@ BackendLedger::BackendLedger(const BackendParameters& params, LedgerOptions opti
   if (!(options_.switch_cost_cycles >= 0.0)) throw std::invalid_argument("the switch cost must be >= 0 cycles");
   switch_cost_cycles_ = options_.switch_cost_cycles;
   options_.policy.switch_cost_cycles = switch_cost_cycles_;
-  threshold_known_ = options_.threshold_overridden || options_.policy.kind != SchedulerKind::kThreshold;
   threshold_has_crossing_ = options_.threshold_overridden;
   online_ = MakeOnline(options_.policy, candidates_);
 }
@@ -85,15 +108,27 @@ AddressSample BackendLedger::RecordSample() const {
   return sample;
 }
 
-void BackendLedger::PrepareThreshold(const KernelRecord& template_record, std::size_t queries_per_batch,
-                                     std::uint32_t max_nodes) {
-  if (threshold_known_) return;
-  const CrossoverResult crossing = DeriveCrossoverThreshold(
-      *backends_[IndexOf(options_.policy.high_backend)], *backends_[IndexOf(options_.policy.low_backend)],
-      template_record, queries_per_batch, max_nodes, RecordSample());
-  options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
-  threshold_has_crossing_ = crossing.has_crossing;
-  threshold_known_ = true;
+void BackendLedger::Prepare(const KernelRecord& template_record, std::size_t queries_per_batch,
+                            std::uint32_t max_nodes) {
+  if (prepared_) return;
+  prepared_ = true;
+  if (options_.policy.kind == SchedulerKind::kThreshold && !options_.threshold_overridden) {
+    const CrossoverResult crossing = DeriveCrossoverThreshold(
+        *backends_[IndexOf(options_.policy.high_backend)], *backends_[IndexOf(options_.policy.low_backend)],
+        template_record, queries_per_batch, max_nodes, RecordSample());
+    options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
+    threshold_has_crossing_ = crossing.has_crossing;
+  } else if (options_.policy.kind == SchedulerKind::kAdaptive || options_.policy.kind == SchedulerKind::kOracle) {
+    const KernelRecord probe =
+        MakeUniformProbe(template_record, queries_per_batch, std::max<std::uint32_t>(1, max_nodes / 2), RecordSample());
+    std::vector<const Backend*> candidates;
+    for (std::size_t k : candidate_index_) candidates.push_back(backend_ptrs_[k]);
+    const std::vector<BatchCost> costs = PriceAll(candidates, probe);
+    std::size_t best = 0;
+    for (std::size_t k = 1; k < costs.size(); ++k)
+      if (costs[k].cycles < costs[best].cycles) best = k;
+    options_.policy.initial_backend = candidates_[best];
+  }
   online_ = MakeOnline(options_.policy, candidates_);
 }
 
@@ -104,10 +139,11 @@ const std::string& BackendLedger::BeginIteration() {
 
 void BackendLedger::AddLaunch(const KernelRecord& record) {
   if (record.query_count() == 0) return;
-  // The first priced launch derives the crossover for batches like this
-  // one. No counter was seen before it, so the policy is still on its
-  // initial choice and the fresh one PrepareThreshold makes continues there.
-  PrepareThreshold(record, record.query_count());
+  // A threshold not derived yet is derived from the first priced launch.
+  // No counter was seen before it, so the policy is still on its initial
+  // choice, where the fresh one Prepare makes continues. (The adaptive
+  // policy's first choice was made already: it stays.)
+  if (!prepared_ && options_.policy.kind == SchedulerKind::kThreshold) Prepare(record, record.query_count());
   any_sampled_ = any_sampled_ || record.sampled();
   std::vector<BatchCost> costs = PriceAll(backend_ptrs_, record);
   if (open_costs_.empty()) open_costs_ = std::move(costs);

@@ -73,7 +73,9 @@ OnlineScheduler::OnlineScheduler(SchedulerOptions options, std::vector<std::stri
       break;
     case SchedulerKind::kAdaptive:
       if (candidates_.empty()) throw std::invalid_argument("the adaptive policy needs at least one candidate");
-      current_ = candidates_.front();
+      current_ = options_.initial_backend.empty() ? candidates_.front() : options_.initial_backend;
+      if (std::find(candidates_.begin(), candidates_.end(), current_) == candidates_.end())
+        throw std::invalid_argument("the adaptive policy starts on '" + current_ + "', which is not a candidate");
       regret_.assign(candidates_.size(), 0.0);
       break;
     default:

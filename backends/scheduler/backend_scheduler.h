@@ -44,8 +44,10 @@ struct SchedulerOptions {
   SchedulerKind kind = SchedulerKind::kAdaptive;
   std::string static_backend = "robocore";
   // adaptive and oracle: the backends they choose among (empty: every
-  // modelled backend). The first one is where the adaptive policy starts.
+  // modelled backend).
   std::vector<std::string> candidates;
+  // adaptive: where it starts (empty: the first candidate).
+  std::string initial_backend;
   // threshold: the two backends and the counter's threshold.
   std::string high_backend = "robocore";   // above the threshold
   std::string low_backend = "simt";        // at or below it

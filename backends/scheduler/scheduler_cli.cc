@@ -104,10 +104,11 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
     emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
     return;
   }
-  emit("  gap to oracle %.2f%%, same choice as the oracle in %.1f%% of priced %ss, followed %ld of its %ld lasting "
-       "changes (>= %d %ss)",
-       l.gap_to_oracle_percent, l.oracle_agreement_percent, what.c_str(), l.oracle_lasting_changes_followed,
-       l.oracle_lasting_changes, LedgerSummary::kLastingIterations, what.c_str());
+  emit("  gap to oracle %.2f%%; the oracle's choice in %.1f%% of priced %ss (%.1f%% counting one within %.0f%% of "
+       "its cycles); followed %ld of its %ld lasting changes (>= %d %ss)",
+       l.gap_to_oracle_percent, l.oracle_agreement_percent, what.c_str(), l.oracle_equivalent_percent,
+       LedgerSummary::kEquivalentPercent, l.oracle_lasting_changes_followed, l.oracle_lasting_changes,
+       LedgerSummary::kLastingIterations, what.c_str());
 }
 
 nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& options) {
@@ -127,6 +128,7 @@ nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& op
           {"threshold_has_crossing", l.threshold_has_crossing},
           {"gap_to_oracle_percent", l.gap_to_oracle_percent},
           {"oracle_agreement_percent", number_or_null(l.oracle_agreement_percent)},
+          {"oracle_equivalent_percent", number_or_null(l.oracle_equivalent_percent)},
           {"oracle_lasting_changes", l.oracle_lasting_changes},
           {"oracle_lasting_changes_followed", l.oracle_lasting_changes_followed},
           {"replay_sms", l.replay_sms}};

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,8 @@ struct Case {
   RayCastMethod method;
   bool converged;
 };
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
 
 class SampledPricingTest : public ::testing::TestWithParam<Case> {};
 

@@ -78,7 +78,7 @@ TEST(CrossoverTest, WithoutACrossingTheThresholdPolicyStaysOnTheCheaperBackend) 
   LedgerOptions options;
   options.policy.kind = SchedulerKind::kThreshold;
   BackendLedger ledger(params, options);
-  ledger.PrepareThreshold(layout, 4096);
+  ledger.Prepare(layout, 4096);
   for (double npr : {-1.0, 5.0, 500.0}) EXPECT_EQ(ledger.BeginIteration(), "simt") << npr;
 }
 

@@ -98,7 +98,7 @@ CarribotResult RunCarribot(const OccupancyGrid& grid, const std::vector<Carribot
       const std::size_t batch = precomputed ? std::min(ConfigurationSpace::kDefaultMaxBatch,
                                                        grid.cell_count() * settings.planner.footprint->heading_count)
                                             : 10;
-      ledger->PrepareThreshold(LayoutRecord(*checker), batch);
+      ledger->Prepare(LayoutRecord(*checker), batch);
     }
     recorder = std::make_unique<LaunchRecorder>(*checker, ledger.get());
   }

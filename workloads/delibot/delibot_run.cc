@@ -63,8 +63,9 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
   if (price) {
     ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
     mcl_options.record_sample = ledger->RecordSample();
-    // The threshold depends on the kernel's program, its memory layout and
-    // the batch size (launch overhead is amortized over the batch), all
+    // What the policy derives before the first update (a threshold, or
+    // where to start) depends on the kernel's program, its memory layout
+    // and the batch size (launch overhead is amortized over the batch), all
     // known before the first update: record one ray for the layout.
     const RayCastScene scene(grid, settings.ray_caster);
     RayBatch one;
@@ -80,10 +81,10 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
       // samples fewer; rm fetches a subset of dda's cells).
       const auto max_nodes = static_cast<std::uint32_t>(
           std::ceil(std::sqrt(2.0) * settings.beam.max_range_m / grid.resolution_m()) + 2);
-      ledger->PrepareThreshold(layout,
-                               static_cast<std::size_t>(settings.mcl.particle_count) *
-                                   settings.mcl.beams.Count(trace.geometry.beam_count),
-                               max_nodes);
+      ledger->Prepare(layout,
+                      static_cast<std::size_t>(settings.mcl.particle_count) *
+                          settings.mcl.beams.Count(trace.geometry.beam_count),
+                      max_nodes);
     }
   }
   MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
