@@ -8,6 +8,8 @@
 #include <map>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -36,13 +38,33 @@ std::string FormatValue(double v) {
   return out.str();
 }
 
+std::string FormatRange(const ParameterSpec& spec) {
+  if (spec.min == 0 && spec.max == 0) return "";  // a choice: its unit lists the values
+  return "[" + FormatValue(spec.min) + ", " + FormatValue(spec.max) + "]";
+}
+
 struct Describer {
   std::string prefix;
   std::vector<ParameterDescription>* rows;
   template <class T>
-  void operator()(const std::string& name, const T& value, const char* unit, const char* source) {
-    rows->push_back({prefix + "." + name, FormatValue(value), unit, source});
+  void operator()(const std::string& name, const T& value, const ParameterSpec& spec) {
+    rows->push_back({prefix + "." + name, FormatValue(value), spec.unit, FormatRange(spec), spec.source});
   }
+};
+
+// The first parameter outside its declared range, if any.
+struct RangeCheck {
+  std::string prefix;
+  std::string* bad;
+  void Check(const std::string& name, double value, const ParameterSpec& spec) {
+    if (bad->empty() && !spec.Contains(value))
+      *bad = prefix + "." + name + " = " + FormatValue(value) + " is outside its range " + FormatRange(spec) + " (" +
+             spec.unit + ")";
+  }
+  void operator()(const std::string& name, int value, const ParameterSpec& spec) { Check(name, value, spec); }
+  void operator()(const std::string& name, double value, const ParameterSpec& spec) { Check(name, value, spec); }
+  template <class Choice>
+  void operator()(const std::string&, const Choice&, const ParameterSpec&) {}
 };
 
 // Flattens nested JSON objects into dotted keys: {"gpu": {"sms": 8}} ->
@@ -62,7 +84,7 @@ struct Overrider {
   std::string prefix;
   std::map<std::string, nlohmann::json>* values;
   const std::string* file;
-  void operator()(const std::string& name, int& field, const char*, const char*) {
+  void operator()(const std::string& name, int& field, const ParameterSpec&) {
     const auto it = values->find(prefix + "." + name);
     if (it == values->end()) return;
     if (!it->second.is_number_integer())
@@ -72,7 +94,7 @@ struct Overrider {
     field = static_cast<int>(v);
     values->erase(it);
   }
-  void operator()(const std::string& name, double& field, const char*, const char*) {
+  void operator()(const std::string& name, double& field, const ParameterSpec&) {
     const auto it = values->find(prefix + "." + name);
     if (it == values->end()) return;
     if (!it->second.is_number())
@@ -89,14 +111,9 @@ struct Overrider {
       throw InputError(*file, 0, it->first, std::string("expected one of ") + unit + ", got " + it->second.dump());
     values->erase(it);
   }
-  void operator()(const std::string& name, SimtPrecision& field, const char* unit, const char*) {
-    ChooseFrom(name, field, unit);
-  }
-  void operator()(const std::string& name, SimtIsa& field, const char* unit, const char*) {
-    ChooseFrom(name, field, unit);
-  }
-  void operator()(const std::string& name, SimtBeamLeaf& field, const char* unit, const char*) {
-    ChooseFrom(name, field, unit);
+  template <class Choice>
+  void operator()(const std::string& name, Choice& field, const ParameterSpec& spec) {
+    ChooseFrom(name, field, spec.unit);
   }
 };
 
@@ -117,35 +134,16 @@ double GpuParams::DramBytesPerCoreCycle() const {
 }
 
 bool GpuParams::IsValid(std::string* error) const {
-  if (sms < 1 || max_warps_per_sm < 1 || warp_size < 1 || warps_per_block < 1)
-    return Fail(error, "gpu: sms, max_warps_per_sm, warp_size and warps_per_block must be >= 1");
-  if (!(core_clock_hz > 0 && dram_clock_hz > 0)) return Fail(error, "gpu: clocks must be > 0 Hz");
   auto power_of_two = [](int v) { return v > 0 && (v & (v - 1)) == 0; };
   if (!power_of_two(sector_bytes) || !power_of_two(line_bytes) || line_bytes < sector_bytes ||
       line_bytes / sector_bytes > 8)
     return Fail(error, "gpu: sector_bytes and line_bytes must be powers of two, a line 1 to 8 sectors");
   if (l1_bytes < line_bytes || l1_bytes % line_bytes != 0)
     return Fail(error, "gpu.l1_bytes must be a positive multiple of line_bytes");
-  if (l2_ways < 1 || l2_bytes % (line_bytes * l2_ways) != 0)
+  if (l2_bytes % (line_bytes * l2_ways) != 0)
     return Fail(error, "gpu.l2_bytes must be a positive multiple of line_bytes * l2_ways");
-  if (l1_latency_cycles < 1 || l2_latency_cycles < 0 || dram_latency_dram_cycles < 0 ||
-      dram_cas_dram_cycles < 0 || kernel_launch_cycles < 0)
-    return Fail(error, "gpu: latencies must be >= 0 (L1 >= 1)");
-  if (dram_channels < 1 || dram_bus_bytes < 1 || dram_transfers_per_clock < 1)
-    return Fail(error, "gpu: DRAM channels, bus bytes and transfers must be >= 1");
   if (registers_per_sm < warp_size) return Fail(error, "gpu.registers_per_sm too small");
   return true;
-}
-
-bool EnergyParams::IsValid(std::string* error) const {
-  struct NonNegative {
-    std::string bad;
-    void operator()(const std::string& name, double value, const char*, const char*) {
-      if (!(value >= 0 && std::isfinite(value)) && bad.empty()) bad = "energy." + name + " must be >= 0";
-    }
-  } check;
-  Fields(*this, check);
-  return check.bad.empty() || Fail(error, check.bad);
 }
 
 std::array<int, kOpcodeCount> SimtParams::DefaultInstructionsPerElement() {
@@ -164,23 +162,7 @@ int SimtParams::ResidentWarps(const GpuParams& gpu, int registers) const {
 }
 
 bool SimtParams::IsValid(std::string* error) const {
-  if (schedulers_per_sm < 1 || issue_per_scheduler_per_cycle < 1 || l1_sectors_per_cycle < 1)
-    return Fail(error, "simt: schedulers, issue rate and L1 sectors per cycle must be >= 1");
-  for (int c : {fp32_initiation_cycles, fp64_initiation_cycles, int_initiation_cycles, fp32_div_initiation_cycles,
-                fp64_div_initiation_cycles, int_div_initiation_cycles, sfu_initiation_cycles, other_initiation_cycles})
-    if (c < 1) return Fail(error, "simt: every initiation interval must be >= 1 cycle");
-  for (int c : {fp32_latency_cycles, fp64_latency_cycles, int_latency_cycles, fp32_div_latency_cycles,
-                fp64_div_latency_cycles, int_div_latency_cycles, sfu_latency_cycles, other_latency_cycles})
-    if (c < 0) return Fail(error, "simt: every latency must be >= 0 cycles");
   if (beam_leaf == SimtBeamLeaf::kNone) return Fail(error, "simt.beam_leaf must be maxlog or exact");
-  if (fp64_units_per_scheduler < 0) return Fail(error, "simt.fp64_units_per_scheduler must be >= 0");
-  if (registers_per_thread < 0 || registers_per_thread > 255 || fallback_registers_per_thread < 1 ||
-      fallback_registers_per_thread > 255)
-    return Fail(error, "simt: registers per thread must be 0 (compiled) to 255; the fallback's 1 to 255");
-  if (loop_branch_instructions < 0 || instructions_per_load < 1)
-    return Fail(error, "simt: loop branch instructions must be >= 0 and instructions per load >= 1");
-  for (int n : instructions_per_element)
-    if (n < 0) return Fail(error, "simt.instructions_per_element must be >= 0");
   return true;
 }
 
@@ -222,20 +204,6 @@ bool ParseChoice(const std::string& text, SimtIsa* out) {
   return false;
 }
 
-bool RtUnitParams::IsValid(std::string* error) const {
-  if (warp_buffer_warps < 1 || intersection_unit_sets < 1 || threads_accepted_per_cycle_per_set < 1 ||
-      sector_requests_per_cycle < 1)
-    return Fail(error, "rt unit: warp buffer, unit sets, intake and request rates must be >= 1");
-  if (interconnect_hop_cycles < 0 || predicated_op_cycles < 1 || program_config_cycles_per_micro_op < 0)
-    return Fail(error, "rt unit: hop >= 0, predicated op >= 1, program config >= 0 cycles");
-  const OpUnitLatencies& l = latencies;
-  for (int c : {l.addsub_cycles, l.minmax_cycles, l.maxmin_cycles, l.cmp_cycles, l.mul_cycles,
-                l.rcp_cycles, l.pre_process_cycles, l.box_normal_cycles, l.edge_edge_cycles,
-                l.logic_cycles, l.push_cycles, l.return_cycles, l.rcp_initiation_cycles})
-    if (c < 1) return Fail(error, "rt unit: every OP-unit latency must be >= 1 cycle");
-  return true;
-}
-
 DatapathConfig TtaPlusParams::Datapath(EarlyExitMode mode) const {
   DatapathConfig c;
   c.kind = DatapathKind::kTtaPlus;
@@ -259,24 +227,21 @@ DatapathConfig RoboCoreParams::Datapath() const {
   scale(c.latencies.edge_edge_cycles);
   c.interconnect_hop_cycles = unit.interconnect_hop_cycles;
   c.predicated_op_cycles = unit.predicated_op_cycles;
-  c.sact_pipeline_stages = sact_pipeline_stages;
+  c.pre_process_initiation_cycles = pre_process_initiation_cycles;
+  c.box_normal_initiation_cycles = box_normal_initiation_cycles;
+  c.edge_edge_initiation_cycles = edge_edge_initiation_cycles;
   c.ctrl_exit_cycles = ctrl_exit_cycles;
   return c;
 }
 
-bool RoboCoreParams::IsValid(std::string* error) const {
-  if (!unit.IsValid(error)) return false;
-  if (sact_pipeline_stages < 1) return Fail(error, "robocore.sact_pipeline_stages must be >= 1");
-  if (!(sact_latency_scale > 0 && std::isfinite(sact_latency_scale)))
-    return Fail(error, "robocore.sact_latency_scale must be > 0");
-  if (ctrl_exit_cycles < 0 || decode_config_cycles_per_layout < 0)
-    return Fail(error, "robocore: CTRL and decode cycles must be >= 0");
-  return true;
-}
-
 bool BackendParameters::IsValid(std::string* error) const {
-  return gpu.IsValid(error) && energy.IsValid(error) && simt.IsValid(error) &&
-         ttaplus.unit.IsValid(error) && robocore.IsValid(error);
+  std::string bad;
+  ForEachStruct(*this, [&](const char* prefix, const auto& s, auto fields) {
+    RangeCheck check{prefix, &bad};
+    fields(s, check);
+  });
+  if (!bad.empty()) return Fail(error, bad);
+  return gpu.IsValid(error) && simt.IsValid(error);
 }
 
 std::vector<ParameterDescription> DescribeBackendParameters(const BackendParameters& p) {
@@ -290,20 +255,80 @@ std::vector<ParameterDescription> DescribeBackendParameters(const BackendParamet
 
 void PrintBackendParameters(std::ostream& out, const BackendParameters& p) {
   const auto rows = DescribeBackendParameters(p);
-  std::size_t key_width = 0, value_width = 0, unit_width = 0;
+  std::size_t key_width = 0, value_width = 0, unit_width = 0, range_width = 5;
   for (const auto& r : rows) {
     key_width = std::max(key_width, r.key.size());
     value_width = std::max(value_width, r.value.size());
     unit_width = std::max(unit_width, r.unit.size());
+    range_width = std::max(range_width, r.range.size());
   }
-  out << std::left << std::setw(static_cast<int>(key_width)) << "parameter" << "  "
-      << std::setw(static_cast<int>(value_width)) << "value" << "  "
-      << std::setw(static_cast<int>(unit_width)) << "unit" << "  source\n";
-  for (const auto& r : rows)
-    out << std::left << std::setw(static_cast<int>(key_width)) << r.key << "  "
-        << std::setw(static_cast<int>(value_width)) << r.value << "  "
-        << std::setw(static_cast<int>(unit_width)) << r.unit << "  " << r.source << "\n";
+  auto cell = [&](const std::string& text, std::size_t width) {
+    out << std::left << std::setw(static_cast<int>(width)) << text << "  ";
+  };
+  cell("parameter", key_width);
+  cell("value", value_width);
+  cell("unit", unit_width);
+  cell("range", range_width);
+  out << "source\n";
+  for (const auto& r : rows) {
+    cell(r.key, key_width);
+    cell(r.value, value_width);
+    cell(r.unit, unit_width);
+    cell(r.range, range_width);
+    out << r.source << "\n";
+  }
 }
+
+namespace {
+
+// Applies dotted-key overrides to `p` and checks the result.
+void ApplyOverrides(BackendParameters& p, std::map<std::string, nlohmann::json> values, const std::string& file_name) {
+  ForEachStruct(p, [&](const char* prefix, auto& s, auto fields) {
+    Overrider o{prefix, &values, &file_name};
+    fields(s, o);
+  });
+  if (!values.empty())
+    throw InputError(file_name, 0, values.begin()->first, "unknown parameter (rcbench backends lists them all)");
+  std::string error;
+  if (!p.IsValid(&error)) throw InputError(file_name, 0, "", error);
+}
+
+// What a sweep tries for each kind of field.
+struct VariantLister {
+  std::string prefix;
+  std::vector<ParameterVariants>* out;
+  void Add(const std::string& name, const ParameterSpec& spec, const std::string& value, std::vector<std::string> alts) {
+    out->push_back({prefix + "." + name, spec, value, std::move(alts)});
+  }
+  template <class T>
+  void Numeric(const std::string& name, T value, const ParameterSpec& spec) {
+    std::vector<std::string> alts;
+    for (double factor : {0.5, 2.0}) {
+      double v = std::clamp(static_cast<double>(value) * factor, spec.min, spec.max);
+      if (std::is_integral<T>::value) v = std::round(v);
+      const std::string text = std::is_integral<T>::value ? std::to_string(static_cast<long long>(v)) : FormatValue(v);
+      if (v != static_cast<double>(value) && std::find(alts.begin(), alts.end(), text) == alts.end())
+        alts.push_back(text);
+    }
+    Add(name, spec, FormatValue(value), std::move(alts));
+  }
+  void operator()(const std::string& name, int value, const ParameterSpec& spec) { Numeric(name, value, spec); }
+  void operator()(const std::string& name, double value, const ParameterSpec& spec) { Numeric(name, value, spec); }
+  template <class Choice>
+  void operator()(const std::string& name, Choice value, const ParameterSpec& spec) {
+    std::vector<std::string> alts;
+    for (Choice c : AllChoices(value))
+      if (c != value) alts.push_back(std::string("\"") + ToString(c) + "\"");
+    Add(name, spec, ToString(value), std::move(alts));
+  }
+  static std::vector<SimtPrecision> AllChoices(SimtPrecision) {
+    return {SimtPrecision::kHost, SimtPrecision::kFp32, SimtPrecision::kFp64};
+  }
+  static std::vector<SimtIsa> AllChoices(SimtIsa) { return {SimtIsa::kPtx, SimtIsa::kSass}; }
+  static std::vector<SimtBeamLeaf> AllChoices(SimtBeamLeaf) { return {SimtBeamLeaf::kMaxLog, SimtBeamLeaf::kExact}; }
+};
+
+}  // namespace
 
 BackendParameters ParseBackendParameters(const std::string& json_text, const std::string& file_name) {
   nlohmann::json j;
@@ -316,16 +341,35 @@ BackendParameters ParseBackendParameters(const std::string& json_text, const std
   std::map<std::string, nlohmann::json> values;
   Flatten(j, "", values);
   BackendParameters p;
-  ForEachStruct(p, [&](const char* prefix, auto& s, auto fields) {
-    Overrider o{prefix, &values, &file_name};
-    fields(s, o);
-  });
-  if (!values.empty())
-    throw InputError(file_name, 0, values.begin()->first,
-                     "unknown parameter (rcbench backends lists them all)");
-  std::string error;
-  if (!p.IsValid(&error)) throw InputError(file_name, 0, "", error);
+  ApplyOverrides(p, std::move(values), file_name);
   return p;
+}
+
+std::vector<ParameterVariants> SweepVariants(const BackendParameters& p) {
+  std::vector<ParameterVariants> out;
+  ForEachStruct(p, [&](const char* prefix, const auto& s, auto fields) {
+    VariantLister lister{prefix, &out};
+    fields(s, lister);
+  });
+  return out;
+}
+
+BackendParameters WithParameter(const BackendParameters& p, const std::string& key, const std::string& json_value) {
+  BackendParameters out = p;
+  nlohmann::json value;
+  try {
+    value = nlohmann::json::parse(json_value);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("<parameter>", 0, key, std::string("not valid JSON: ") + e.what());
+  }
+  ApplyOverrides(out, {{key, value}}, "<parameter>");
+  return out;
+}
+
+std::string ParameterValue(const BackendParameters& p, const std::string& key) {
+  for (const ParameterDescription& d : DescribeBackendParameters(p))
+    if (d.key == key) return d.value;
+  throw std::invalid_argument("no backend parameter '" + key + "'");
 }
 
 BackendParameters LoadBackendParameters(const std::string& path) {

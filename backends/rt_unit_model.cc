@@ -113,7 +113,8 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
       }
     };
     for (int u = 0; u < kOpUnitCount; ++u)
-      consider(CeilDiv(t.unit_slots[u], static_cast<std::uint64_t>(unit.intersection_unit_sets)),
+      consider(CeilDiv(t.unit_slots[u], static_cast<std::uint64_t>(unit.intersection_unit_sets) *
+                                            static_cast<std::uint64_t>(unit.op_units_per_kind_per_set)),
                std::string("op unit ") + OpUnitName(static_cast<OpUnit>(u)));
     consider(CeilDiv(memory->sm_sector_requests[sm], static_cast<std::uint64_t>(unit.sector_requests_per_cycle)),
              "L1 requests");

@@ -5,27 +5,33 @@
 // print them with units and sources, and override them from a file.
 #include <cstdint>
 
+#include "common/parameter_spec.h"
 #include "robocore/micro_op.h"
 
 namespace rc {
 
-// Latency of one micro-op in its OP unit, cycles at the core clock (1365 MHz).
+// Latency of one micro-op in its OP unit, cycles at the core clock (1365 MHz),
+// declared once each (common/parameter_spec.h). Every non-SACT unit but the
+// RCP unit takes a new micro-op every cycle.
+#define RC_OP_UNIT_LATENCIES(X)                                                                                 \
+  X(int, addsub_cycles, 3, "core cycles", 1, 64, "paper: RoboCore micro-op table (ADDSUB)")                    \
+  X(int, minmax_cycles, 2, "core cycles", 1, 64, "paper (MINMAX)")                                              \
+  X(int, maxmin_cycles, 2, "core cycles", 1, 64, "paper (MAXMIN)")                                              \
+  X(int, cmp_cycles, 1, "core cycles", 1, 64, "paper (CMP)")                                                    \
+  X(int, mul_cycles, 5, "core cycles", 1, 64, "paper (MUL)")                                                    \
+  X(int, rcp_cycles, 4, "core cycles", 1, 64, "artifact: -gpgpu_rt_intersection_latency (rcp 4)")              \
+  X(int, rcp_initiation_cycles, 3, "core cycles", 1, 64, "artifact: -gpgpu_rt_init_cycles (rcp 3)")            \
+  X(int, pre_process_cycles, 14, "core cycles", 1, 256, "paper (Pre-Process: PRE, XFORM)")                      \
+  X(int, box_normal_cycles, 12, "core cycles", 1, 256, "paper (Box-Normal: BOX, DOT)")                          \
+  X(int, edge_edge_cycles, 12, "core cycles", 1, 256, "paper (Edge x Edge: EDGE, CROSS)")                       \
+  X(int, logic_cycles, 1, "core cycles", 1, 64, "paper (LOGIC)")                                                \
+  X(int, push_cycles, 1, "core cycles", 1, 64, "paper (PUSH)")                                                  \
+  X(int, return_cycles, 1, "core cycles", 1, 64, "paper (RETURN)")
+
 struct OpUnitLatencies {
-  int addsub_cycles = 3;        // paper, RoboCore micro-op table (ADDSUB)
-  int minmax_cycles = 2;        // paper (MINMAX)
-  int maxmin_cycles = 2;        // paper (MAXMIN)
-  int cmp_cycles = 1;           // paper (CMP)
-  int mul_cycles = 5;           // paper (MUL)
-  int rcp_cycles = 4;           // artifact gpgpusim.config, -gpgpu_rt_intersection_latency (rcp)
-  int pre_process_cycles = 14;  // paper (Pre-Process: PRE, XFORM)
-  int box_normal_cycles = 12;   // paper (Box-Normal: BOX, DOT)
-  int edge_edge_cycles = 12;    // paper (Edge x Edge: EDGE, CROSS)
-  int logic_cycles = 1;         // paper (LOGIC)
-  int push_cycles = 1;          // paper (PUSH)
-  int return_cycles = 1;        // paper (RETURN)
-  // Cycles before the RCP unit takes its next micro-op (all other non-SACT
-  // units take one per cycle): artifact, -gpgpu_rt_init_cycles (rcp = 3).
-  int rcp_initiation_cycles = 3;
+  RC_OP_UNIT_LATENCIES(RC_PARAMETER_MEMBER)
+  template <class Self, class Visitor>
+  static void Fields(Self& s, Visitor& v) { RC_OP_UNIT_LATENCIES(RC_PARAMETER_FIELD) }
 };
 
 // Latency of `unit` (kFetch has none here: the caches decide it).
@@ -55,9 +61,10 @@ struct DatapathConfig {
   // Cycles a predicated-off micro-op occupies its unit: artifact,
   // rt_op_unit::cycle ("Predicated off threads take 1 cycle").
   int predicated_op_cycles = 1;
-  // RoboCore only. SACT units are 4-stage pipelines (paper), so a SACT unit
-  // takes a new micro-op every ceil(latency / stages) cycles.
-  int sact_pipeline_stages = 4;
+  // RoboCore only: cycles before each SACT unit takes its next packet.
+  int pre_process_initiation_cycles = 4;
+  int box_normal_initiation_cycles = 3;
+  int edge_edge_initiation_cycles = 3;
   // RoboCore only. Cycles CTRL adds to decide "separating axis: exit" after
   // a SACT unit. Assumption: 0, the check overlaps the unit's last stage (the
   // artifact's 194-cycle full test is exactly 14 + 6*12 + 9*12).

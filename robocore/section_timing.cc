@@ -24,8 +24,11 @@ LoweredOp Lower(Opcode opcode, int width, int line, const DatapathConfig& config
   op.unit = info.unit;
   op.latency = LatencyOf(info.unit, config.latencies);
   op.initiation = info.unit == OpUnit::kRcp ? config.latencies.rcp_initiation_cycles : 1;
-  if (info.sact)  // a 4-stage pipeline takes a new packet every latency/stages cycles
-    op.initiation = (op.latency + config.sact_pipeline_stages - 1) / config.sact_pipeline_stages;
+  if (info.sact) {  // RoboCore's pipelined SACT units (PRE, BOX, EDGE)
+    if (info.unit == OpUnit::kPreProcess) op.initiation = config.pre_process_initiation_cycles;
+    if (info.unit == OpUnit::kBoxNormal) op.initiation = config.box_normal_initiation_cycles;
+    if (info.unit == OpUnit::kEdgeEdge) op.initiation = config.edge_edge_initiation_cycles;
+  }
   op.source_line = line;
   return op;
 }

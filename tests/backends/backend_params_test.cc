@@ -112,3 +112,58 @@ TEST(BackendParameters, CreateRejectsUnknownNamesAndInvalidParameters) {
 
 }  // namespace
 }  // namespace rc
+
+namespace rc {
+namespace {
+
+// Every parameter is declared once with a unit, a range that holds its
+// default, and a source; the sweep's variants stay inside the range, and a
+// value outside it is refused naming the key.
+TEST(BackendParameters, EveryParameterHasARangeHoldingItsDefault) {
+  const BackendParameters p;
+  std::string error;
+  ASSERT_TRUE(p.IsValid(&error)) << error;
+  for (const ParameterVariants& v : SweepVariants(p)) {
+    EXPECT_NE(std::string(v.spec.unit), "") << v.key;
+    EXPECT_NE(std::string(v.spec.source), "") << v.key;
+    const bool choice = v.spec.min == 0 && v.spec.max == 0;
+    if (!choice) EXPECT_TRUE(v.spec.Contains(std::stod(v.value))) << v.key << " = " << v.value;
+    for (const std::string& alt : v.alternatives) {
+      if (!choice) EXPECT_TRUE(v.spec.Contains(std::stod(alt))) << v.key << " -> " << alt;
+      EXPECT_NE(alt, v.value) << v.key;
+    }
+  }
+}
+
+TEST(BackendParameters, WithParameterChecksLikeTheFileLoader) {
+  const BackendParameters p;
+  EXPECT_EQ(WithParameter(p, "robocore.warp_buffer_warps", "8").robocore.unit.warp_buffer_warps, 8);
+  EXPECT_EQ(WithParameter(p, "simt.precision", "\"fp32\"").simt.precision, SimtPrecision::kFp32);
+  EXPECT_EQ(ParameterValue(p, "gpu.sms"), "8");
+  try {
+    WithParameter(p, "ttaplus.warp_buffer_warps", "0");
+    ADD_FAILURE() << "a warp buffer of 0 warps was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("ttaplus.warp_buffer_warps"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(WithParameter(p, "gpu.no_such_thing", "1"), InputError);
+  EXPECT_THROW(ParseBackendParameters(R"({"energy": {"dram_pj": -1}})", "x.json"), InputError);
+}
+
+TEST(BackendParameters, TheSactInitiationAndOpUnitsArePricedParameters) {
+  // The SACT units' initiation interval and the OP units per kind were
+  // rules; now each is a declared parameter that moves the price.
+  BackendParameters p;
+  const DatapathConfig paper = p.robocore.Datapath();
+  EXPECT_EQ(paper.pre_process_initiation_cycles, 4);
+  EXPECT_EQ(paper.box_normal_initiation_cycles, 3);
+  p = WithParameter(p, "robocore.box_normal_initiation_cycles", "1");
+  EXPECT_EQ(p.robocore.Datapath().box_normal_initiation_cycles, 1);
+  const auto rows = DescribeBackendParameters(BackendParameters{});
+  bool op_units = false;
+  for (const auto& r : rows) op_units = op_units || r.key == "robocore.op_units_per_kind_per_set";
+  EXPECT_TRUE(op_units);
+}
+
+}  // namespace
+}  // namespace rc

@@ -7,12 +7,20 @@
 //                        there (scripts/plot_calibration.py); otherwise the
 //                        command prints how to make it.
 //
-//   rcbench calibrate --out out/calibration [--params FILE.json] [--data ../shared/data]
+// With --sensitivity, also every declared parameter swept one at a time
+// (backends/calibration/sensitivity.h):
+//   DIR/sensitivity.csv  ratio,parameter,value,result
+//   DIR/flips.md         the parameters whose range flips a result
+//   DIR/sensitivity.png  a tornado plot per result (scripts/plot_sensitivity.py)
+//
+//   rcbench calibrate --out out/calibration [--backend-params FILE.json] [--data ../shared/data]
+//                     [--sensitivity [--quick]]
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "backends/calibration/calibration.h"
+#include "backends/calibration/sensitivity.h"
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "robocore/shipped_programs.h"
@@ -25,6 +33,7 @@ struct CalibrateCli {
   std::string out_dir = "calibration";
   std::string params_path;
   std::string plot_script;  // empty: <source dir>/scripts/plot_calibration.py
+  bool sensitivity = false, quick = false;
   CalibrationOptions options;
 };
 
@@ -35,11 +44,46 @@ std::string ShellQuote(const std::string& s) {
   return out + "'";
 }
 
-// The source tree's script. The binary knows the source tree only through
-// the shipped programs' directory (robocore/programs, compiled in).
-std::string DefaultPlotScript() {
+// A script of the source tree. The binary knows the source tree only
+// through the shipped programs' directory (robocore/programs, compiled in).
+std::string SourceScript(const std::string& name) {
   const std::filesystem::path source = std::filesystem::path(ShippedProgramDirectory()).parent_path().parent_path();
-  return (source / "scripts" / "plot_calibration.py").string();
+  return (source / "scripts" / name).string();
+}
+
+template <class Write>
+void WriteFile(const std::string& path, Write write) {
+  AtomicFile file(path);
+  write(file.stream());
+  file.Commit();
+}
+
+// Runs a plot script on `input`, writing `png`; says where the figure is,
+// or how to make it when python3 or the script is not there.
+void Plot(const std::string& script, const std::string& input, const std::string& png) {
+  const std::string plot = "/usr/bin/python3 " + ShellQuote(script) + " " + ShellQuote(input) + " " + ShellQuote(png);
+  if (std::filesystem::exists(script) && std::filesystem::exists("/usr/bin/python3") &&
+      std::system((plot + " >/dev/null 2>&1").c_str()) == 0)
+    std::cout << "plot    " << png << "\n";
+  else
+    std::cout << "plot    not made here; run: " << plot << "\n";
+}
+
+void RunSensitivity(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendParameters& params) {
+  SensitivityOptions options;
+  options.quick = cli.quick;
+  std::cout << "sweeping " << (cli.quick ? "the quick subset of the" : "every") << " declared parameter"
+            << (cli.quick ? "s" : "") << "...\n";
+  const Sensitivity s = SweepParameters(
+      params, [&](const BackendParameters& p) { return Calibrate(workloads, p).rows; }, options);
+  const std::string csv = cli.out_dir + "/sensitivity.csv", flips = cli.out_dir + "/flips.md";
+  WriteFile(csv, [&](std::ostream& out) { WriteSensitivityCsv(out, s); });
+  WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, s); });
+  std::cout << s.parameters_swept << " parameters swept, " << s.points.size() - s.results.size() << " variants priced, "
+            << s.skipped.size() << " refused by the parameter checks\n";
+  WriteFlipTable(std::cout, s);
+  std::cout << "sweep   " << csv << "\nflips   " << flips << "\n";
+  Plot(SourceScript("plot_sensitivity.py"), csv, cli.out_dir + "/sensitivity.png");
 }
 
 void Run(const CalibrateCli& cli) {
@@ -53,28 +97,13 @@ void Run(const CalibrateCli& cli) {
   std::filesystem::create_directories(cli.out_dir);
   const std::string md = cli.out_dir + "/calibration.md";
   const std::string csv = cli.out_dir + "/calibration.csv";
-  const std::string png = cli.out_dir + "/calibration.png";
-  {
-    AtomicFile file(md);
-    WriteCalibrationMarkdown(file.stream(), report);
-    file.Commit();
-  }
-  {
-    AtomicFile file(csv);
-    WriteCalibrationCsv(file.stream(), report);
-    file.Commit();
-  }
+  WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
+  WriteFile(csv, [&](std::ostream& out) { WriteCalibrationCsv(out, report); });
   WriteCalibrationMarkdown(std::cout, report);
   std::cout << "\nreport  " << md << "\ndata    " << csv << "\n";
-
-  const std::string script =
-      cli.plot_script.empty() ? DefaultPlotScript() : cli.plot_script;
-  const std::string plot = "/usr/bin/python3 " + ShellQuote(script) + " " + ShellQuote(csv) + " " + ShellQuote(png);
-  if (std::filesystem::exists(script) && std::filesystem::exists("/usr/bin/python3") &&
-      std::system((plot + " >/dev/null 2>&1").c_str()) == 0)
-    std::cout << "plot    " << png << "\n";
-  else
-    std::cout << "plot    not made here; run: " << plot << "\n";
+  Plot(cli.plot_script.empty() ? SourceScript("plot_calibration.py") : cli.plot_script, csv,
+       cli.out_dir + "/calibration.png");
+  if (cli.sensitivity) RunSensitivity(cli, workloads, params);
 }
 
 }  // namespace
@@ -84,7 +113,14 @@ void AddCalibrateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "calibrate", "The paper's reported ratios beside ours, priced on recorded DeliBot and SACT workloads");
   cmd->add_option("--out", cli->out_dir, "Directory for calibration.md, .csv and .png")->capture_default_str();
-  cmd->add_option("--params", cli->params_path, "JSON backend-parameter override file (see rcbench backends)");
+  cmd->add_option("--backend-params", cli->params_path,
+                  "JSON file overriding backend cost parameters (see rcbench backends)");
+  cmd->add_flag("--sensitivity", cli->sensitivity,
+                "Also sweep every declared parameter over x0.5 and x2 (choices: every value), one at a time: "
+                "sensitivity.csv, flips.md, sensitivity.png");
+  cmd->add_flag("--quick", cli->quick,
+                "With --sensitivity: only the parameters whose source is an assumption and those issue #20 names")
+      ->needs("--sensitivity");
   cmd->add_option("--data", cli->options.data_dir,
                   "Shared data directory (wean/wean.dat, collision/mpnet_master_obb.csv); absent files fall back to "
                   "the generated office map and random OBBs")

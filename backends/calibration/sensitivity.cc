@@ -1,0 +1,138 @@
+#include "backends/calibration/sensitivity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <stdexcept>
+
+#include "common/input_error.h"
+
+namespace rc {
+namespace {
+
+// Parameters issue #20 names among the assumptions every sweep must cover,
+// by key or by the key's last part (both TTA+ and RoboCore have a warp
+// buffer, for instance).
+bool NamedByTheIssue(const std::string& key) {
+  const std::string last = key.substr(key.rfind('.') + 1);
+  for (const char* k : {"pre_process_initiation_cycles", "box_normal_initiation_cycles", "edge_edge_initiation_cycles",
+                        "warp_buffer_warps", "sector_requests_per_cycle", "l1_sectors_per_cycle",
+                        "op_units_per_kind_per_set", "kernel_launch_cycles", "program_config_cycles_per_micro_op",
+                        "decode_config_cycles_per_layout", "precision", "isa"})
+    if (last == k) return true;
+  return false;
+}
+
+std::string Number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// CSV field, quoted when it holds a comma or a quote.
+std::string Csv(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+bool Flips(const SweptResult& r, double baseline, double measured) {
+  return (baseline - r.neutral()) * (measured - r.neutral()) < 0;
+}
+
+}  // namespace
+
+bool InQuickSubset(const ParameterVariants& parameter) {
+  return NamedByTheIssue(parameter.key) || std::string(parameter.spec.source).rfind("assumption", 0) == 0;
+}
+
+Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& measure,
+                            const SensitivityOptions& options) {
+  Sensitivity s;
+  const std::vector<CalibrationRow> baseline = measure(base);
+  for (const CalibrationRow& row : baseline) {
+    s.results.push_back({row.result, row.unit});
+    s.baseline.push_back(row.ours);
+    s.points.push_back({s.results.size() - 1, "", "default", row.ours});
+  }
+  auto record = [&](const std::string& key, const std::string& value) {
+    BackendParameters varied;
+    try {
+      varied = WithParameter(base, key, value);
+    } catch (const InputError& e) {
+      s.skipped.push_back(key + "=" + value + ": " + e.what());
+      return;
+    }
+    const std::vector<CalibrationRow> rows = measure(varied);
+    if (rows.size() != s.results.size())
+      throw std::logic_error("the calibration rows changed with " + key + "=" + value);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      if (rows[r].result != s.results[r].name)
+        throw std::logic_error("the calibration rows changed order with " + key + "=" + value);
+      s.points.push_back({r, key, value, rows[r].ours});
+    }
+  };
+  for (const ParameterVariants& p : SweepVariants(base)) {
+    if (options.quick && !InQuickSubset(p)) continue;
+    std::vector<std::string> values = p.alternatives;
+    if (options.artifact) {
+      std::string theirs = ParameterValue(*options.artifact, p.key);
+      const bool number = !theirs.empty() && (std::isdigit(static_cast<unsigned char>(theirs[0])) || theirs[0] == '-');
+      if (!number) theirs = "\"" + theirs + "\"";
+      if (ParameterValue(*options.artifact, p.key) != p.value &&
+          std::find(values.begin(), values.end(), theirs) == values.end())
+        values.push_back(theirs);
+    }
+    if (values.empty()) continue;
+    ++s.parameters_swept;
+    for (const std::string& v : values) record(p.key, v);
+  }
+  return s;
+}
+
+void WriteSensitivityCsv(std::ostream& out, const Sensitivity& s) {
+  out << "ratio,parameter,value,result\n";
+  for (const SensitivityPoint& p : s.points)
+    out << Csv(s.results[p.result].name) << ',' << Csv(p.parameter) << ',' << Csv(p.value) << ','
+        << (std::isnan(p.measured) ? std::string() : Number(p.measured)) << '\n';
+}
+
+void WriteFlipTable(std::ostream& out, const Sensitivity& s) {
+  out << "| result | ours (default) | parameter | value | result then |\n|---|---|---|---|---|\n";
+  std::vector<int> flips(s.results.size(), 0);
+  for (const SensitivityPoint& p : s.points) {
+    if (p.parameter.empty()) continue;
+    const SweptResult& r = s.results[p.result];
+    if (!Flips(r, s.baseline[p.result], p.measured)) continue;
+    ++flips[p.result];
+    out << "| " << r.name << " | " << FormatValue(s.baseline[p.result], r.unit) << " | `" << p.parameter << "` | "
+        << p.value << " | " << FormatValue(p.measured, r.unit) << " |\n";
+  }
+  out << "\n";
+  for (std::size_t r = 0; r < s.results.size(); ++r)
+    out << "- " << s.results[r].name << ": "
+        << (flips[r] ? std::to_string(flips[r]) + " variant(s) flip it" : std::string("no variant flips it")) << " ("
+        << s.parameters_swept << " parameters swept)\n";
+}
+
+std::vector<ResultRange> RangesOf(const Sensitivity& s) {
+  std::vector<ResultRange> ranges(s.results.size());
+  for (std::size_t r = 0; r < s.results.size(); ++r) ranges[r].low = ranges[r].high = s.baseline[r];
+  for (const SensitivityPoint& p : s.points) {
+    if (std::isnan(p.measured)) continue;
+    ResultRange& range = ranges[p.result];
+    if (p.measured < range.low) {
+      range.low = p.measured;
+      range.low_parameter = p.parameter + "=" + p.value;
+    }
+    if (p.measured > range.high) {
+      range.high = p.measured;
+      range.high_parameter = p.parameter + "=" + p.value;
+    }
+  }
+  return ranges;
+}
+
+}  // namespace rc
