@@ -12,10 +12,12 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
+#include "robocore/ray_batch.h"
 #include "robocore/ray_cast.h"
 
 namespace rc {
@@ -80,12 +82,42 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
   state.SetLabel(f.map_name + (grid_order ? ", grid order" : ", random order"));
 }
 
+// The same queries through the batch entry point (CastRayBatch) on one
+// thread: dda and rm keep several rays in flight (ray_batch_lanes.h).
+void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_order) {
+  const Fixture& f = GetFixture();
+  const RayCastScene scene(f.grid, method);
+  RayBatch batch;
+  batch.max_range_m = kMaxRangeM;
+  for (const auto& q : grid_order ? f.grid_order : f.random_order) batch.queries.push_back({q[0], q[1], q[2]});
+  std::vector<RayHit> hits;
+  std::uint64_t nodes = 0;
+  const int saved_threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  for (auto _ : state) {
+    CastRayBatch(scene, batch, hits);
+    nodes += TotalNodes(hits);
+    benchmark::DoNotOptimize(hits.data());
+  }
+  omp_set_num_threads(saved_threads);
+  const double queries = static_cast<double>(state.iterations() * batch.queries.size());
+  state.SetItemsProcessed(static_cast<std::int64_t>(queries));
+  state.counters["queries_per_s"] = benchmark::Counter(queries, benchmark::Counter::kIsRate);
+  state.counters["nodes_per_query"] = static_cast<double>(nodes) / queries;
+  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  state.SetLabel(f.map_name + (grid_order ? ", grid order, batch" : ", random order, batch"));
+}
+
 BENCHMARK_CAPTURE(BM_RayCast, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, march_grid, RayCastMethod::kMarch, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace rc
