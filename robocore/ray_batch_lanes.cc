@@ -4,6 +4,7 @@
 // (the masked forms' _mm512_undefined_pd source); the warning is not ours.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #include <immintrin.h>
 
 #include <cmath>
@@ -15,95 +16,37 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Per-lane state in memory, between rounds that end a ray. The per-ray
-// constants are ray_cast_detail::MakeAxis's values for each axis, plus the
-// offsets that turn a cell into the boundary CastRay's Axis::BoundaryTime
-// (exit) and EntryTime use, and limits that give a zero direction
-// component CastRay's +inf exit and -inf entry: a zero inv_dir makes the
-// formula's time +-0, and max(+-0, +inf) = +inf, min(+-0, -inf) = -inf,
-// while for step != 0 max(t, -inf) = min(t, +inf) = t.
+// Independent groups of kRayLanes rays stepped in turn: one group's round
+// is a chain of about 130 cycles of dependent latency (a gather, a divide,
+// conversions), so several groups keep the core busy (docs/performance.md).
+constexpr int kGroups = 4;
+constexpr int kLanes = kRayLanes * kGroups;
+using LaneMask = std::uint64_t;
+static_assert(kLanes <= 64, "LaneMask holds one bit per lane");
+
+// Per-lane state, in memory between rounds. The per-ray constants are
+// ray_cast_detail::MakeAxis's values for each axis, plus the offsets that
+// turn a cell into the boundary CastRay's Axis::BoundaryTime (exit) and
+// EntryTime use, and limits that give a zero direction component CastRay's
+// +inf exit and -inf entry: a zero inv_dir makes the formula's time +-0, and
+// max(+-0, +inf) = +inf, min(+-0, -inf) = -inf, while for step != 0
+// max(t, -inf) = min(t, +inf) = t.
 struct alignas(64) LaneState {
-  double origin_x[kRayLanes], origin_y[kRayLanes];
-  double dir_x[kRayLanes], dir_y[kRayLanes];
-  double inv_x[kRayLanes], inv_y[kRayLanes];
-  double exit_limit_x[kRayLanes], exit_limit_y[kRayLanes];
-  double entry_limit_x[kRayLanes], entry_limit_y[kRayLanes];
-  double t_enter[kRayLanes];
-  double exit_x[kRayLanes], exit_y[kRayLanes];  // dda: the current cell's exit times
-  double range[kRayLanes];                      // the hit's range if the ray ended this round
-  std::int32_t step_x[kRayLanes], step_y[kRayLanes];
-  std::int32_t exit_offset_x[kRayLanes], exit_offset_y[kRayLanes];
-  std::int32_t entry_offset_x[kRayLanes], entry_offset_y[kRayLanes];
-  std::int32_t ix[kRayLanes], iy[kRayLanes];
-  std::uint32_t nodes[kRayLanes];
-  std::size_t query[kRayLanes];
+  double origin_x[kLanes], origin_y[kLanes];
+  double dir_x[kLanes], dir_y[kLanes];
+  double inv_x[kLanes], inv_y[kLanes];
+  double exit_limit_x[kLanes], exit_limit_y[kLanes];
+  double entry_limit_x[kLanes], entry_limit_y[kLanes];
+  double t_enter[kLanes];
+  double exit_x[kLanes], exit_y[kLanes];  // dda: the current cell's exit times
+  double range[kLanes];                   // the hit's range if the ray ended this round
+  std::int32_t step_x[kLanes], step_y[kLanes];
+  std::int32_t exit_offset_x[kLanes], exit_offset_y[kLanes];
+  std::int32_t entry_offset_x[kLanes], entry_offset_y[kLanes];
+  std::int32_t ix[kLanes], iy[kLanes];
+  std::uint32_t nodes[kLanes];
+  std::size_t query[kLanes];
 };
-
-// The scalar Axis::BoundaryTime of CastRay, for a lane's set-up.
-double ScalarExitTime(const ray_cast_detail::Axis& a, int cell, double r) { return a.BoundaryTime(cell, r); }
-
-// A ray's set-up in lane l: CastDda's and CastRayMarching's prologue.
-void StartLane(LaneState& s, int l, const RayQuery& q, double r, std::size_t query) {
-  const ray_cast_detail::Axis ax = ray_cast_detail::MakeAxis(q.origin_x_m, std::cos(q.angle_rad));
-  const ray_cast_detail::Axis ay = ray_cast_detail::MakeAxis(q.origin_y_m, std::sin(q.angle_rad));
-  s.origin_x[l] = ax.origin;
-  s.origin_y[l] = ay.origin;
-  s.dir_x[l] = ax.dir;
-  s.dir_y[l] = ay.dir;
-  s.inv_x[l] = ax.inv_dir;
-  s.inv_y[l] = ay.inv_dir;
-  s.step_x[l] = ax.step;
-  s.step_y[l] = ay.step;
-  s.exit_offset_x[l] = ax.step > 0 ? 1 : 0;
-  s.exit_offset_y[l] = ay.step > 0 ? 1 : 0;
-  s.entry_offset_x[l] = ax.step > 0 ? 0 : 1;
-  s.entry_offset_y[l] = ay.step > 0 ? 0 : 1;
-  s.exit_limit_x[l] = ax.step == 0 ? kInf : -kInf;
-  s.exit_limit_y[l] = ay.step == 0 ? kInf : -kInf;
-  s.entry_limit_x[l] = ax.step == 0 ? -kInf : kInf;
-  s.entry_limit_y[l] = ay.step == 0 ? -kInf : kInf;
-  s.ix[l] = static_cast<int>(std::floor(q.origin_x_m / r));
-  s.iy[l] = static_cast<int>(std::floor(q.origin_y_m / r));
-  s.t_enter[l] = 0.0;
-  s.exit_x[l] = ScalarExitTime(ax, s.ix[l], r);
-  s.exit_y[l] = ScalarExitTime(ay, s.iy[l], r);
-  s.nodes[l] = 0;
-  s.query[l] = query;
-}
-
-// Fills every lane (lanes beyond the batch step on a copy of its last query
-// and are not live). Returns the live mask.
-unsigned StartAllLanes(LaneState& s, const RayQuery* queries, std::size_t count, double r, std::size_t& next) {
-  unsigned live = 0;
-  for (int l = 0; l < kRayLanes; ++l) {
-    const std::size_t q = next < count ? next : count - 1;
-    StartLane(s, l, queries[q], r, q);
-    if (next < count) {
-      live |= 1u << l;
-      ++next;
-    }
-  }
-  return live;
-}
-
-// Writes the hits of the lanes in `ended` and gives them the next queries;
-// lanes left without one leave `live`.
-void RefillLanes(LaneState& s, unsigned ended, const RayQuery* queries, std::size_t count, double r,
-                 std::size_t& next, unsigned& live, RayHit* hits) {
-  while (ended != 0) {
-    const int l = __builtin_ctz(ended);
-    ended &= ended - 1;
-    RayHit& hit = hits[s.query[l]];
-    hit.range_m = static_cast<float>(s.range[l]);
-    hit.nodes = s.nodes[l];
-    if (next < count) {
-      StartLane(s, l, queries[next], r, next);
-      ++next;
-    } else {
-      live &= ~(1u << l);
-    }
-  }
-}
 
 #define RC_LANES_TARGET __attribute__((target("avx512f,avx512vl,avx512dq")))
 
@@ -138,148 +81,243 @@ RC_LANES_TARGET inline Head LoopHead(__m512d t, __m256i ix, __m256i iy, __m512d 
 }
 
 struct Constants {
-  __m512d r, max_range;
-  __m256i size_x, size_y, one;
+  __m512d r, max_range, jump_margin;
+  __m256i size_x, size_y, one, minus_one, byte_mask;
 };
 
 RC_LANES_TARGET Constants MakeConstants(const OccupancyGrid& g, double max_range) {
   Constants c;
-  c.r = _mm512_set1_pd(g.resolution_m());
+  const double r = g.resolution_m();
+  c.r = _mm512_set1_pd(r);
   c.max_range = _mm512_set1_pd(max_range);
+  // CastRayMarching's margin, computed as it computes it.
+  c.jump_margin = _mm512_set1_pd((std::sqrt(2.0) + 0.5) * r);
   c.size_x = _mm256_set1_epi32(g.size_x());
   c.size_y = _mm256_set1_epi32(g.size_y());
   c.one = _mm256_set1_epi32(1);
+  c.minus_one = _mm256_set1_epi32(-1);
+  c.byte_mask = _mm256_set1_epi32(0xFF);
   return c;
 }
 
-RC_LANES_TARGET void CastDdaLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count,
-                                  double max_range, RayHit* hits) {
-  const OccupancyGrid& g = scene.grid();
-  const double r = g.resolution_m();
-  const Constants c = MakeConstants(g, max_range);
-  const void* cells = scene.gather_cells().data();
-  const __m256i byte_mask = _mm256_set1_epi32(0xFF);
-  LaneState s;
-  std::size_t next = 0;
-  unsigned live = StartAllLanes(s, queries, count, r, next);
-  while (live != 0) {
-    const __m512d ox = _mm512_load_pd(s.origin_x), oy = _mm512_load_pd(s.origin_y);
-    const __m512d inv_x = _mm512_load_pd(s.inv_x), inv_y = _mm512_load_pd(s.inv_y);
-    const __m512d lim_x = _mm512_load_pd(s.exit_limit_x), lim_y = _mm512_load_pd(s.exit_limit_y);
-    const __m256i step_x = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.step_x));
-    const __m256i step_y = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.step_y));
-    const __m256i off_x = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.exit_offset_x));
-    const __m256i off_y = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.exit_offset_y));
-    __m512d t = _mm512_load_pd(s.t_enter);
-    __m512d tx = _mm512_load_pd(s.exit_x), ty = _mm512_load_pd(s.exit_y);
-    __m256i ix = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.ix));
-    __m256i iy = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.iy));
-    __m256i nodes = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.nodes));
-    __mmask8 ended;
-    __m512d range;
-    while (true) {
-      const Head h = LoopHead(t, ix, iy, c.max_range, c.size_x, c.size_y);
-      const __m256i cell = _mm256_and_si256(
-          _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), h.fetch, h.index, cells, 1), byte_mask);
-      const __mmask8 open = _mm256_cmpeq_epi32_mask(cell, _mm256_setzero_si256());  // CellState::kFree
-      nodes = _mm256_mask_add_epi32(nodes, h.fetch, nodes, c.one);
-      ended = static_cast<__mmask8>(~(h.fetch & open)) & static_cast<__mmask8>(live);
-      range = h.range;
-      // CastDda's step: x first on a tie (tx <= ty), t = min_pd(ty, tx),
-      // which is (ty < tx) ? ty : tx.
-      const __mmask8 step_x_first = _mm512_cmp_pd_mask(tx, ty, _CMP_LE_OQ);
-      t = _mm512_min_pd(ty, tx);
-      ix = _mm256_mask_add_epi32(ix, step_x_first, ix, step_x);
-      iy = _mm256_mask_add_epi32(iy, static_cast<__mmask8>(~step_x_first), iy, step_y);
-      tx = _mm512_mask_mov_pd(tx, step_x_first, _mm512_max_pd(lim_x, BoundaryTime(ix, off_x, c.r, ox, inv_x)));
-      ty = _mm512_mask_mov_pd(ty, static_cast<__mmask8>(~step_x_first),
-                              _mm512_max_pd(lim_y, BoundaryTime(iy, off_y, c.r, oy, inv_y)));
-      if (ended != 0) break;
+#define RC_LOAD_I(field) _mm256_load_si256(reinterpret_cast<const __m256i*>(s.field + base))
+#define RC_STORE_I(field, v) _mm256_store_si256(reinterpret_cast<__m256i*>(s.field + base), v)
+
+// One axis of the set-up of the lanes in `start` (base: the group's first
+// lane): MakeAxis, the start cell and the cell's exit time.
+struct AxisArrays {
+  const double* origin;
+  const double* dir;
+  double* inv;
+  std::int32_t* step;
+  std::int32_t* exit_offset;
+  std::int32_t* entry_offset;
+  double* exit_limit;
+  double* entry_limit;
+  std::int32_t* cell;
+  double* exit;
+};
+
+RC_LANES_TARGET void SetUpAxis(const AxisArrays& a, int base, __mmask8 start, const Constants& c) {
+  const __m256i zero_i = _mm256_setzero_si256();
+  const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+  const __m512d inf = _mm512_set1_pd(kInf), minus_inf = _mm512_set1_pd(-kInf);
+  const __m512d o = _mm512_load_pd(a.origin + base), d = _mm512_load_pd(a.dir + base);
+  // step = dir > 0 ? 1 : (dir < 0 ? -1 : 0); inv = step == 0 ? 0 : 1 / dir.
+  const __mmask8 pos = _mm512_cmp_pd_mask(d, zero, _CMP_GT_OQ), neg = _mm512_cmp_pd_mask(d, zero, _CMP_LT_OQ);
+  const __mmask8 moves = pos | neg;
+  const __m256i step = _mm256_mask_mov_epi32(_mm256_mask_mov_epi32(zero_i, pos, c.one), neg, c.minus_one);
+  const __m512d inv = _mm512_maskz_div_pd(moves, one, d);
+  const __m256i exit_offset = _mm256_mask_mov_epi32(zero_i, pos, c.one);
+  const __m256i entry_offset = _mm256_mask_mov_epi32(c.one, pos, zero_i);
+  const __m512d exit_limit = _mm512_mask_mov_pd(inf, moves, minus_inf);
+  const __m512d entry_limit = _mm512_mask_mov_pd(minus_inf, moves, inf);
+  // static_cast<int>(std::floor(origin / r)).
+  const __m256i cell = _mm512_cvttpd_epi32(
+      _mm512_roundscale_pd(_mm512_div_pd(o, c.r), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+  const __m512d exit = _mm512_max_pd(exit_limit, BoundaryTime(cell, exit_offset, c.r, o, inv));
+  _mm512_mask_store_pd(a.inv + base, start, inv);
+  _mm256_mask_store_epi32(a.step + base, start, step);
+  _mm256_mask_store_epi32(a.exit_offset + base, start, exit_offset);
+  _mm256_mask_store_epi32(a.entry_offset + base, start, entry_offset);
+  _mm512_mask_store_pd(a.exit_limit + base, start, exit_limit);
+  _mm512_mask_store_pd(a.entry_limit + base, start, entry_limit);
+  _mm256_mask_store_epi32(a.cell + base, start, cell);
+  _mm512_mask_store_pd(a.exit + base, start, exit);
+}
+
+// The set-up of the lanes of group g in `start` whose origin and direction
+// (std::cos, std::sin: the scalar libm values CastRay uses) are stored.
+RC_LANES_TARGET void SetUpGroup(LaneState& s, int g, __mmask8 start, const Constants& c) {
+  const int base = g * kRayLanes;
+  SetUpAxis({s.origin_x, s.dir_x, s.inv_x, s.step_x, s.exit_offset_x, s.entry_offset_x, s.exit_limit_x,
+             s.entry_limit_x, s.ix, s.exit_x},
+            base, start, c);
+  SetUpAxis({s.origin_y, s.dir_y, s.inv_y, s.step_y, s.exit_offset_y, s.entry_offset_y, s.exit_limit_y,
+             s.entry_limit_y, s.iy, s.exit_y},
+            base, start, c);
+  _mm512_mask_store_pd(s.t_enter + base, start, _mm512_setzero_pd());
+  _mm256_mask_store_epi32(s.nodes + base, start, _mm256_setzero_si256());
+}
+
+// Writes the hits of the lanes in `ended` and starts the batch's next
+// queries in them; lanes left without one leave `live`.
+RC_LANES_TARGET void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::size_t count,
+                            std::size_t& next, LaneMask& live, RayHit* hits, const Constants& c) {
+  LaneMask start = 0;
+  while (ended != 0) {
+    const int l = __builtin_ctzll(ended);
+    ended &= ended - 1;
+    RayHit& hit = hits[s.query[l]];
+    hit.range_m = static_cast<float>(s.range[l]);
+    hit.nodes = s.nodes[l];
+    if (next == count) {
+      live &= ~(LaneMask{1} << l);
+      continue;
     }
-    _mm512_store_pd(s.t_enter, t);
-    _mm512_store_pd(s.exit_x, tx);
-    _mm512_store_pd(s.exit_y, ty);
-    _mm512_store_pd(s.range, range);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.ix), ix);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.iy), iy);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.nodes), nodes);
-    RefillLanes(s, ended, queries, count, r, next, live, hits);
+    const RayQuery& q = queries[next];
+    s.query[l] = next++;
+    s.origin_x[l] = q.origin_x_m;
+    s.origin_y[l] = q.origin_y_m;
+    s.dir_x[l] = std::cos(q.angle_rad);
+    s.dir_y[l] = std::sin(q.angle_rad);
+    start |= LaneMask{1} << l;
+  }
+  for (int g = 0; g < kGroups; ++g) {
+    const auto group_start = static_cast<__mmask8>(start >> (g * kRayLanes));
+    if (group_start != 0) SetUpGroup(s, g, group_start, c);
   }
 }
 
-RC_LANES_TARGET void CastRayMarchingLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count,
-                                          double max_range, RayHit* hits) {
-  const OccupancyGrid& g = scene.grid();
-  const double r = g.resolution_m();
-  const Constants c = MakeConstants(g, max_range);
-  const float* field = scene.distance_field()->values().data();
-  // CastRayMarching's margin, computed as it computes it.
-  const __m512d margin = _mm512_set1_pd((std::sqrt(2.0) + 0.5) * r);
+// Starts every lane: the first kLanes queries, and lanes beyond the batch on
+// a copy of its last query, not live. Returns the live mask.
+RC_LANES_TARGET LaneMask StartAll(LaneState& s, const RayQuery* queries, std::size_t count, std::size_t& next,
+                                  const Constants& c) {
+  LaneMask live = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const std::size_t q = next < count ? next : count - 1;
+    if (next < count) {
+      live |= LaneMask{1} << l;
+      ++next;
+    }
+    s.query[l] = q;
+    s.origin_x[l] = queries[q].origin_x_m;
+    s.origin_y[l] = queries[q].origin_y_m;
+    s.dir_x[l] = std::cos(queries[q].angle_rad);
+    s.dir_y[l] = std::sin(queries[q].angle_rad);
+  }
+  for (int g = 0; g < kGroups; ++g) SetUpGroup(s, g, 0xFF, c);
+  return live;
+}
+
+// One pass of CastDda's loop for the lanes of group g; returns the lanes
+// whose ray ended (hit range in s.range).
+RC_LANES_TARGET inline __mmask8 StepDdaGroup(LaneState& s, int g, const Constants& c, const void* cells) {
+  const int base = g * kRayLanes;
+  __m512d t = _mm512_load_pd(s.t_enter + base);
+  __m512d tx = _mm512_load_pd(s.exit_x + base), ty = _mm512_load_pd(s.exit_y + base);
+  __m256i ix = RC_LOAD_I(ix), iy = RC_LOAD_I(iy), nodes = RC_LOAD_I(nodes);
+  const Head h = LoopHead(t, ix, iy, c.max_range, c.size_x, c.size_y);
+  const __m256i cell = _mm256_and_si256(
+      _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), h.fetch, h.index, cells, 1), c.byte_mask);
+  const __mmask8 open = _mm256_cmpeq_epi32_mask(cell, _mm256_setzero_si256());  // CellState::kFree
+  nodes = _mm256_mask_add_epi32(nodes, h.fetch, nodes, c.one);
+  // CastDda's step: x first on a tie (tx <= ty); t = min_pd(ty, tx), which
+  // is (ty < tx) ? ty : tx.
+  const __mmask8 step_x_first = _mm512_cmp_pd_mask(tx, ty, _CMP_LE_OQ);
+  const __mmask8 step_y_first = static_cast<__mmask8>(~step_x_first);
+  t = _mm512_min_pd(ty, tx);
+  ix = _mm256_mask_add_epi32(ix, step_x_first, ix, RC_LOAD_I(step_x));
+  iy = _mm256_mask_add_epi32(iy, step_y_first, iy, RC_LOAD_I(step_y));
+  const __m512d new_tx = _mm512_max_pd(_mm512_load_pd(s.exit_limit_x + base),
+                                       BoundaryTime(ix, RC_LOAD_I(exit_offset_x), c.r,
+                                                    _mm512_load_pd(s.origin_x + base), _mm512_load_pd(s.inv_x + base)));
+  const __m512d new_ty = _mm512_max_pd(_mm512_load_pd(s.exit_limit_y + base),
+                                       BoundaryTime(iy, RC_LOAD_I(exit_offset_y), c.r,
+                                                    _mm512_load_pd(s.origin_y + base), _mm512_load_pd(s.inv_y + base)));
+  tx = _mm512_mask_mov_pd(tx, step_x_first, new_tx);
+  ty = _mm512_mask_mov_pd(ty, step_y_first, new_ty);
+  _mm512_store_pd(s.t_enter + base, t);
+  _mm512_store_pd(s.exit_x + base, tx);
+  _mm512_store_pd(s.exit_y + base, ty);
+  _mm512_store_pd(s.range + base, h.range);
+  RC_STORE_I(ix, ix);
+  RC_STORE_I(iy, iy);
+  RC_STORE_I(nodes, nodes);
+  return static_cast<__mmask8>(~(h.fetch & open));
+}
+
+// One pass of CastRayMarching's loop for the lanes of group g: both ways
+// forward (the jump and the single exact step) computed, one selected.
+RC_LANES_TARGET inline __mmask8 StepRayMarchingGroup(LaneState& s, int g, const Constants& c, const float* field) {
+  const int base = g * kRayLanes;
+  const __m512d ox = _mm512_load_pd(s.origin_x + base), oy = _mm512_load_pd(s.origin_y + base);
+  const __m512d inv_x = _mm512_load_pd(s.inv_x + base), inv_y = _mm512_load_pd(s.inv_y + base);
+  const __m512d exit_lim_x = _mm512_load_pd(s.exit_limit_x + base);
+  const __m512d exit_lim_y = _mm512_load_pd(s.exit_limit_y + base);
+  const __m256i exit_off_x = RC_LOAD_I(exit_offset_x), exit_off_y = RC_LOAD_I(exit_offset_y);
+  __m512d t = _mm512_load_pd(s.t_enter + base);
+  __m256i ix = RC_LOAD_I(ix), iy = RC_LOAD_I(iy), nodes = RC_LOAD_I(nodes);
+  const Head h = LoopHead(t, ix, iy, c.max_range, c.size_x, c.size_y);
+  const __m512d d = _mm512_cvtps_pd(_mm256_mmask_i32gather_ps(_mm256_setzero_ps(), h.fetch, h.index, field, 4));
+  nodes = _mm256_mask_add_epi32(nodes, h.fetch, nodes, c.one);
+  const __mmask8 stops = _mm512_cmp_pd_mask(d, _mm512_setzero_pd(), _CMP_EQ_OQ);
+  const __m512d tx = _mm512_max_pd(exit_lim_x, BoundaryTime(ix, exit_off_x, c.r, ox, inv_x));
+  const __m512d ty = _mm512_max_pd(exit_lim_y, BoundaryTime(iy, exit_off_y, c.r, oy, inv_y));
+  const __m512d t_exit = _mm512_min_pd(ty, tx);  // std::min(tx, ty)
+  // The jump from the cell's entry point, and the landing cell's entry and
+  // exit times.
+  const __m512d jump = _mm512_sub_pd(d, c.jump_margin);
+  const __m512d t_land = _mm512_add_pd(t, jump);
+  constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+  const __m256i jx = _mm512_cvttpd_epi32(_mm512_roundscale_pd(
+      _mm512_div_pd(_mm512_add_pd(ox, _mm512_mul_pd(t_land, _mm512_load_pd(s.dir_x + base))), c.r), kFloor));
+  const __m256i jy = _mm512_cvttpd_epi32(_mm512_roundscale_pd(
+      _mm512_div_pd(_mm512_add_pd(oy, _mm512_mul_pd(t_land, _mm512_load_pd(s.dir_y + base))), c.r), kFloor));
+  const __m512d ex = _mm512_min_pd(_mm512_load_pd(s.entry_limit_x + base),
+                                   BoundaryTime(jx, RC_LOAD_I(entry_offset_x), c.r, ox, inv_x));
+  const __m512d ey = _mm512_min_pd(_mm512_load_pd(s.entry_limit_y + base),
+                                   BoundaryTime(jy, RC_LOAD_I(entry_offset_y), c.r, oy, inv_y));
+  const __m512d t_in = _mm512_max_pd(ey, ex);  // std::max(ex, ey)
+  const __m512d bx = _mm512_max_pd(exit_lim_x, BoundaryTime(jx, exit_off_x, c.r, ox, inv_x));
+  const __m512d by = _mm512_max_pd(exit_lim_y, BoundaryTime(jy, exit_off_y, c.r, oy, inv_y));
+  const __m512d t_out = _mm512_min_pd(by, bx);  // std::min(bx, by)
+  const __mmask8 jumps = _mm512_cmp_pd_mask(jump, c.r, _CMP_GT_OQ) & _mm512_cmp_pd_mask(t_in, t_out, _CMP_LT_OQ) &
+                         _mm512_cmp_pd_mask(t_in, t, _CMP_GT_OQ);
+  // Otherwise CastDda's single step (x first on a tie).
+  const __mmask8 step_x_first = _mm512_cmp_pd_mask(tx, ty, _CMP_LE_OQ);
+  ix = _mm256_mask_add_epi32(ix, step_x_first, ix, RC_LOAD_I(step_x));
+  iy = _mm256_mask_add_epi32(iy, static_cast<__mmask8>(~step_x_first), iy, RC_LOAD_I(step_y));
+  ix = _mm256_mask_mov_epi32(ix, jumps, jx);
+  iy = _mm256_mask_mov_epi32(iy, jumps, jy);
+  t = _mm512_mask_mov_pd(t_exit, jumps, t_in);
+  _mm512_store_pd(s.t_enter + base, t);
+  _mm512_store_pd(s.range + base, h.range);
+  RC_STORE_I(ix, ix);
+  RC_STORE_I(iy, iy);
+  RC_STORE_I(nodes, nodes);
+  return static_cast<__mmask8>(~h.fetch | stops);
+}
+
+// Every group steps once per round; lanes whose ray ended are refilled.
+// Lanes without a query keep stepping harmlessly (every fetch is masked to
+// cells inside the map) until the last ray ends.
+template <bool kDda>
+RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, RayHit* hits,
+                              const Constants& c) {
+  const void* cells = kDda ? scene.gather_cells().data() : nullptr;
+  const float* field = kDda ? nullptr : scene.distance_field()->values().data();
   LaneState s;
   std::size_t next = 0;
-  unsigned live = StartAllLanes(s, queries, count, r, next);
+  LaneMask live = StartAll(s, queries, count, next, c);
   while (live != 0) {
-    const __m512d ox = _mm512_load_pd(s.origin_x), oy = _mm512_load_pd(s.origin_y);
-    const __m512d dx = _mm512_load_pd(s.dir_x), dy = _mm512_load_pd(s.dir_y);
-    const __m512d inv_x = _mm512_load_pd(s.inv_x), inv_y = _mm512_load_pd(s.inv_y);
-    const __m512d exit_lim_x = _mm512_load_pd(s.exit_limit_x), exit_lim_y = _mm512_load_pd(s.exit_limit_y);
-    const __m512d entry_lim_x = _mm512_load_pd(s.entry_limit_x), entry_lim_y = _mm512_load_pd(s.entry_limit_y);
-    const __m256i step_x = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.step_x));
-    const __m256i step_y = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.step_y));
-    const __m256i exit_off_x = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.exit_offset_x));
-    const __m256i exit_off_y = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.exit_offset_y));
-    const __m256i entry_off_x = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.entry_offset_x));
-    const __m256i entry_off_y = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.entry_offset_y));
-    __m512d t = _mm512_load_pd(s.t_enter);
-    __m256i ix = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.ix));
-    __m256i iy = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.iy));
-    __m256i nodes = _mm256_load_si256(reinterpret_cast<const __m256i*>(s.nodes));
-    __mmask8 ended;
-    __m512d range;
-    while (true) {
-      const Head h = LoopHead(t, ix, iy, c.max_range, c.size_x, c.size_y);
-      const __m512d d =
-          _mm512_cvtps_pd(_mm256_mmask_i32gather_ps(_mm256_setzero_ps(), h.fetch, h.index, field, 4));
-      nodes = _mm256_mask_add_epi32(nodes, h.fetch, nodes, c.one);
-      const __mmask8 stops = _mm512_cmp_pd_mask(d, _mm512_setzero_pd(), _CMP_EQ_OQ);
-      ended = static_cast<__mmask8>(~h.fetch | stops) & static_cast<__mmask8>(live);
-      range = h.range;
-      const __m512d tx = _mm512_max_pd(exit_lim_x, BoundaryTime(ix, exit_off_x, c.r, ox, inv_x));
-      const __m512d ty = _mm512_max_pd(exit_lim_y, BoundaryTime(iy, exit_off_y, c.r, oy, inv_y));
-      const __m512d t_exit = _mm512_min_pd(ty, tx);  // std::min(tx, ty)
-      // The jump from the cell's entry point, and the landing cell's
-      // entry and exit times.
-      const __m512d jump = _mm512_sub_pd(d, margin);
-      const __m512d t_land = _mm512_add_pd(t, jump);
-      constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
-      const __m256i jx = _mm512_cvttpd_epi32(
-          _mm512_roundscale_pd(_mm512_div_pd(_mm512_add_pd(ox, _mm512_mul_pd(t_land, dx)), c.r), kFloor));
-      const __m256i jy = _mm512_cvttpd_epi32(
-          _mm512_roundscale_pd(_mm512_div_pd(_mm512_add_pd(oy, _mm512_mul_pd(t_land, dy)), c.r), kFloor));
-      const __m512d ex = _mm512_min_pd(entry_lim_x, BoundaryTime(jx, entry_off_x, c.r, ox, inv_x));
-      const __m512d ey = _mm512_min_pd(entry_lim_y, BoundaryTime(jy, entry_off_y, c.r, oy, inv_y));
-      const __m512d t_in = _mm512_max_pd(ey, ex);  // std::max(ex, ey)
-      const __m512d bx = _mm512_max_pd(exit_lim_x, BoundaryTime(jx, exit_off_x, c.r, ox, inv_x));
-      const __m512d by = _mm512_max_pd(exit_lim_y, BoundaryTime(jy, exit_off_y, c.r, oy, inv_y));
-      const __m512d t_out = _mm512_min_pd(by, bx);  // std::min(bx, by)
-      const __mmask8 jumps = _mm512_cmp_pd_mask(jump, c.r, _CMP_GT_OQ) &
-                             _mm512_cmp_pd_mask(t_in, t_out, _CMP_LT_OQ) &
-                             _mm512_cmp_pd_mask(t_in, t, _CMP_GT_OQ);
-      // Otherwise CastDda's single step (x first on a tie).
-      const __mmask8 step_x_first = _mm512_cmp_pd_mask(tx, ty, _CMP_LE_OQ);
-      ix = _mm256_mask_add_epi32(ix, step_x_first, ix, step_x);
-      iy = _mm256_mask_add_epi32(iy, static_cast<__mmask8>(~step_x_first), iy, step_y);
-      ix = _mm256_mask_mov_epi32(ix, jumps, jx);
-      iy = _mm256_mask_mov_epi32(iy, jumps, jy);
-      t = _mm512_mask_mov_pd(t_exit, jumps, t_in);
-      if (ended != 0) break;
+    LaneMask ended = 0;
+    for (int g = 0; g < kGroups; ++g) {
+      const __mmask8 group_ended = kDda ? StepDdaGroup(s, g, c, cells) : StepRayMarchingGroup(s, g, c, field);
+      ended |= static_cast<LaneMask>(group_ended) << (g * kRayLanes);
     }
-    _mm512_store_pd(s.t_enter, t);
-    _mm512_store_pd(s.range, range);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.ix), ix);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.iy), iy);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(s.nodes), nodes);
-    RefillLanes(s, ended, queries, count, r, next, live, hits);
+    ended &= live;
+    if (ended != 0) Refill(s, ended, queries, count, next, live, hits, c);
   }
 }
 
@@ -299,13 +337,14 @@ bool RayLanesApply(const RayCastScene& scene) {
          static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
 }
 
-void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,
-                  RayHit* hits) {
+RC_LANES_TARGET void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count,
+                                  double max_range_m, RayHit* hits) {
   if (count == 0) return;
+  const Constants c = MakeConstants(scene.grid(), max_range_m);
   if (scene.method() == RayCastMethod::kDda)
-    CastDdaLanes(scene, queries, count, max_range_m, hits);
+    RunLanes<true>(scene, queries, count, hits, c);
   else
-    CastRayMarchingLanes(scene, queries, count, max_range_m, hits);
+    RunLanes<false>(scene, queries, count, hits, c);
 }
 
 }  // namespace rc
