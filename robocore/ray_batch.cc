@@ -39,6 +39,11 @@ void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<
   }
 }
 
+void CastRaySlice(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                  std::vector<RayHit>& hits) {
+  CastRange(scene, batch, RayLanesApply(scene), static_cast<long>(begin), static_cast<long>(end), hits.data());
+}
+
 std::uint64_t TotalNodes(const std::vector<RayHit>& hits) {
   std::uint64_t total = 0;
   for (const RayHit& h : hits) total += h.nodes;

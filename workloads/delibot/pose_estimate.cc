@@ -7,25 +7,42 @@ namespace rc {
 
 namespace {
 
+// Each particle's heading as a unit vector, computed once per estimate
+// rather than once per mean-shift pass and seed.
+struct HeadingVectors {
+  std::vector<double> cos, sin;
+};
+
+// The weighted circular mean of headings (CircularMean's sums, the same
+// operations in the same order) from precomputed unit vectors.
+struct HeadingSum {
+  double sum_cos = 0.0, sum_sin = 0.0;
+  void Add(double c, double s, double weight) {
+    sum_cos += weight * c;
+    sum_sin += weight * s;
+  }
+  double Mean() const { return std::atan2(sum_sin, sum_cos); }
+};
+
 // Mean shift with a flat kernel from one start particle.
 PoseEstimate ShiftToMode(const std::vector<Pose2>& particles, const std::vector<double>& w,
-                         std::size_t start, double kernel_radius_m) {
+                         const HeadingVectors& headings, std::size_t start, double kernel_radius_m) {
   PoseEstimate out;
   double cx = particles[start].x, cy = particles[start].y;
   const double r2 = kernel_radius_m * kernel_radius_m;
-  CircularMean heading;
+  HeadingSum heading;
   double mode_weight = 0.0;
   constexpr int kMeanShiftIterations = 5;
   for (int it = 0; it < kMeanShiftIterations; ++it) {
     double sx = 0.0, sy = 0.0, sw = 0.0;
-    CircularMean h;
+    HeadingSum h;
     for (std::size_t i = 0; i < particles.size(); ++i) {
       const double dx = particles[i].x - cx, dy = particles[i].y - cy;
       if (dx * dx + dy * dy > r2) continue;
       sx += w[i] * particles[i].x;
       sy += w[i] * particles[i].y;
       sw += w[i];
-      h.Add(particles[i].theta, w[i]);
+      h.Add(headings.cos[i], headings.sin[i], w[i]);
     }
     if (sw <= 0.0) break;
     const double nx = sx / sw, ny = sy / sw;
@@ -61,9 +78,16 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
   std::partial_sort(order.begin(), order.begin() + seeds, order.end(), [&](std::size_t a, std::size_t b) {
     return w[a] != w[b] ? w[a] > w[b] : a < b;
   });
+  HeadingVectors headings;
+  headings.cos.resize(particles.size());
+  headings.sin.resize(particles.size());
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    headings.cos[i] = std::cos(particles[i].theta);
+    headings.sin[i] = std::sin(particles[i].theta);
+  }
   out.mode_weight = -1.0;
   for (std::size_t k = 0; k < seeds; ++k) {
-    const PoseEstimate candidate = ShiftToMode(particles, w, order[k], kernel_radius_m);
+    const PoseEstimate candidate = ShiftToMode(particles, w, headings, order[k], kernel_radius_m);
     if (candidate.mode_weight > out.mode_weight + 1e-12) out = candidate;
   }
   const double cx = out.pose.x, cy = out.pose.y;
