@@ -83,7 +83,8 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
 }
 
 // The same queries through the batch entry point (CastRayBatch) on one
-// thread: dda and rm keep several rays in flight (ray_batch_lanes.h).
+// thread: 32 rays in flight in AVX-512 lanes where the CPU has them
+// (ray_batch_lanes.h), the same hits as one query at a time.
 void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_order) {
   const Fixture& f = GetFixture();
   const RayCastScene scene(f.grid, method);
@@ -114,6 +115,8 @@ BENCHMARK_CAPTURE(BM_RayCast, dda_random, RayCastMethod::kDda, false)->Unit(benc
 BENCHMARK_CAPTURE(BM_RayCast, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, march_grid, RayCastMethod::kMarch, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCastBatch, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCastBatch, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCastBatch, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);

@@ -44,6 +44,7 @@ struct alignas(64) LaneState {
   std::int32_t exit_offset_x[kLanes], exit_offset_y[kLanes];
   std::int32_t entry_offset_x[kLanes], entry_offset_y[kLanes];
   std::int32_t ix[kLanes], iy[kLanes];
+  std::int32_t sample[kLanes];  // march: the index k of the next sample, at t = k r
   std::uint32_t nodes[kLanes];
   std::size_t query[kLanes];
 };
@@ -80,9 +81,15 @@ RC_LANES_TARGET inline Head LoopHead(__m512d t, __m256i ix, __m256i iy, __m512d 
   return h;
 }
 
+// CastMarch's last sample index.
+long MarchSamples(const OccupancyGrid& g, double max_range) {
+  return static_cast<long>(std::floor(max_range / g.resolution_m()));
+}
+
 struct Constants {
   __m512d r, max_range, jump_margin;
   __m256i size_x, size_y, one, minus_one, byte_mask;
+  __m256i march_samples;  // CastMarch's last sample index, floor(max_range / r)
 };
 
 RC_LANES_TARGET Constants MakeConstants(const OccupancyGrid& g, double max_range) {
@@ -97,6 +104,7 @@ RC_LANES_TARGET Constants MakeConstants(const OccupancyGrid& g, double max_range
   c.one = _mm256_set1_epi32(1);
   c.minus_one = _mm256_set1_epi32(-1);
   c.byte_mask = _mm256_set1_epi32(0xFF);
+  c.march_samples = _mm256_set1_epi32(static_cast<int>(MarchSamples(g, max_range)));
   return c;
 }
 
@@ -157,6 +165,7 @@ RC_LANES_TARGET void SetUpGroup(LaneState& s, int g, __mmask8 start, const Const
              s.entry_limit_y, s.iy, s.exit_y},
             base, start, c);
   _mm512_mask_store_pd(s.t_enter + base, start, _mm512_setzero_pd());
+  _mm256_mask_store_epi32(s.sample + base, start, _mm256_setzero_si256());
   _mm256_mask_store_epi32(s.nodes + base, start, _mm256_setzero_si256());
 }
 
@@ -247,6 +256,36 @@ RC_LANES_TARGET inline __mmask8 StepDdaGroup(LaneState& s, int g, const Constant
   return static_cast<__mmask8>(~(h.fetch & open));
 }
 
+// One pass of CastMarch's loop for the lanes of group g: the sample at
+// t = k r, fetched if it is within max range and inside the map.
+RC_LANES_TARGET inline __mmask8 StepMarchGroup(LaneState& s, int g, const Constants& c, const void* cells) {
+  const int base = g * kRayLanes;
+  const __m256i k = RC_LOAD_I(sample);
+  __m256i nodes = RC_LOAD_I(nodes);
+  const __m512d t = _mm512_mul_pd(_mm512_cvtepi32_pd(k), c.r);
+  const __mmask8 in_range = static_cast<__mmask8>(~_mm256_cmpgt_epi32_mask(k, c.march_samples));
+  constexpr int kFloor = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+  const __m256i ix = _mm512_cvttpd_epi32(_mm512_roundscale_pd(
+      _mm512_div_pd(_mm512_add_pd(_mm512_load_pd(s.origin_x + base), _mm512_mul_pd(t, _mm512_load_pd(s.dir_x + base))),
+                    c.r),
+      kFloor));
+  const __m256i iy = _mm512_cvttpd_epi32(_mm512_roundscale_pd(
+      _mm512_div_pd(_mm512_add_pd(_mm512_load_pd(s.origin_y + base), _mm512_mul_pd(t, _mm512_load_pd(s.dir_y + base))),
+                    c.r),
+      kFloor));
+  const __mmask8 inside = _mm256_cmplt_epu32_mask(ix, c.size_x) & _mm256_cmplt_epu32_mask(iy, c.size_y);
+  const __mmask8 fetch = in_range & inside;
+  const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(ix, c.size_y), iy);
+  const __m256i cell = _mm256_and_si256(
+      _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), fetch, index, cells, 1), c.byte_mask);
+  const __mmask8 open = _mm256_cmpeq_epi32_mask(cell, _mm256_setzero_si256());  // CellState::kFree
+  nodes = _mm256_mask_add_epi32(nodes, fetch, nodes, c.one);
+  _mm512_store_pd(s.range + base, _mm512_mask_mov_pd(c.max_range, in_range, t));
+  RC_STORE_I(sample, _mm256_add_epi32(k, c.one));
+  RC_STORE_I(nodes, nodes);
+  return static_cast<__mmask8>(~(fetch & open));
+}
+
 // One pass of CastRayMarching's loop for the lanes of group g: both ways
 // forward (the jump and the single exact step) computed, one selected.
 RC_LANES_TARGET inline __mmask8 StepRayMarchingGroup(LaneState& s, int g, const Constants& c, const float* field) {
@@ -302,18 +341,20 @@ RC_LANES_TARGET inline __mmask8 StepRayMarchingGroup(LaneState& s, int g, const 
 // Every group steps once per round; lanes whose ray ended are refilled.
 // Lanes without a query keep stepping harmlessly (every fetch is masked to
 // cells inside the map) until the last ray ends.
-template <bool kDda>
+template <RayCastMethod kMethod>
 RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, RayHit* hits,
                               const Constants& c) {
-  const void* cells = kDda ? scene.gather_cells().data() : nullptr;
-  const float* field = kDda ? nullptr : scene.distance_field()->values().data();
+  const void* cells = kMethod != RayCastMethod::kRayMarching ? scene.gather_cells().data() : nullptr;
+  const float* field = kMethod == RayCastMethod::kRayMarching ? scene.distance_field()->values().data() : nullptr;
   LaneState s;
   std::size_t next = 0;
   LaneMask live = StartAll(s, queries, count, next, c);
   while (live != 0) {
     LaneMask ended = 0;
     for (int g = 0; g < kGroups; ++g) {
-      const __mmask8 group_ended = kDda ? StepDdaGroup(s, g, c, cells) : StepRayMarchingGroup(s, g, c, field);
+      const __mmask8 group_ended = kMethod == RayCastMethod::kDda    ? StepDdaGroup(s, g, c, cells)
+                                   : kMethod == RayCastMethod::kMarch ? StepMarchGroup(s, g, c, cells)
+                                                                      : StepRayMarchingGroup(s, g, c, field);
       ended |= static_cast<LaneMask>(group_ended) << (g * kRayLanes);
     }
     ended &= live;
@@ -331,7 +372,6 @@ bool RayLanesSupported() {
 
 bool RayLanesApply(const RayCastScene& scene) {
   if (!RayLanesSupported()) return false;
-  if (scene.method() != RayCastMethod::kDda && scene.method() != RayCastMethod::kRayMarching) return false;
   // Signed 32-bit gather indices, and cell indices computed in 32 bits.
   return scene.grid().cell_count() + RayCastScene::kGatherPadding <=
          static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max());
@@ -341,10 +381,23 @@ RC_LANES_TARGET void CastRayLanes(const RayCastScene& scene, const RayQuery* que
                                   double max_range_m, RayHit* hits) {
   if (count == 0) return;
   const Constants c = MakeConstants(scene.grid(), max_range_m);
-  if (scene.method() == RayCastMethod::kDda)
-    RunLanes<true>(scene, queries, count, hits, c);
-  else
-    RunLanes<false>(scene, queries, count, hits, c);
+  switch (scene.method()) {
+    case RayCastMethod::kDda:
+      RunLanes<RayCastMethod::kDda>(scene, queries, count, hits, c);
+      return;
+    case RayCastMethod::kMarch:
+      // Sample indices are 32-bit in the lanes.
+      if (MarchSamples(scene.grid(), max_range_m) < std::numeric_limits<std::int32_t>::max()) {
+        RunLanes<RayCastMethod::kMarch>(scene, queries, count, hits, c);
+      } else {
+        for (std::size_t i = 0; i < count; ++i)
+          hits[i] = CastRay(scene, queries[i].origin_x_m, queries[i].origin_y_m, queries[i].angle_rad, max_range_m);
+      }
+      return;
+    case RayCastMethod::kRayMarching:
+      RunLanes<RayCastMethod::kRayMarching>(scene, queries, count, hits, c);
+      return;
+  }
 }
 
 }  // namespace rc

@@ -1,6 +1,6 @@
 #pragma once
-// Batch ray casting with eight rays in flight, in AVX-512 lanes (the host
-// fast path of CastRayBatch for the exact methods, dda and rm).
+// Batch ray casting with rays in flight in AVX-512 lanes (the host fast
+// path of CastRayBatch for all three methods: march, dda and rm).
 //
 // Why: one ray's traversal is a chain of dependent steps (the next cell
 // depends on the comparison of two boundary times; rm's next fetch depends on
@@ -10,8 +10,8 @@
 // fetches one gather. A lane whose ray ended takes the batch's next query.
 //
 // Contract: every hit (range and node count) equals CastRay's for the same
-// query, bit for bit. The lanes run CastDda's and CastRayMarching's
-// operations (ray_cast.h) on the same IEEE double values in the same order:
+// query, bit for bit. The lanes run CastMarch's, CastDda's and
+// CastRayMarching's operations (ray_cast.h) on the same IEEE double values in the same order:
 // multiply, subtract, divide, floor, min/max and compares are exact in SIMD
 // as in scalar code, each select is written with the operand order of the
 // scalar ternary it replaces, and the file is compiled with
@@ -32,8 +32,8 @@ inline constexpr int kRayLanes = 8;
 // True when this CPU can run the lanes.
 bool RayLanesSupported();
 
-// True when `scene` can be cast by the lanes on this CPU: dda or rm, and a
-// grid whose cell indices fit a 32-bit gather.
+// True when `scene` can be cast by the lanes on this CPU: a grid whose cell
+// indices fit a 32-bit gather.
 bool RayLanesApply(const RayCastScene& scene);
 
 // Casts queries [0, count) into hits [0, count) with the scene's method.

@@ -68,7 +68,7 @@ class RayCastScene {
   const DistanceField* distance_field() const { return distance_field_.get(); }
   double build_seconds() const { return build_seconds_; }
   std::size_t precomputed_bytes() const;
-  // dda only (else empty): the grid's cells followed by kGatherPadding zero
+  // dda and march (else empty): the grid's cells followed by kGatherPadding zero
   // bytes, so that a 4-byte gather at any cell's address stays inside
   // (ray_batch_lanes.h). Host-side only: no backend prices it.
   const std::vector<CellState>& gather_cells() const { return gather_cells_; }
