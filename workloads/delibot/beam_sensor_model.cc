@@ -155,24 +155,28 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
+    work.nodes = TotalNodes(work.hits);
   } else {
     // One parallel loop: each unit of particles fills, casts and scores its
     // own slice of the batch, with no barrier between the three.
     work.hits.resize(batch.queries.size());
     const long particles_per_unit = std::max(1L, kRaysPerUnit / std::max(1, beams_per_particle));
     const long units = (n + particles_per_unit - 1) / particles_per_unit;
-#pragma omp parallel for schedule(dynamic, 1)
+    std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : nodes)
     for (long u = 0; u < units; ++u) {
       const long begin = u * particles_per_unit, end = std::min(n, begin + particles_per_unit);
+      const std::size_t first = static_cast<std::size_t>(begin) * beams_per_particle;
+      const std::size_t last = static_cast<std::size_t>(end) * beams_per_particle;
       FillQueries(particles, geometry, beams, begin, end, batch);
-      CastRaySlice(*scene_, batch, static_cast<std::size_t>(begin) * beams_per_particle,
-                   static_cast<std::size_t>(end) * beams_per_particle, work.hits);
+      CastRaySlice(*scene_, batch, first, last, work.hits);
       ScoreParticles(scan, beams, combination, begin, end, work.hits, log_likelihoods);
+      for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
     }
+    work.nodes = nodes;
   }
   work.rays = batch.queries.size();
   work.beams_scored = beams_per_particle;
-  work.nodes = TotalNodes(work.hits);
 }
 
 }  // namespace rc
