@@ -69,8 +69,21 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
                           const std::vector<double>& normalized_log_weights, double kernel_radius_m) {
   PoseEstimate out;
   if (particles.empty()) return out;
+  // The per-particle work and the seeds' searches run in parallel: each
+  // value is computed alone, and the sums and the choice of the best seed
+  // below keep their serial order, so the estimate does not depend on the
+  // thread count.
+  const long n = static_cast<long>(particles.size());
   std::vector<double> w(particles.size());
-  for (std::size_t i = 0; i < particles.size(); ++i) w[i] = std::exp(normalized_log_weights[i]);
+  HeadingVectors headings;
+  headings.cos.resize(particles.size());
+  headings.sin.resize(particles.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    w[i] = std::exp(normalized_log_weights[i]);
+    headings.cos[i] = std::cos(particles[i].theta);
+    headings.sin[i] = std::sin(particles[i].theta);
+  }
   std::vector<std::size_t> order(particles.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   const std::size_t seeds = std::min(kModeSeeds, order.size());
@@ -78,18 +91,13 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
   std::partial_sort(order.begin(), order.begin() + seeds, order.end(), [&](std::size_t a, std::size_t b) {
     return w[a] != w[b] ? w[a] > w[b] : a < b;
   });
-  HeadingVectors headings;
-  headings.cos.resize(particles.size());
-  headings.sin.resize(particles.size());
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    headings.cos[i] = std::cos(particles[i].theta);
-    headings.sin[i] = std::sin(particles[i].theta);
-  }
+  std::vector<PoseEstimate> candidates(seeds);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long k = 0; k < static_cast<long>(seeds); ++k)
+    candidates[k] = ShiftToMode(particles, w, headings, order[k], kernel_radius_m);
   out.mode_weight = -1.0;
-  for (std::size_t k = 0; k < seeds; ++k) {
-    const PoseEstimate candidate = ShiftToMode(particles, w, headings, order[k], kernel_radius_m);
+  for (const PoseEstimate& candidate : candidates)
     if (candidate.mode_weight > out.mode_weight + 1e-12) out = candidate;
-  }
   const double cx = out.pose.x, cy = out.pose.y;
   double spread = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) {
