@@ -20,12 +20,16 @@
 // was run side by side with `rcbench delibot` on the same work, whole
 // processes alternating (docs/performance.md gives the script and the
 // conversion of wean.dat, whose values are P(free), into RoWild's
-// occupancy). Quoted from docs/performance.md, one thread, CPU time of the
-// whole process (load and parse included), medians of paired runs:
+// occupancy). Quoted from docs/performance.md (2026-11-25, load average
+// 12-15), one thread, CPU time of the whole process (load and parse
+// included), 3 alternating rounds, medians; RoWild's time over ours:
 //
-//   particles  RoWild   rcbench rm        rcbench dda       rcbench march
-//   500        see docs/performance.md (section "DeliBot vs RoWild")
-//   2000       see docs/performance.md
+//   particles  RoWild    rcbench rm      rcbench dda     rcbench march
+//   500        3.22 s    1.54 s (2.05x)  1.71 s (1.79x)  1.62 s (1.99x)
+//   2000       12.58 s   5.60 s (2.25x)  6.60 s (1.91x)  6.69 s (1.88x)
+//
+// Peak memory: RoWild 10 MB, rcbench 107-113 MB (mostly the shared
+// libraries the rcbench binary links).
 //
 // Run: build/benchmarks/delibot_benchmark --benchmark_counters_tabular=true
 #include <omp.h>

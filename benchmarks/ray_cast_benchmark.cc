@@ -1,8 +1,29 @@
 // Ray-casting throughput of the three kernels, single-threaded, in RangeLibc's
-// setting (REFERENCE.md section 4): Wean Hall at 10 cm, 1M queries starting in
-// free cells with random headings, max range 10 m, in random order and in
-// grid (spatially sorted) order. Falls back to the generated office map when
+// setting (issue 24): Wean Hall at 10 cm, 1M queries starting in free cells
+// with random headings, max range 10 m, in random order and in grid
+// (spatially sorted) order. Falls back to the generated office map when
 // ../shared/data is absent, and says so in the benchmark label.
+//
+//   BM_RayCast/<method>_<order>       CastRay, one query at a time
+//   BM_RayCastBatch/<method>_<order>  CastRayBatch on one thread: 32 rays in
+//                                     flight in AVX-512 lanes where the CPU
+//                                     has them, the same hits
+//
+// The peer, RangeLibc (kctess5/range_libc), is not a Debian package, so it is
+// not linked here. It was built from its own sources with its own flags
+// (-O3 -march=native -ffast-math) and run side by side with this benchmark's
+// queries in one harness process, each pair alternating, 11 rounds, thread
+// CPU time (docs/performance.md, "Ray casting", has the method). Quoted from
+// there (2026-11-25, load average 13; M queries/s, medians, and the medians
+// of the paired ratios):
+//
+//   rcbench rm batch    12.24   vs RangeLibc RM   7.95   1.57x
+//   rcbench dda batch   11.87   vs RangeLibc BL   8.22   1.45x
+//   rcbench march batch 11.71   vs RangeLibc BL          1.43x
+//   RangeLibc CDDT 4.39, PCDDT 4.02, LUT 15.65 (138 MB, approximate: 2.0 px)
+//
+// rm and dda are exact (the same ranges); RangeLibc's methods are within
+// 1.1-3.3 px on average.
 //
 // Run: build/benchmarks/ray_cast_benchmark --benchmark_counters_tabular=true
 #include <algorithm>
