@@ -14,13 +14,13 @@
 // (-O3 -march=native -ffast-math) and run side by side with this benchmark's
 // queries in one harness process, each pair alternating, 11 rounds, thread
 // CPU time (docs/performance.md, "Ray casting", has the method). Quoted from
-// there (2026-11-25, load average 13; M queries/s, medians, and the medians
-// of the paired ratios):
+// there (2026-11-25, load average 13-17; M queries/s, medians, and the
+// medians of the paired ratios):
 //
-//   rcbench rm batch    12.24   vs RangeLibc RM   7.95   1.57x
-//   rcbench dda batch   11.87   vs RangeLibc BL   8.22   1.45x
-//   rcbench march batch 11.71   vs RangeLibc BL          1.43x
-//   RangeLibc CDDT 4.39, PCDDT 4.02, LUT 15.65 (138 MB, approximate: 2.0 px)
+//   rcbench rm batch    12.47   vs RangeLibc RM   7.98   1.56x
+//   rcbench dda batch   12.66   vs RangeLibc BL   8.22   1.54x
+//   rcbench march batch 12.68   vs RangeLibc BL          1.56x
+//   RangeLibc CDDT 4.59, PCDDT 4.60, LUT 17.05 (138 MB, approximate: 2.0 px)
 //
 // rm and dda are exact (the same ranges); RangeLibc's methods are within
 // 1.1-3.3 px on average.
