@@ -21,12 +21,13 @@
 // processes alternating (docs/performance.md gives the script and the
 // conversion of wean.dat, whose values are P(free), into RoWild's
 // occupancy). Quoted from docs/performance.md (2026-11-25, load average
-// 12-15), one thread, CPU time of the whole process (load and parse
-// included), 3 alternating rounds, medians; RoWild's time over ours:
+// 15-18), one thread, CPU time of the whole process (load and parse
+// included), 3 alternating rounds, medians; RoWild's time over ours
+// (median of the paired ratios):
 //
 //   particles  RoWild    rcbench rm      rcbench dda     rcbench march
-//   500        3.22 s    1.54 s (2.05x)  1.71 s (1.79x)  1.62 s (1.99x)
-//   2000       12.58 s   5.60 s (2.25x)  6.60 s (1.91x)  6.69 s (1.88x)
+//   500        3.19 s    1.65 s (1.92x)  1.83 s (1.74x)  1.58 s (2.07x)
+//   2000       12.26 s   5.53 s (2.22x)  5.98 s (2.05x)  6.27 s (2.04x)
 //
 // Peak memory: RoWild 10 MB, rcbench 107-113 MB (mostly the shared
 // libraries the rcbench binary links).
