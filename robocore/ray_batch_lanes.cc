@@ -1,5 +1,8 @@
 #include "robocore/ray_batch_lanes.h"
 
+#include <stdexcept>
+
+#if defined(__x86_64__)
 // GCC 12 warns of an uninitialized variable inside its own AVX-512 headers
 // (the masked forms' _mm512_undefined_pd source); the warning is not ours.
 #pragma GCC diagnostic push
@@ -391,3 +394,17 @@ RC_LANES_TARGET void CastRayLanes(const RayCastScene& scene, const RayQuery* que
 }  // namespace rc
 
 #pragma GCC diagnostic pop
+
+#else  // not x86-64: no lanes; CastRayBatch casts one query at a time.
+
+namespace rc {
+
+bool RayLanesSupported() { return false; }
+bool RayLanesApply(const RayCastScene&) { return false; }
+void CastRayLanes(const RayCastScene&, const RayQuery*, std::size_t, double, RayHit*) {
+  throw std::logic_error("CastRayLanes: AVX-512 lanes exist only on x86-64 (check RayLanesApply first)");
+}
+
+}  // namespace rc
+
+#endif

@@ -18,9 +18,10 @@
 // -ffp-contract=off so that no multiply-add is fused. A ray's set-up
 // (sin, cos, 1/dir) is the scalar code itself.
 //
-// Dispatch is at run time: on a CPU without AVX-512 (F, VL, DQ) or for a
-// grid too large for 32-bit gather indices, CastRayBatch casts each query
-// with CastRay instead; no global -march flag is needed.
+// Dispatch is at run time: on a CPU without AVX-512 (F, VL, DQ), on a
+// target other than x86-64, or for a grid too large for 32-bit gather
+// indices, CastRayBatch casts each query with CastRay instead; no global
+// -march flag is needed.
 #include <cstddef>
 
 #include "robocore/ray_batch.h"

@@ -1,6 +1,9 @@
 #include "workloads/delibot/beam_sensor_model.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "robocore/ray_batch_recorded.h"
@@ -91,13 +94,15 @@ void BeamSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particle
 
 namespace {
 // Rays per work unit of the unrecorded update (whole particles, at least
-// one): about 2000 rays is ~150 microseconds, so the dynamic hand-out is
-// negligible and the 32 lanes' fill and drain at the unit's ends are ~1%
-// of it; an update of 2000 particles x 30 beams has 30 units, so the last
-// unit leaves the other thread idle for ~2% of the update at most; and the
-// unit's queries and hits (~65 KB) stay in the core's L2 between casting
-// and scoring.
-constexpr long kRaysPerUnit = 2048;
+// one). Units shrink as the update nears its end (a guided schedule): a
+// unit takes 1/(2 x threads) of the particles left, within these bounds.
+// Up to ~4096 rays (~300 microseconds) early on keeps the 32 lanes' fill
+// and drain at a unit's ends near 0.5% of it and the unit's queries and
+// hits (~130 KB) in the core's L2 between casting and scoring; down to
+// ~512 rays at the end leaves one thread at most ~40 microseconds to finish
+// alone while the other waits.
+constexpr long kMaxRaysPerUnit = 4096;
+constexpr long kMinRaysPerUnit = 512;
 }  // namespace
 
 void BeamSensorModel::FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry,
@@ -161,18 +166,28 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     // One parallel loop: each unit of particles fills, casts and scores its
     // own slice of the batch, with no barrier between the three.
     work.hits.resize(batch.queries.size());
-    const long particles_per_unit = std::max(1L, kRaysPerUnit / std::max(1, beams_per_particle));
-    const long units = (n + particles_per_unit - 1) / particles_per_unit;
+    const long per_particle = std::max(1, beams_per_particle);
+    const long min_particles = std::max(1L, kMinRaysPerUnit / per_particle);
+    const long max_particles = std::max(min_particles, kMaxRaysPerUnit / per_particle);
+    std::atomic<long> next_particle{0};
     std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : nodes)
-    for (long u = 0; u < units; ++u) {
-      const long begin = u * particles_per_unit, end = std::min(n, begin + particles_per_unit);
-      const std::size_t first = static_cast<std::size_t>(begin) * beams_per_particle;
-      const std::size_t last = static_cast<std::size_t>(end) * beams_per_particle;
-      FillQueries(particles, geometry, beams, begin, end, batch);
-      CastRaySlice(*scene_, batch, first, last, work.hits);
-      ScoreParticles(scan, beams, combination, begin, end, work.hits, log_likelihoods);
-      for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
+#pragma omp parallel reduction(+ : nodes)
+    {
+      const long threads = omp_get_num_threads();
+      long begin = next_particle.load(std::memory_order_relaxed);
+      while (begin < n) {
+        const long size = std::clamp((n - begin) / (2 * threads), min_particles, max_particles);
+        const long end = std::min(n, begin + size);
+        // Claim [begin, end); on a race, begin is reloaded and we retry.
+        if (!next_particle.compare_exchange_weak(begin, end, std::memory_order_relaxed)) continue;
+        const std::size_t first = static_cast<std::size_t>(begin) * beams_per_particle;
+        const std::size_t last = static_cast<std::size_t>(end) * beams_per_particle;
+        FillQueries(particles, geometry, beams, begin, end, batch);
+        CastRaySlice(*scene_, batch, first, last, work.hits);
+        ScoreParticles(scan, beams, combination, begin, end, work.hits, log_likelihoods);
+        for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
+        begin = next_particle.load(std::memory_order_relaxed);
+      }
     }
     work.nodes = nodes;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace rc {
 
@@ -91,10 +92,27 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
   std::partial_sort(order.begin(), order.begin() + seeds, order.end(), [&](std::size_t a, std::size_t b) {
     return w[a] != w[b] ? w[a] > w[b] : a < b;
   });
+  // Seeds that start from the same pose (copies made by resampling) give
+  // the same search: each is run once. A search is a function of its start
+  // pose alone (with the weights and particles), and a copy can never
+  // replace the first of its kind below (equal, not greater, weight).
+  std::vector<long> first_of_kind(seeds);
+  for (std::size_t k = 0; k < seeds; ++k) {
+    first_of_kind[k] = static_cast<long>(k);
+    const Pose2& p = particles[order[k]];
+    for (std::size_t j = 0; j < k; ++j) {
+      const Pose2& q = particles[order[j]];
+      if (std::memcmp(&p, &q, sizeof(Pose2)) == 0) {
+        first_of_kind[k] = static_cast<long>(j);
+        break;
+      }
+    }
+  }
   std::vector<PoseEstimate> candidates(seeds);
 #pragma omp parallel for schedule(dynamic, 1)
   for (long k = 0; k < static_cast<long>(seeds); ++k)
-    candidates[k] = ShiftToMode(particles, w, headings, order[k], kernel_radius_m);
+    if (first_of_kind[k] == k) candidates[k] = ShiftToMode(particles, w, headings, order[k], kernel_radius_m);
+  for (std::size_t k = 0; k < seeds; ++k) candidates[k] = candidates[first_of_kind[k]];
   out.mode_weight = -1.0;
   for (const PoseEstimate& candidate : candidates)
     if (candidate.mode_weight > out.mode_weight + 1e-12) out = candidate;
