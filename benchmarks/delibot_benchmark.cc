@@ -12,7 +12,10 @@
 //       sensor update + resampling + estimate), cpu_ms_per_update (process
 //       CPU time of the run over its updates) and rays_per_s.
 //   BM_DelibotThreads/<particles>/<threads>      rm, 50 records, wall time;
-//       parallel efficiency = T(1) / (2 T(2)) from two rows.
+//       parallel efficiency = T(1) / (2 T(2)) from two rows. Meaningful
+//       only with both cores free: on the shared machine, docs/performance.md
+//       ("Threads") runs rcbench pinned at SCHED_FIFO instead, and reports
+//       0.92-0.96 (medians) from 2000 particles up.
 //
 // The peer, RoWild DeliBot (cmu-roboarch/rowild e2e/DeliBot, built from its
 // own Makefile: -O3 -fopenmp -mavx512f/vl/bw/dq, run with
