@@ -20,11 +20,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Independent groups of kRayLanes rays stepped in turn: one group's round
-// is a chain of about 130 cycles of dependent latency (a gather, a divide,
-// conversions), so several groups keep the core busy (docs/performance.md).
-constexpr int kGroups = 4;
-constexpr int kLanes = kRayLanes * kGroups;
+constexpr int kGroups = kRayLaneGroups;
+constexpr int kLanes = kRaysInFlight;
 using LaneMask = std::uint64_t;
 static_assert(kLanes <= 64, "LaneMask holds one bit per lane");
 

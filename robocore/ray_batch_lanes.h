@@ -28,7 +28,13 @@
 
 namespace rc {
 
+// Rays per group (one AVX-512 vector of doubles), and groups stepped in
+// turn: one group's round is a chain of about 130 cycles of dependent
+// latency (a gather, a divide, conversions), so several groups keep the
+// core busy; 4 measured best (docs/performance.md).
 inline constexpr int kRayLanes = 8;
+inline constexpr int kRayLaneGroups = 4;
+inline constexpr int kRaysInFlight = kRayLanes * kRayLaneGroups;
 
 // True when this CPU can run the lanes.
 bool RayLanesSupported();

@@ -130,7 +130,8 @@ TEST(RayBatchLanesTest, EqualsSingleQueriesForEveryBatchSize) {
   const OccupancyGrid g = GenerateOfficeMap(OfficeMapOptions{});
   for (RayCastMethod m : kMethods) {
     const RayCastScene scene(g, m);
-    const RayBatch all = FreeBatch(g, 3 * kRayLanes + 1, 10.0, 7);
+    // Up to several refills of every lane in flight.
+    const RayBatch all = FreeBatch(g, 3 * kRaysInFlight + 1, 10.0, 7);
     for (std::size_t n = 0; n <= all.queries.size(); ++n) {
       RayBatch part = all;
       part.queries.resize(n);
