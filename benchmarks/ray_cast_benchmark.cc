@@ -1,8 +1,29 @@
 // Ray-casting throughput of the three kernels, single-threaded, in RangeLibc's
-// setting (REFERENCE.md section 4): Wean Hall at 10 cm, 1M queries starting in
-// free cells with random headings, max range 10 m, in random order and in
-// grid (spatially sorted) order. Falls back to the generated office map when
+// setting (issue 24): Wean Hall at 10 cm, 1M queries starting in free cells
+// with random headings, max range 10 m, in random order and in grid
+// (spatially sorted) order. Falls back to the generated office map when
 // ../shared/data is absent, and says so in the benchmark label.
+//
+//   BM_RayCast/<method>_<order>       CastRay, one query at a time
+//   BM_RayCastBatch/<method>_<order>  CastRayBatch on one thread: 32 rays in
+//                                     flight in AVX-512 lanes where the CPU
+//                                     has them, the same hits
+//
+// The peer, RangeLibc (kctess5/range_libc), is not a Debian package, so it is
+// not linked here. It was built from its own sources with its own flags
+// (-O3 -march=native -ffast-math) and run side by side with this benchmark's
+// queries in one harness process, each pair alternating, 11 rounds, thread
+// CPU time (docs/performance.md, "Ray casting", has the method). Quoted from
+// there (2026-11-25, load average 13-17; M queries/s, medians, and the
+// medians of the paired ratios):
+//
+//   rcbench rm batch    12.47   vs RangeLibc RM   7.98   1.56x
+//   rcbench dda batch   12.66   vs RangeLibc BL   8.22   1.54x
+//   rcbench march batch 12.68   vs RangeLibc BL          1.56x
+//   RangeLibc CDDT 4.59, PCDDT 4.60, LUT 17.05 (138 MB, approximate: 2.0 px)
+//
+// rm and dda are exact (the same ranges); RangeLibc's methods are within
+// 1.1-3.3 px on average.
 //
 // Run: build/benchmarks/ray_cast_benchmark --benchmark_counters_tabular=true
 #include <algorithm>
@@ -12,10 +33,12 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
+#include "robocore/ray_batch.h"
 #include "robocore/ray_cast.h"
 
 namespace rc {
@@ -80,12 +103,45 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
   state.SetLabel(f.map_name + (grid_order ? ", grid order" : ", random order"));
 }
 
+// The same queries through the batch entry point (CastRayBatch) on one
+// thread: 32 rays in flight in AVX-512 lanes where the CPU has them
+// (ray_batch_lanes.h), the same hits as one query at a time.
+void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_order) {
+  const Fixture& f = GetFixture();
+  const RayCastScene scene(f.grid, method);
+  RayBatch batch;
+  batch.max_range_m = kMaxRangeM;
+  for (const auto& q : grid_order ? f.grid_order : f.random_order) batch.queries.push_back({q[0], q[1], q[2]});
+  std::vector<RayHit> hits;
+  std::uint64_t nodes = 0;
+  const int saved_threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  for (auto _ : state) {
+    CastRayBatch(scene, batch, hits);
+    nodes += TotalNodes(hits);
+    benchmark::DoNotOptimize(hits.data());
+  }
+  omp_set_num_threads(saved_threads);
+  const double queries = static_cast<double>(state.iterations() * batch.queries.size());
+  state.SetItemsProcessed(static_cast<std::int64_t>(queries));
+  state.counters["queries_per_s"] = benchmark::Counter(queries, benchmark::Counter::kIsRate);
+  state.counters["nodes_per_query"] = static_cast<double>(nodes) / queries;
+  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  state.SetLabel(f.map_name + (grid_order ? ", grid order, batch" : ", random order, batch"));
+}
+
 BENCHMARK_CAPTURE(BM_RayCast, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, march_grid, RayCastMethod::kMarch, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCast, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, march_grid, RayCastMethod::kMarch, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, dda_random, RayCastMethod::kDda, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastBatch, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace rc

@@ -21,9 +21,18 @@ struct RayBatch {
   double max_range_m = 10.0;
 };
 
-// Functional execution on the host, parallel over queries with OpenMP; the
-// result does not depend on the thread count (each query is independent).
+// Functional execution on the host, parallel over units of queries with
+// OpenMP; the result does not depend on the thread count (each query is
+// independent). The queries run in AVX-512 lanes where the CPU has them
+// (ray_batch_lanes.h); every hit equals CastRay's, bit for bit, on either
+// path.
 void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits);
+
+// Casts queries [begin, end) of `batch` into hits [begin, end) on the
+// calling thread (hits must already hold batch.queries.size() entries): the
+// same hits as CastRayBatch, for a caller that runs its own parallel loop.
+void CastRaySlice(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                  std::vector<RayHit>& hits);
 
 // Sum of hits[i].nodes.
 std::uint64_t TotalNodes(const std::vector<RayHit>& hits);

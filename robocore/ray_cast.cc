@@ -30,6 +30,10 @@ RayCastScene::RayCastScene(const OccupancyGrid& grid, RayCastMethod method)
     build_seconds_ =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  if (method != RayCastMethod::kRayMarching) {
+    gather_cells_ = grid.cells();
+    gather_cells_.resize(grid.cell_count() + kGatherPadding, CellState::kFree);
+  }
 }
 
 std::size_t RayCastScene::precomputed_bytes() const {

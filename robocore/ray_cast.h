@@ -33,6 +33,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "maps/distance_field.h"
 #include "maps/occupancy_grid.h"
@@ -67,11 +68,17 @@ class RayCastScene {
   const DistanceField* distance_field() const { return distance_field_.get(); }
   double build_seconds() const { return build_seconds_; }
   std::size_t precomputed_bytes() const;
+  // dda and march (else empty): the grid's cells followed by kGatherPadding zero
+  // bytes, so that a 4-byte gather at any cell's address stays inside
+  // (ray_batch_lanes.h). Host-side only: no backend prices it.
+  const std::vector<CellState>& gather_cells() const { return gather_cells_; }
+  static constexpr std::size_t kGatherPadding = 3;
 
  private:
   const OccupancyGrid* grid_;
   RayCastMethod method_;
   std::shared_ptr<const DistanceField> distance_field_;
+  std::vector<CellState> gather_cells_;
   double build_seconds_ = 0.0;
 };
 

@@ -1,5 +1,9 @@
 #include "workloads/delibot/beam_sensor_model.h"
 
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "robocore/ray_batch_recorded.h"
@@ -50,6 +54,29 @@ double BeamCubeProbability(const BeamModelParams& p, double z, double z_star) {
   return pz;
 }
 
+BeamReadingDensity::BeamReadingDensity(const BeamModelParams& p, double z)
+    : z_(z),
+      max_reading_(z >= p.max_range_m),
+      log_max_(std::log(p.z_max + 1e-300)),
+      hit_scale_(p.z_hit * kInvSqrt2Pi / p.sigma_hit_m),
+      sigma_hit_(p.sigma_hit_m),
+      neg_lambda_(-p.lambda_short_per_m),
+      short_numerator_(p.z_short * p.lambda_short_per_m * std::exp(-p.lambda_short_per_m * z)),
+      rand_(p.z_rand / p.max_range_m) {}
+
+double BeamReadingDensity::LogDensity(double z_star) const {
+  // BeamLogDensity's steps; comments there.
+  if (max_reading_) return log_max_;
+  const double e = (z_ - z_star) / sigma_hit_;
+  double density = hit_scale_ * std::exp(-0.5 * e * e);
+  if (z_ < z_star) {
+    const double normalizer = 1.0 - std::exp(neg_lambda_ * z_star);
+    if (normalizer > 0.0) density += short_numerator_ / normalizer;
+  }
+  density += rand_;
+  return std::log(density);
+}
+
 BeamSensorModel::BeamSensorModel(std::shared_ptr<const RayCastScene> scene, BeamModelParams params)
     : scene_(std::move(scene)), params_(params) {}
 
@@ -65,18 +92,23 @@ void BeamSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particle
   Score(particles, scan, geometry, beams, BeamCombination::kProduct, log_likelihoods, work);
 }
 
-void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
-                            const LaserGeometry& geometry, const BeamSelection& beams,
-                            BeamCombination combination, std::vector<double>& log_likelihoods,
-                            SensorUpdateWork& work) {
+namespace {
+// Rays per work unit of the unrecorded update (whole particles, at least
+// one). Units shrink as the update nears its end (a guided schedule): a
+// unit takes 1/(2 x threads) of the particles left, within these bounds.
+// Up to ~4096 rays (~300 microseconds) early on keeps the 32 lanes' fill
+// and drain at a unit's ends near 0.5% of it and the unit's queries and
+// hits (~130 KB) in the core's L2 between casting and scoring; down to
+// ~512 rays at the end leaves one thread at most ~40 microseconds to finish
+// alone while the other waits.
+constexpr long kMaxRaysPerUnit = 4096;
+constexpr long kMinRaysPerUnit = 512;
+}  // namespace
+
+void BeamSensorModel::FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry,
+                                  const BeamSelection& beams, long begin, long end, RayBatch& batch) const {
   const int beams_per_particle = beams.Count(geometry.beam_count);
-  const long n = static_cast<long>(particles.size());
-  RayBatch& batch = work.batch;
-  batch.max_range_m = params_.max_range_m;
-  batch.queries.resize(static_cast<std::size_t>(n) * beams_per_particle);
-  // Particle-major, beam-minor: the launch order of the CUDA kernels.
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
+  for (long i = begin; i < end; ++i) {
     const Pose2 sensor = SensorPose(particles[i], geometry);
     for (int k = 0; k < beams_per_particle; ++k) {
       RayQuery& q = batch.queries[static_cast<std::size_t>(i) * beams_per_particle + k];
@@ -85,30 +117,82 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
       q.angle_rad = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
     }
   }
-  if (work.record_kernel) {
-    RecordOptions record_options;
-    record_options.sample = work.record_sample;
-    CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
-  } else {
-    CastRayBatch(*scene_, batch, work.hits);
-  }
-  log_likelihoods.resize(particles.size());
-#pragma omp parallel for schedule(static)
-  for (long i = 0; i < n; ++i) {
+}
+
+void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination,
+                                     long begin, long end, const std::vector<RayHit>& hits,
+                                     std::vector<double>& log_likelihoods) const {
+  const int beams_per_particle = static_cast<int>(reading_densities_.size());
+  for (long i = begin; i < end; ++i) {
     ScanLikelihood scan_likelihood(combination);
+    const RayHit* particle_hits = hits.data() + static_cast<std::size_t>(i) * beams_per_particle;
     for (int k = 0; k < beams_per_particle; ++k) {
-      const RayHit& hit = work.hits[static_cast<std::size_t>(i) * beams_per_particle + k];
-      const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
-      if (scan_likelihood.cube_sum())
-        scan_likelihood.AddProbability(BeamCubeProbability(params_, z, hit.range_m));
-      else
-        scan_likelihood.AddLogDensity(BeamLogDensity(params_, z, hit.range_m));
+      if (scan_likelihood.cube_sum()) {
+        const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
+        scan_likelihood.AddProbability(BeamCubeProbability(params_, z, particle_hits[k].range_m));
+      } else {
+        scan_likelihood.AddLogDensity(reading_densities_[k].LogDensity(particle_hits[k].range_m));
+      }
     }
     log_likelihoods[i] = scan_likelihood.Log();
   }
+}
+
+void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
+                            const LaserGeometry& geometry, const BeamSelection& beams,
+                            BeamCombination combination, std::vector<double>& log_likelihoods,
+                            SensorUpdateWork& work) {
+  const int beams_per_particle = beams.Count(geometry.beam_count);
+  const long n = static_cast<long>(particles.size());
+  reading_densities_.resize(static_cast<std::size_t>(beams_per_particle));
+  for (int k = 0; k < beams_per_particle; ++k)
+    reading_densities_[k] = BeamReadingDensity(params_, scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step]);
+  RayBatch& batch = work.batch;
+  batch.max_range_m = params_.max_range_m;
+  batch.queries.resize(static_cast<std::size_t>(n) * beams_per_particle);
+  log_likelihoods.resize(particles.size());
+  if (work.record_kernel) {
+    // The recorded kernel needs the whole batch at once (its record's
+    // slots are placed by a prefix sum over every query).
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
+    RecordOptions record_options;
+    record_options.sample = work.record_sample;
+    CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
+    work.nodes = TotalNodes(work.hits);
+  } else {
+    // One parallel loop: each unit of particles fills, casts and scores its
+    // own slice of the batch, with no barrier between the three.
+    work.hits.resize(batch.queries.size());
+    const long per_particle = std::max(1, beams_per_particle);
+    const long min_particles = std::max(1L, kMinRaysPerUnit / per_particle);
+    const long max_particles = std::max(min_particles, kMaxRaysPerUnit / per_particle);
+    std::atomic<long> next_particle{0};
+    std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
+#pragma omp parallel reduction(+ : nodes)
+    {
+      const long threads = omp_get_num_threads();
+      long begin = next_particle.load(std::memory_order_relaxed);
+      while (begin < n) {
+        const long size = std::clamp((n - begin) / (2 * threads), min_particles, max_particles);
+        const long end = std::min(n, begin + size);
+        // Claim [begin, end); on a race, begin is reloaded and we retry.
+        if (!next_particle.compare_exchange_weak(begin, end, std::memory_order_relaxed)) continue;
+        const std::size_t first = static_cast<std::size_t>(begin) * beams_per_particle;
+        const std::size_t last = static_cast<std::size_t>(end) * beams_per_particle;
+        FillQueries(particles, geometry, beams, begin, end, batch);
+        CastRaySlice(*scene_, batch, first, last, work.hits);
+        ScoreParticles(scan, beams, combination, begin, end, work.hits, log_likelihoods);
+        for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
+        begin = next_particle.load(std::memory_order_relaxed);
+      }
+    }
+    work.nodes = nodes;
+  }
   work.rays = batch.queries.size();
   work.beams_scored = beams_per_particle;
-  work.nodes = TotalNodes(work.hits);
 }
 
 }  // namespace rc

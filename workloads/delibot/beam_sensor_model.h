@@ -33,6 +33,28 @@ double BeamLogDensity(const BeamModelParams& p, double z, double z_star);
 // reading beyond max range counts as max range, as nav2 clamps it.
 double BeamCubeProbability(const BeamModelParams& p, double z, double z_star);
 
+// BeamLogDensity for one measured range z, with every term that depends on z
+// alone (the max-reading case, the short term's numerator) computed once per
+// scan and beam instead of once per particle. The same operations on the
+// same values in the same order, so LogDensity(z_star) is bit-identical to
+// BeamLogDensity(p, z, z_star) (tested).
+class BeamReadingDensity {
+ public:
+  BeamReadingDensity() = default;
+  BeamReadingDensity(const BeamModelParams& p, double z);
+  double LogDensity(double z_star) const;
+
+ private:
+  double z_ = 0.0;
+  bool max_reading_ = false;
+  double log_max_ = 0.0;          // the whole answer for a max reading
+  double hit_scale_ = 0.0;        // z_hit / (sqrt(2 pi) sigma_hit)
+  double sigma_hit_ = 1.0;
+  double neg_lambda_ = 0.0;       // -lambda_short (1/m)
+  double short_numerator_ = 0.0;  // z_short * lambda_short * exp(-lambda_short z)
+  double rand_ = 0.0;             // z_rand / max_range
+};
+
 class BeamSensorModel final : public SensorModel {
  public:
   BeamSensorModel(std::shared_ptr<const RayCastScene> scene, BeamModelParams params);
@@ -51,9 +73,16 @@ class BeamSensorModel final : public SensorModel {
   void Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
              const BeamSelection& beams, BeamCombination combination, std::vector<double>& log_likelihoods,
              SensorUpdateWork& work);
+  // Particles [begin, end): their queries (particle-major, beam-minor).
+  void FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry, const BeamSelection& beams,
+                   long begin, long end, RayBatch& batch) const;
+  // Particles [begin, end): their scan log-likelihoods from the cast hits.
+  void ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination, long begin,
+                      long end, const std::vector<RayHit>& hits, std::vector<double>& log_likelihoods) const;
 
   std::shared_ptr<const RayCastScene> scene_;
   BeamModelParams params_;
+  std::vector<BeamReadingDensity> reading_densities_;  // this scan's, one per selected beam
 };
 
 }  // namespace rc

@@ -1,0 +1,51 @@
+#pragma once
+// Batch ray casting with rays in flight in AVX-512 lanes (the host fast
+// path of CastRayBatch for all three methods: march, dda and rm).
+//
+// Why: one ray's traversal is a chain of dependent steps (the next cell
+// depends on the comparison of two boundary times; rm's next fetch depends on
+// the distance just fetched), and its x/y step pattern defeats the branch
+// predictor. Eight rays advance together, one step each per round, every
+// per-step decision a lane mask instead of a branch, and every round's cell
+// fetches one gather. A lane whose ray ended takes the batch's next query.
+//
+// Contract: every hit (range and node count) equals CastRay's for the same
+// query, bit for bit. The lanes run CastMarch's, CastDda's and
+// CastRayMarching's operations (ray_cast.h) on the same IEEE double values in the same order:
+// multiply, subtract, divide, floor, min/max and compares are exact in SIMD
+// as in scalar code, each select is written with the operand order of the
+// scalar ternary it replaces, and the file is compiled with
+// -ffp-contract=off so that no multiply-add is fused. A ray's set-up
+// (sin, cos, 1/dir) is the scalar code itself.
+//
+// Dispatch is at run time: on a CPU without AVX-512 (F, VL, DQ), on a
+// target other than x86-64, or for a grid too large for 32-bit gather
+// indices, CastRayBatch casts each query with CastRay instead; no global
+// -march flag is needed.
+#include <cstddef>
+
+#include "robocore/ray_batch.h"
+
+namespace rc {
+
+// Rays per group (one AVX-512 vector of doubles), and groups stepped in
+// turn: one group's round is a chain of about 130 cycles of dependent
+// latency (a gather, a divide, conversions), so several groups keep the
+// core busy; 4 measured best (docs/performance.md).
+inline constexpr int kRayLanes = 8;
+inline constexpr int kRayLaneGroups = 4;
+inline constexpr int kRaysInFlight = kRayLanes * kRayLaneGroups;
+
+// True when this CPU can run the lanes.
+bool RayLanesSupported();
+
+// True when `scene` can be cast by the lanes on this CPU: a grid whose cell
+// indices fit a 32-bit gather.
+bool RayLanesApply(const RayCastScene& scene);
+
+// Casts queries [0, count) into hits [0, count) with the scene's method.
+// Requires RayLanesApply(scene).
+void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,
+                  RayHit* hits);
+
+}  // namespace rc

@@ -1,0 +1,179 @@
+// The AVX-512 batch kernels (ray_batch_lanes.h) against the per-query
+// kernels: every hit's range (bit for bit) and node count must be equal, for
+// every batch size (lane refill), on random, open and real maps, on the
+// geometry degeneracies of ray_cast_test.cc, and at any thread count. On a
+// CPU without AVX-512 the lane tests skip and say so; CastRayBatch then
+// takes the per-query path, which the batch tests still check.
+#include <omp.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/angles.h"
+#include "common/random_stream.h"
+#include "maps/cmu_map_loader.h"
+#include "maps/office_map_generator.h"
+#include "robocore/ray_batch.h"
+#include "robocore/ray_batch_lanes.h"
+#include "test_data.h"
+
+namespace rc {
+namespace {
+
+OccupancyGrid RandomGrid(int sx, int sy, double r, double occupied_fraction, std::uint64_t seed) {
+  OccupancyGrid g(sx, sy, r);
+  RandomStream s(seed, StreamPurpose::kTest, 0, 0);
+  for (int x = 0; x < sx; ++x)
+    for (int y = 0; y < sy; ++y) {
+      const double u = s.Uniform();
+      g.Set(x, y, u < occupied_fraction ? CellState::kOccupied
+                                        : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
+    }
+  return g;
+}
+
+// Origins anywhere in (and a little outside) the map, free or not, with
+// headings that include the axis directions exactly.
+RayBatch MixedBatch(const OccupancyGrid& g, int n, double max_range, std::uint64_t seed) {
+  RayBatch batch;
+  batch.max_range_m = max_range;
+  RandomStream s(seed, StreamPurpose::kTest, 2, 0);
+  const double axis_angles[] = {0.0, kPi / 2, kPi, -kPi / 2, kPi / 4, -3 * kPi / 4};
+  for (int i = 0; i < n; ++i) {
+    const double margin = 2 * g.resolution_m();
+    double x = s.Uniform(-margin, g.extent_x_m() + margin), y = s.Uniform(-margin, g.extent_y_m() + margin);
+    if (i % 5 == 0) {  // on cell corners and grid lines
+      x = std::floor(x / g.resolution_m()) * g.resolution_m();
+      if (i % 10 == 0) y = std::floor(y / g.resolution_m()) * g.resolution_m();
+    }
+    const double a = i % 3 == 0 ? axis_angles[s.Below(6)] : s.Uniform(-kPi, kPi);
+    batch.queries.push_back({x, y, a});
+  }
+  return batch;
+}
+
+// Free-cell origins, as a filter casts them.
+RayBatch FreeBatch(const OccupancyGrid& g, int n, double max_range, std::uint64_t seed) {
+  RayBatch batch;
+  batch.max_range_m = max_range;
+  const std::vector<std::uint32_t> free_cells = g.FreeCellIndices();
+  RandomStream s(seed, StreamPurpose::kTest, 3, 0);
+  const double r = g.resolution_m();
+  for (int i = 0; i < n && !free_cells.empty(); ++i) {
+    const std::uint32_t c = free_cells[s.Below(free_cells.size())];
+    const int ix = static_cast<int>(c / g.size_y()), iy = static_cast<int>(c % g.size_y());
+    batch.queries.push_back({(ix + s.Uniform()) * r, (iy + s.Uniform()) * r, s.Uniform(-kPi, kPi)});
+  }
+  return batch;
+}
+
+void ExpectHitsEqualSingleQueries(const RayCastScene& scene, const RayBatch& batch, const std::vector<RayHit>& hits,
+                                  const char* what) {
+  ASSERT_EQ(hits.size(), batch.queries.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const RayQuery& q = batch.queries[i];
+    const RayHit single = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m);
+    // Bit for bit, not merely ==: -0.0f and 0.0f would compare equal.
+    ASSERT_EQ(std::memcmp(&hits[i].range_m, &single.range_m, sizeof(float)), 0)
+        << what << " " << ToString(scene.method()) << " query " << i << " (" << q.origin_x_m << ", "
+        << q.origin_y_m << ", " << q.angle_rad << "): " << hits[i].range_m << " vs " << single.range_m;
+    ASSERT_EQ(hits[i].nodes, single.nodes) << what << " " << ToString(scene.method()) << " query " << i;
+  }
+}
+
+// Both entry points: CastRayBatch (whichever path this CPU takes) and, where
+// the CPU has AVX-512, the lanes themselves.
+void ExpectBatchEqualsSingleQueries(const RayCastScene& scene, const RayBatch& batch, const char* what) {
+  std::vector<RayHit> hits;
+  CastRayBatch(scene, batch, hits);
+  ExpectHitsEqualSingleQueries(scene, batch, hits, what);
+  if (!RayLanesApply(scene)) return;
+  std::vector<RayHit> lane_hits(batch.queries.size());
+  CastRayLanes(scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, lane_hits.data());
+  ExpectHitsEqualSingleQueries(scene, batch, lane_hits, what);
+}
+
+TEST(RayBatchLanesTest, LanesRunOnThisCpu) {
+  if (!RayLanesSupported()) GTEST_SKIP() << "this CPU has no AVX-512 (F, VL, DQ): only the per-query path is tested";
+  const OccupancyGrid g(10, 10, 0.1);
+  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kDda)));
+  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kRayMarching)));
+  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kMarch)));
+}
+
+constexpr RayCastMethod kMethods[] = {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching};
+
+TEST(RayBatchLanesTest, EqualsSingleQueriesOnRandomMaps) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+    for (double density : {0.002, 0.05, 0.3}) {
+      const OccupancyGrid g = RandomGrid(150, 110, 0.05, density, seed);
+      for (RayCastMethod m : kMethods) {
+        const RayCastScene scene(g, m);
+        ExpectBatchEqualsSingleQueries(scene, MixedBatch(g, 6000, 4.0, seed), "mixed");
+        ExpectBatchEqualsSingleQueries(scene, FreeBatch(g, 6000, 12.0, seed), "free");
+      }
+    }
+}
+
+TEST(RayBatchLanesTest, EqualsSingleQueriesOnExactBinaryResolution) {
+  // 0.25 m cells: origins on grid lines and corners are exact, so ties and
+  // rays along grid lines really happen.
+  const OccupancyGrid g = RandomGrid(40, 40, 0.25, 0.06, 5);
+  for (RayCastMethod m : kMethods)
+    ExpectBatchEqualsSingleQueries(RayCastScene(g, m), MixedBatch(g, 20000, 10.0, 5), "binary");
+}
+
+TEST(RayBatchLanesTest, EqualsSingleQueriesForEveryBatchSize) {
+  const OccupancyGrid g = GenerateOfficeMap(OfficeMapOptions{});
+  for (RayCastMethod m : kMethods) {
+    const RayCastScene scene(g, m);
+    // Up to several refills of every lane in flight.
+    const RayBatch all = FreeBatch(g, 3 * kRaysInFlight + 1, 10.0, 7);
+    for (std::size_t n = 0; n <= all.queries.size(); ++n) {
+      RayBatch part = all;
+      part.queries.resize(n);
+      ExpectBatchEqualsSingleQueries(scene, part, "prefix");
+    }
+  }
+}
+
+TEST(RayBatchLanesTest, WallsAndMapsWithoutFreeCells) {
+  for (CellState fill : {CellState::kOccupied, CellState::kUnknown}) {
+    const OccupancyGrid g(6, 6, 0.5, fill);
+    for (RayCastMethod m : kMethods)
+      ExpectBatchEqualsSingleQueries(RayCastScene(g, m), MixedBatch(g, 200, 10.0, 11), "walls");
+  }
+}
+
+TEST(RayBatchLanesTest, EqualsSingleQueriesOnWean) {
+  RC_REQUIRE_SHARED_DATA("wean/wean.dat");
+  const OccupancyGrid g = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
+  for (RayCastMethod m : kMethods)
+    ExpectBatchEqualsSingleQueries(RayCastScene(g, m), FreeBatch(g, 50000, 10.0, 13), "wean");
+}
+
+TEST(RayBatchLanesTest, SameHitsAtAnyThreadCount) {
+  const OccupancyGrid g = GenerateOfficeMap(OfficeMapOptions{});
+  for (RayCastMethod m : kMethods) {
+    const RayCastScene scene(g, m);
+    const RayBatch batch = FreeBatch(g, 20000, 10.0, 17);
+    const int saved = omp_get_max_threads();
+    std::vector<RayHit> one, two;
+    omp_set_num_threads(1);
+    CastRayBatch(scene, batch, one);
+    omp_set_num_threads(2);
+    CastRayBatch(scene, batch, two);
+    omp_set_num_threads(saved);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      ASSERT_EQ(std::memcmp(&one[i].range_m, &two[i].range_m, sizeof(float)), 0) << i;
+      ASSERT_EQ(one[i].nodes, two[i].nodes) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rc
