@@ -1,5 +1,7 @@
 #include "robocore/ray_batch_lanes.h"
 
+#include "robocore/kernel_record.h"
+
 #include <stdexcept>
 
 #if defined(__x86_64__)
@@ -206,9 +208,16 @@ RC_LANES_TARGET LaneMask StartAll(LaneState& s, const RayQuery* queries, std::si
   return live;
 }
 
-// One pass of CastDda's loop for the lanes of group g; returns the lanes
-// whose ray ended (hit range in s.range).
-RC_LANES_TARGET inline __mmask8 StepDdaGroup(LaneState& s, int g, const Constants& c, const void* cells) {
+// What one pass of a group did: the lanes whose ray ended (hit range in
+// s.range), those of them whose fetched cell stopped the ray, and the
+// lanes that fetched, with their cell indices.
+struct StepResult {
+  __mmask8 ended, stopped, fetch;
+  __m256i index;
+};
+
+// One pass of CastDda's loop for the lanes of group g.
+RC_LANES_TARGET inline StepResult StepDdaGroup(LaneState& s, int g, const Constants& c, const void* cells) {
   const int base = g * kRayLanes;
   __m512d t = _mm512_load_pd(s.t_enter + base);
   __m512d tx = _mm512_load_pd(s.exit_x + base), ty = _mm512_load_pd(s.exit_y + base);
@@ -240,12 +249,12 @@ RC_LANES_TARGET inline __mmask8 StepDdaGroup(LaneState& s, int g, const Constant
   RC_STORE_I(ix, ix);
   RC_STORE_I(iy, iy);
   RC_STORE_I(nodes, nodes);
-  return static_cast<__mmask8>(~(h.fetch & open));
+  return {static_cast<__mmask8>(~(h.fetch & open)), static_cast<__mmask8>(h.fetch & ~open), h.fetch, h.index};
 }
 
 // One pass of CastMarch's loop for the lanes of group g: the sample at
 // t = k r, fetched if it is within max range and inside the map.
-RC_LANES_TARGET inline __mmask8 StepMarchGroup(LaneState& s, int g, const Constants& c, const void* cells) {
+RC_LANES_TARGET inline StepResult StepMarchGroup(LaneState& s, int g, const Constants& c, const void* cells) {
   const int base = g * kRayLanes;
   const __m256i k = RC_LOAD_I(sample);
   __m256i nodes = RC_LOAD_I(nodes);
@@ -270,12 +279,12 @@ RC_LANES_TARGET inline __mmask8 StepMarchGroup(LaneState& s, int g, const Consta
   _mm512_store_pd(s.range + base, _mm512_mask_mov_pd(c.max_range, in_range, t));
   RC_STORE_I(sample, _mm256_add_epi32(k, c.one));
   RC_STORE_I(nodes, nodes);
-  return static_cast<__mmask8>(~(fetch & open));
+  return {static_cast<__mmask8>(~(fetch & open)), static_cast<__mmask8>(fetch & ~open), fetch, index};
 }
 
 // One pass of CastRayMarching's loop for the lanes of group g: both ways
 // forward (the jump and the single exact step) computed, one selected.
-RC_LANES_TARGET inline __mmask8 StepRayMarchingGroup(LaneState& s, int g, const Constants& c, const float* field) {
+RC_LANES_TARGET inline StepResult StepRayMarchingGroup(LaneState& s, int g, const Constants& c, const float* field) {
   const int base = g * kRayLanes;
   const __m512d ox = _mm512_load_pd(s.origin_x + base), oy = _mm512_load_pd(s.origin_y + base);
   const __m512d inv_x = _mm512_load_pd(s.inv_x + base), inv_y = _mm512_load_pd(s.inv_y + base);
@@ -322,15 +331,29 @@ RC_LANES_TARGET inline __mmask8 StepRayMarchingGroup(LaneState& s, int g, const 
   RC_STORE_I(ix, ix);
   RC_STORE_I(iy, iy);
   RC_STORE_I(nodes, nodes);
-  return static_cast<__mmask8>(~h.fetch | stops);
+  return {static_cast<__mmask8>(~h.fetch | stops), static_cast<__mmask8>(h.fetch & stops), h.fetch, h.index};
+}
+
+// Marks the sectors of a group's fetched cells (a recorded batch's touched
+// sectors).
+RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec) {
+  alignas(32) std::int32_t index[kRayLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(index), step.index);
+  for (unsigned m = step.fetch; m != 0; m &= m - 1) {
+    const int l = __builtin_ctz(m);
+    const std::uint64_t sector =
+        (rec.offset + static_cast<std::uint64_t>(index[l]) * rec.element_bytes) >> rec.sector_shift;
+    rec.touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
+  }
 }
 
 // Every group steps once per round; lanes whose ray ended are refilled.
 // Lanes without a query keep stepping harmlessly (every fetch is masked to
-// cells inside the map) until the last ray ends.
-template <RayCastMethod kMethod>
+// cells inside the map) until the last ray ends; with a recording, they
+// mark the sectors of a query already cast, which are marked already.
+template <RayCastMethod kMethod, bool kRecord>
 RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, RayHit* hits,
-                              const Constants& c) {
+                              const Constants& c, const LaneRecording* rec) {
   const void* cells = kMethod != RayCastMethod::kRayMarching ? scene.gather_cells().data() : nullptr;
   const float* field = kMethod == RayCastMethod::kRayMarching ? scene.distance_field()->values().data() : nullptr;
   LaneState s;
@@ -338,16 +361,38 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
   const double r = scene.grid().resolution_m();
   LaneMask live = StartAll(s, queries, count, next, r);
   while (live != 0) {
-    LaneMask ended = 0;
+    LaneMask ended = 0, stopped = 0;
     for (int g = 0; g < kGroups; ++g) {
-      const __mmask8 group_ended = kMethod == RayCastMethod::kDda    ? StepDdaGroup(s, g, c, cells)
-                                   : kMethod == RayCastMethod::kMarch ? StepMarchGroup(s, g, c, cells)
-                                                                      : StepRayMarchingGroup(s, g, c, field);
-      ended |= static_cast<LaneMask>(group_ended) << (g * kRayLanes);
+      const StepResult step = kMethod == RayCastMethod::kDda    ? StepDdaGroup(s, g, c, cells)
+                              : kMethod == RayCastMethod::kMarch ? StepMarchGroup(s, g, c, cells)
+                                                                 : StepRayMarchingGroup(s, g, c, field);
+      ended |= static_cast<LaneMask>(step.ended) << (g * kRayLanes);
+      if constexpr (kRecord) {
+        stopped |= static_cast<LaneMask>(step.stopped) << (g * kRayLanes);
+        if (rec->touched) MarkTouched(step, *rec);
+      }
     }
     ended &= live;
+    if constexpr (kRecord) {
+      if (rec->last_exits)
+        for (LaneMask m = ended; m != 0; m &= m - 1) {
+          const int l = __builtin_ctzll(m);
+          rec->last_exits[s.query[l]] = s.nodes[l] == 0                    ? kNoExit
+                                        : (stopped >> l) & 1 ? kRayHitReturn
+                                                             : kRayEndReturn;
+        }
+    }
     if (ended != 0) Refill(s, ended, queries, count, next, live, hits, r);
   }
+}
+
+template <RayCastMethod kMethod>
+RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, RayHit* hits,
+                              const Constants& c, const LaneRecording* rec) {
+  if (rec)
+    RunLanes<kMethod, true>(scene, queries, count, hits, c, rec);
+  else
+    RunLanes<kMethod, false>(scene, queries, count, hits, c, rec);
 }
 
 }  // namespace
@@ -366,24 +411,25 @@ bool RayLanesApply(const RayCastScene& scene) {
 }
 
 RC_LANES_TARGET void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count,
-                                  double max_range_m, RayHit* hits) {
+                                  double max_range_m, RayHit* hits, const LaneRecording* rec) {
   if (count == 0) return;
   const Constants c = MakeConstants(scene.grid(), max_range_m);
   switch (scene.method()) {
     case RayCastMethod::kDda:
-      RunLanes<RayCastMethod::kDda>(scene, queries, count, hits, c);
+      RunLanes<RayCastMethod::kDda>(scene, queries, count, hits, c, rec);
       return;
     case RayCastMethod::kMarch:
       // Sample indices are 32-bit in the lanes.
       if (MarchSamples(scene.grid(), max_range_m) < std::numeric_limits<std::int32_t>::max()) {
-        RunLanes<RayCastMethod::kMarch>(scene, queries, count, hits, c);
+        RunLanes<RayCastMethod::kMarch>(scene, queries, count, hits, c, rec);
       } else {
+        if (rec) throw std::logic_error("CastRayLanes: a recording needs the lanes (RayLanesApply)");
         for (std::size_t i = 0; i < count; ++i)
           hits[i] = CastRay(scene, queries[i].origin_x_m, queries[i].origin_y_m, queries[i].angle_rad, max_range_m);
       }
       return;
     case RayCastMethod::kRayMarching:
-      RunLanes<RayCastMethod::kRayMarching>(scene, queries, count, hits, c);
+      RunLanes<RayCastMethod::kRayMarching>(scene, queries, count, hits, c, rec);
       return;
   }
 }
@@ -398,7 +444,7 @@ namespace rc {
 
 bool RayLanesSupported() { return false; }
 bool RayLanesApply(const RayCastScene&) { return false; }
-void CastRayLanes(const RayCastScene&, const RayQuery*, std::size_t, double, RayHit*) {
+void CastRayLanes(const RayCastScene&, const RayQuery*, std::size_t, double, RayHit*, const LaneRecording*) {
   throw std::logic_error("CastRayLanes: AVX-512 lanes exist only on x86-64 (check RayLanesApply first)");
 }
 

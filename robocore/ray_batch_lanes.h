@@ -23,6 +23,7 @@
 // indices, CastRayBatch casts each query with CastRay instead; no global
 // -march flag is needed.
 #include <cstddef>
+#include <cstdint>
 
 #include "robocore/ray_batch.h"
 
@@ -43,9 +44,27 @@ bool RayLanesSupported();
 // indices fit a 32-bit gather.
 bool RayLanesApply(const RayCastScene& scene);
 
+// What a recorded batch (robocore/ray_batch_recorded.h) also takes from the
+// lanes: each query's last loop pass's exit, and the sectors its node
+// fetches touched.
+struct LaneRecording {
+  // Per query: kRayHitReturn when the last fetched node stopped the ray,
+  // kRayEndReturn when the next one was out of range or off the map, kNoExit
+  // for a query that fetched nothing (robocore/kernel_record.h). Null: not
+  // wanted.
+  std::uint8_t* last_exits = nullptr;
+  // A bit per sector, numbered from the footprint's begin: set for every
+  // fetched node's sector. Null: not wanted.
+  std::uint64_t* touched = nullptr;
+  std::uint64_t offset = 0;         // bytes from the footprint's begin to the fetched structure
+  std::uint32_t element_bytes = 1;  // bytes per fetched node
+  int sector_shift = 5;             // log2(sector bytes)
+};
+
 // Casts queries [0, count) into hits [0, count) with the scene's method.
-// Requires RayLanesApply(scene).
+// Requires RayLanesApply(scene). With a recording, also fills what it asks
+// for (the last exits of [0, count), bits of touched sectors).
 void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,
-                  RayHit* hits);
+                  RayHit* hits, const LaneRecording* recording = nullptr);
 
 }  // namespace rc

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "robocore/ray_batch_lanes.h"
 #include "robocore/shipped_programs.h"
 
 namespace rc {
@@ -98,7 +99,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
   record.regions = RayCastRegions(scene, options.layout);
   record.node_bytes = record.regions.front().element_bytes;
 
-  // One pass of the functional kernel, parallel over blocks of queries:
+  // One pass of the functional kernel, parallel over segments of queries:
   // each query's hit, node count and last pass's exit, and for the blocks
   // whose addresses the sample keeps, the addresses in a buffer per block.
   // A block is the GPU's (warps_per_block warps), so a block is kept or not
@@ -130,31 +131,63 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
     prototype.element_bytes[k] = r.element_bytes;
   }
   prototype.sector_shift = sector_shift;
+  // Segments of the batch, each cast as a unit: a kept block (scalar, with
+  // the recording visitor), or a run of unkept blocks, cut to at most
+  // kUnkeptSegment queries so that two threads even out (cast in AVX-512
+  // lanes where they apply, ray_batch_lanes.h, which also give the exits and
+  // touched sectors; else scalar with the marking visitor).
+  constexpr long kUnkeptSegment = 2048;
+  struct Segment {
+    long lo, hi;
+    bool keep;
+  };
+  std::vector<Segment> segments;
+  for (long b = 0; b < blocks; ++b) {
+    const long lo = b * block, hi = std::min(n, lo + block);
+    const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
+    Segment* last = segments.empty() ? nullptr : &segments.back();
+    if (!keep && last && !last->keep && last->hi == lo && hi - last->lo <= kUnkeptSegment)
+      last->hi = hi;
+    else
+      segments.push_back({lo, hi, keep});
+  }
+  const bool lanes = RayLanesApply(scene);
+  const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
 #pragma omp parallel
   {
     std::vector<std::uint64_t> mine(mark ? (sectors + 63) / 64 : 0, 0);
 #pragma omp for schedule(dynamic, 1)
-    for (long b = 0; b < blocks; ++b) {
-      const long lo = b * block, hi = std::min(n, lo + block);
-      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      RecordingVisitor recording = prototype;
-      recording.out = &block_addresses[static_cast<std::size_t>(b)];
-      recording.touched = mark ? mine.data() : nullptr;
-      MarkingVisitor marking;
-      marking.touched = mine.data();
-      for (int k = 0; k < 2; ++k) {
-        marking.offset[k] = prototype.offset[k];
-        marking.element_bytes[k] = prototype.element_bytes[k];
-      }
-      marking.sector_shift = sector_shift;
-      if (keep) recording.out->reserve(static_cast<std::size_t>(hi - lo) * 32);
-      for (long i = lo; i < hi; ++i) {
-        const RayQuery& q = batch.queries[i];
-        if (keep) {
+    for (long j = 0; j < static_cast<long>(segments.size()); ++j) {
+      const Segment seg = segments[static_cast<std::size_t>(j)];
+      if (seg.keep) {
+        RecordingVisitor recording = prototype;
+        recording.out = &block_addresses[static_cast<std::size_t>(seg.lo / block)];
+        recording.touched = mark ? mine.data() : nullptr;
+        recording.out->reserve(static_cast<std::size_t>(seg.hi - seg.lo) * 32);
+        for (long i = seg.lo; i < seg.hi; ++i) {
+          const RayQuery& q = batch.queries[i];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, recording);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
-        } else {
-          marking.last_index = 0;
+        }
+      } else if (lanes) {
+        LaneRecording lane;
+        lane.last_exits = last_exit.data() + seg.lo;
+        lane.touched = mine.data();
+        lane.offset = fetched.base - footprint_begin;
+        lane.element_bytes = fetched.element_bytes;
+        lane.sector_shift = sector_shift;
+        CastRayLanes(scene, batch.queries.data() + seg.lo, static_cast<std::size_t>(seg.hi - seg.lo),
+                     batch.max_range_m, hits.data() + seg.lo, &lane);
+      } else {
+        MarkingVisitor marking;
+        marking.touched = mine.data();
+        for (int k = 0; k < 2; ++k) {
+          marking.offset[k] = prototype.offset[k];
+          marking.element_bytes[k] = prototype.element_bytes[k];
+        }
+        marking.sector_shift = sector_shift;
+        for (long i = seg.lo; i < seg.hi; ++i) {
+          const RayQuery& q = batch.queries[i];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, marking);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);
         }

@@ -2,14 +2,15 @@
 // CastRayBatch with a recording visitor: the same hits, plus the kernel
 // record every backend prices (robocore/kernel_record.h).
 //
-// Two passes, parallel over queries with OpenMP and deterministic: the
-// functional kernel for every query (its hit, its node count and which exit
-// ended its last pass), a prefix sum of the counts into per-query slots
-// (the CSR offsets), then the kernel again, for the queries whose addresses
-// the sample keeps only, with a visitor that writes each fetch into the
-// query's own slot. The record does not depend on the thread count. Cost:
-// CastRayBatch, plus the kept fraction of it again, plus one 1-byte store
-// per fetch and one 8-byte store per kept fetch; a record reused across
+// One pass of the kernel, parallel over segments of queries with OpenMP and
+// deterministic: every query's hit, node count and last pass's exit; the
+// addresses of the blocks the sample keeps (scalar, with a recording
+// visitor, into a buffer per block, joined in launch order); and, with a
+// sample, the sectors the whole batch touched. The queries a sample does not
+// keep are cast in CastRayBatch's AVX-512 lanes where they apply
+// (ray_batch_lanes.h). The record does not depend on the thread count.
+// Cost: about CastRayBatch for the unkept queries, the scalar kernel for the
+// kept ones, plus one 8-byte store per kept fetch; a record reused across
 // batches keeps its capacity.
 #include <vector>
 

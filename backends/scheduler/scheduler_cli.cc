@@ -104,11 +104,13 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
     emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
     return;
   }
-  emit("  gap to oracle %.2f%%; the oracle's choice in %.1f%% of priced %ss (%.1f%% counting one within %.0f%% of "
-       "its cycles); followed %ld of its %ld lasting changes (>= %d %ss)",
-       l.gap_to_oracle_percent, l.oracle_agreement_percent, what.c_str(), l.oracle_equivalent_percent,
+  // "launch" -> "launches", "update" -> "updates".
+  const std::string whats = what + (what.size() >= 2 && what.compare(what.size() - 2, 2, "ch") == 0 ? "es" : "s");
+  emit("  gap to oracle %.2f%%; the oracle's choice in %.1f%% of priced %s (%.1f%% counting one within %.0f%% of "
+       "its cycles); followed %ld of its %ld lasting changes (>= %d %s)",
+       l.gap_to_oracle_percent, l.oracle_agreement_percent, whats.c_str(), l.oracle_equivalent_percent,
        LedgerSummary::kEquivalentPercent, l.oracle_lasting_changes_followed, l.oracle_lasting_changes,
-       LedgerSummary::kLastingIterations, what.c_str());
+       LedgerSummary::kLastingIterations, whats.c_str());
 }
 
 nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& options) {

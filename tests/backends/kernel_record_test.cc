@@ -5,6 +5,8 @@
 // facade.
 #include <omp.h>
 
+#include <set>
+
 #include <gtest/gtest.h>
 
 #include "robocore/ray_batch_recorded.h"
@@ -102,6 +104,11 @@ TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
   }
   EXPECT_GT(kept, 0u);
   EXPECT_LT(kept, full.query_count() / 3);
+  // The sectors the whole batch touched, counted while casting (in SIMD
+  // lanes where the CPU has them), are the full record's distinct sectors.
+  std::set<std::uint64_t> distinct;
+  for (std::uint64_t a : full.fetch_addresses) distinct.insert((a - full.footprint_begin()) / 32);
+  EXPECT_EQ(sampled.touched_sectors, distinct.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRayCasters, RecordTest,
