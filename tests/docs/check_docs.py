@@ -10,7 +10,7 @@ target page (GitHub's heading ids). A link into ../shared (outside the
 repository) is checked when ../shared is there and skipped, with a message,
 when it is not. Links inside code are not links.
 
-commands: every command in a ```sh block of README.md and docs/*.md (and
+commands: every command in a ```sh block of the same files (and
 every `$ build/rcbench ...` line of a ```text block, which shows a real
 run) that calls build/rcbench uses only subcommands and --options that the
 subcommand's --help lists; a command of a study script
@@ -242,10 +242,12 @@ def check_command(words, helps, where):
     if m:
         if not os.path.exists(os.path.join(helps.root, m.group(1))):
             return [f"{where}: {m.group(1)}: no such script"], "script"
+        own, extra = (words[1:], []) if "--" not in words else (words[1:words.index("--")], words[words.index("--") + 1:])
+        if not options_used(own) and not options_used(extra):
+            return problems, "script"  # nothing to check against a --help it may not have
         code, text = helps.script(m.group(1))
         if code != 0:
             return [f"{where}: '{m.group(1)} --help' failed (exit {code})"], "script"
-        own, extra = (words[1:], []) if "--" not in words else (words[1:words.index("--")], words[words.index("--") + 1:])
         listed = listed_options(text)
         for option in options_used(own):
             if option not in listed:
@@ -273,7 +275,7 @@ def needs_external_data(words, helps):
 def check_commands(root, rcbench, run):
     helps = Helps(root, os.path.abspath(rcbench))
     problems, checked, ran, skipped = [], 0, 0, 0
-    pages = [os.path.join(root, "README.md")] + sorted(glob.glob(os.path.join(root, "docs", "*.md")))
+    pages = markdown_files(root)
     # One folder for every page, so a page may use what an earlier command
     # wrote (out/demo/); a command already run is not run again.
     work = tempfile.TemporaryDirectory(prefix="rc-docs-")
