@@ -79,3 +79,21 @@ def read_cumulative_evidence(path):
             total += value
         out.append((total, updated, float(r["est_x_m"]), float(r["est_y_m"])))
     return out
+
+
+def write_atomic(path, data):
+    """Write data (str: text, bytes: binary) to path through a temporary file
+    in the same folder, renamed into place only once it is complete, so a
+    failed run leaves no partial file; creates the parent folders."""
+    import tempfile
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".tmp-")
+    try:
+        with os.fdopen(fd, "wb" if isinstance(data, bytes) else "w") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise

@@ -46,13 +46,10 @@ any error of the map itself. What it is NOT: ground truth. A window whose
 runner-up score is close to its best, or whose best sits on the edge of the
 local search, is not well determined; the per-window CSV says which.
 
-Map: CMU .dat, values are P(free); a cell is occupied if its value is in
-[0, 0.35]; -1 is unknown (neither occupied nor scored as free). Map frame:
-x = first index (line of the data block), y = second index, origin at the
-outer corner of cell (0, 0), metres. Log: L records
-`L x y theta xl yl thetal r1..r180 ts` (cm, rad); the laser sits 0.25 m ahead
-of the robot centre, beam i at -pi/2 + i*pi/180; ranges >= 81.83 m are
-no-return codes and are dropped, as are ranges beyond --max-range.
+Inputs: a CMU .dat map (values are P(free); occupied if in [0, 0.35]; -1
+unknown) and CMU robotdata logs, read by scripts/cmu_inputs.py, which states
+the frame and the laser geometry; no-return codes and ranges beyond
+--max-range are dropped.
 
 Outputs, per log <name>.log, written only after every log succeeded:
   <out-dir>/<name>.ref.txt      `t_s x_m y_m theta_rad`, one line per laser
@@ -70,7 +67,8 @@ Outputs, per log <name>.log, written only after every log succeeded:
                                 record, correction against the odometry
                                 prediction, flags
   --figure FILE                 map + scan endpoints at the reference poses,
-                                one panel per log
+                                one panel per log (scripts/plot_reference.py,
+                                which also draws it from these outputs)
 
 Usage: scripts/scan_match_reference.py --map wean.dat --out-dir out/reference
        [--figure docs/figures/real_logs_reference.png] LOG [LOG ...]
@@ -80,141 +78,20 @@ import csv
 import math
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
 from scipy import fft as sfft
 from scipy import ndimage, optimize
 
-OCCUPIED_MAX_P_FREE = 0.35  # a cell is occupied if 0 <= value <= this
-NO_RETURN_M = 81.83         # SICK status codes start at 8183 cm
-LASER_FORWARD_M = 0.25      # instruct.txt; the logs' xl/yl agree
-BEAMS = 180
+from cmu_inputs import BEAMS, LASER_FORWARD_M, beam_endpoints, input_error, read_cmu_log, read_cmu_map
+from rcbench_files import InputError, write_atomic
+
 DISTINCT_XY_M = 2.0         # global runner-up must be this far ...
 DISTINCT_THETA_RAD = math.radians(20.0)  # ... or this far in heading
 LOCAL_DISTINCT_XY_M = 0.5   # local runner-up: outside the best's own peak
 LOCAL_DISTINCT_THETA_RAD = math.radians(5.0)
 SEE_THROUGH_MARGIN_M = 1.0  # see see_through_fraction
-
-
-class InputError(Exception):
-    def __init__(self, path, line, field, message):
-        super().__init__(f"{path}:{line}: field '{field}': {message}")
-
-
-# ---------------------------------------------------------------- input ---
-
-def parse_float(path, line_no, field, text):
-    try:
-        v = float(text)
-    except ValueError:
-        raise InputError(path, line_no, field, f"'{text}' is not a number") from None
-    if not math.isfinite(v):
-        raise InputError(path, line_no, field, f"'{text}' is not finite")
-    return v
-
-
-def read_cmu_map(path):
-    """Returns (occupied bool [nx, ny], resolution_m)."""
-    resolution_m, size, rows = None, None, []
-    try:
-        f = open(path)
-    except OSError as e:
-        raise InputError(path, 0, "", f"cannot open map: {e.strerror}") from None
-    with f:
-        for line_no, line in enumerate(f, 1):
-            text = line.strip()
-            if not text:
-                continue
-            if text.startswith("robot_specifications->"):
-                key, *value = text.split()
-                if key.endswith("->resolution"):
-                    if len(value) != 1:
-                        raise InputError(path, line_no, "resolution", "expected one value (cm)")
-                    resolution_m = parse_float(path, line_no, "resolution", value[0]) / 100.0
-                    if resolution_m <= 0:
-                        raise InputError(path, line_no, "resolution", "must be positive")
-                continue
-            if text.startswith("global_map"):
-                parts = text.split()
-                if len(parts) != 3:
-                    raise InputError(path, line_no, "global_map", "expected 'global_map[0]: SIZE_X SIZE_Y'")
-                size = (int(parse_float(path, line_no, "size_x", parts[1])),
-                        int(parse_float(path, line_no, "size_y", parts[2])))
-                if size[0] <= 0 or size[1] <= 0:
-                    raise InputError(path, line_no, "global_map", "sizes must be positive")
-                continue
-            if size is None:
-                raise InputError(path, line_no, "global_map", "map data before the 'global_map[0]:' line")
-            fields = text.split()
-            if len(fields) != size[1]:
-                raise InputError(path, line_no, f"cell {len(fields) + 1}" if len(fields) < size[1] else
-                                 f"cell {size[1] + 1}", f"{len(fields)} values, expected {size[1]}")
-            try:
-                row = np.array(fields, dtype=float)
-            except ValueError:
-                row = np.array([parse_float(path, line_no, f"cell {i + 1}", v) for i, v in enumerate(fields)])
-            bad = ~np.isfinite(row) | ~(((row >= 0) & (row <= 1)) | (row == -1))
-            if bad.any():
-                i = int(np.argmax(bad))
-                raise InputError(path, line_no, f"cell {i + 1}",
-                                 f"'{fields[i]}' is neither a probability in [0, 1] nor -1 (unknown)")
-            rows.append(row)
-    if size is None:
-        raise InputError(path, 0, "global_map", "no 'global_map[0]: SIZE_X SIZE_Y' line")
-    if len(rows) != size[0]:
-        raise InputError(path, 0, "global_map", f"{len(rows)} data lines, expected {size[0]}")
-    if resolution_m is None:
-        raise InputError(path, 0, "resolution", "no 'robot_specifications->resolution' line")
-    values = np.vstack(rows)
-    return (values >= 0) & (values <= OCCUPIED_MAX_P_FREE), resolution_m
-
-
-class Log:
-    def __init__(self, path, odometry, ranges, times):
-        self.path, self.odometry, self.ranges, self.times = path, odometry, ranges, times
-
-
-def read_cmu_log(path):
-    """L records -> odometry [n, 3] (m, m, rad), ranges [n, 180] (m, nan = no return), ts [n] (s)."""
-    odometry, ranges, times = [], [], []
-    try:
-        f = open(path)
-    except OSError as e:
-        raise InputError(path, 0, "", f"cannot open log: {e.strerror}") from None
-    names = ["record type", "x", "y", "theta", "xl", "yl", "thetal"] + \
-        [f"r{i + 1}" for i in range(BEAMS)] + ["ts"]
-    with f:
-        for line_no, line in enumerate(f, 1):
-            fields = line.split()
-            if not fields:
-                continue
-            if fields[0] == "O":
-                if len(fields) != 5:
-                    raise InputError(path, line_no, "record type", f"O record with {len(fields)} fields, expected 5 (O x y theta ts)")
-                for i, name in enumerate(["x", "y", "theta", "ts"]):
-                    parse_float(path, line_no, name, fields[i + 1])
-                continue
-            if fields[0] != "L":
-                raise InputError(path, line_no, "record type", f"'{fields[0]}' is neither O nor L")
-            if len(fields) != len(names):
-                raise InputError(path, line_no, "record type",
-                                 f"L record with {len(fields)} fields, expected {len(names)} (L x y theta xl yl thetal r1..r180 ts)")
-            values = [parse_float(path, line_no, names[i], fields[i]) for i in range(1, len(fields))]
-            r = np.array(values[6:6 + BEAMS]) / 100.0
-            if (r < 0).any():
-                i = int(np.argmax(r < 0))
-                raise InputError(path, line_no, f"r{i + 1}", "negative range")
-            r[r >= NO_RETURN_M] = np.nan
-            if times and values[-1] < times[-1]:
-                raise InputError(path, line_no, "ts", f"time {values[-1]} s goes back (previous L record {times[-1]} s)")
-            odometry.append((values[0] / 100.0, values[1] / 100.0, values[2]))
-            ranges.append(r)
-            times.append(values[-1])
-    if not odometry:
-        raise InputError(path, 0, "L records", "the log has no laser records")
-    return Log(path, np.array(odometry), np.vstack(ranges), np.array(times))
 
 
 # ------------------------------------------------------------ geometry ---
@@ -244,14 +121,7 @@ def compose(placement, relative):
 def window_points(log, first, last, max_range_m, decimate):
     """Endpoints of records first..last-1 in the frame of record first."""
     rel = relative_odometry(log.odometry[first:last], 0)
-    angles = -np.pi / 2 + np.arange(BEAMS) * np.pi / 180
-    pts = []
-    for k in range(0, last - first, decimate):
-        x, y, th = rel[k]
-        r = log.ranges[first + k]
-        ok = np.isfinite(r) & (r <= max_range_m)
-        sx, sy = x + LASER_FORWARD_M * math.cos(th), y + LASER_FORWARD_M * math.sin(th)
-        pts.append(np.column_stack([sx + r[ok] * np.cos(th + angles[ok]), sy + r[ok] * np.sin(th + angles[ok])]))
+    pts = [beam_endpoints(rel[k], log.ranges[first + k], max_range_m) for k in range(0, last - first, decimate)]
     return np.concatenate(pts) if pts else np.zeros((0, 2))
 
 
@@ -420,7 +290,7 @@ def build_reference(log, field, args):
     g_end = min(args.global_window, n)
     pts = window_points(log, 0, g_end, args.max_range, args.decimate)
     if len(pts) < 50:
-        raise InputError(log.path, 0, "L records", f"only {len(pts)} usable endpoints in the first {g_end} records")
+        raise input_error(log.path, 0, "L records", f"only {len(pts)} usable endpoints in the first {g_end} records")
     cands = global_search(field, pts, args.global_step_deg)
     # Refine the best few mutually separate peaks (neighbouring headings of
     # one peak are one candidate), so best and runner-up are compared alike.
@@ -556,15 +426,6 @@ def window_row(kind, s, e, npts, best, runner, predicted, flags, see_through):
 
 # --------------------------------------------------------------- output ---
 
-def write_atomic(path, text):
-    d = os.path.dirname(os.path.abspath(path))
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
 def reference_text(times, ref):
     lines = ["# t_s x_m y_m theta_rad  (scan-matching reference from scripts/scan_match_reference.py, not ground truth)"]
     lines += ["%.17g %.17g %.17g %.17g" % (t, x, y, th) for t, (x, y, th) in zip(times, ref)]
@@ -584,57 +445,6 @@ def windows_text(rows):
 def hypotheses_text(rows):
     return "; ".join(f"({r['x_m']:.2f}, {r['y_m']:.2f}) m {math.degrees(r['theta_rad']) % 360:.0f} deg: "
                      f"{r['flags']}" for r in rows if r["kind"] == "start_hypothesis")
-
-
-def draw_figure(path, occupied, res, results, max_range_m):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    n = len(results)
-    cols = 2 if n > 1 else 1
-    rowsn = (n + cols - 1) // cols
-    fig, axes = plt.subplots(rowsn, cols, figsize=(6.5 * cols, 4.0 * rowsn), squeeze=False)
-    angles = -np.pi / 2 + np.arange(BEAMS) * np.pi / 180
-    ext = [0, occupied.shape[0] * res, 0, occupied.shape[1] * res]
-    for ax, (name, log, ref, rows) in zip(axes.ravel(), results):
-        ax.imshow(np.where(occupied, 0.0, 1.0).T, origin="lower", cmap="gray", extent=ext, vmin=0, vmax=1.3)
-        pts = []
-        for k in range(0, len(ref), 3):
-            x, y, th = ref[k]
-            r = log.ranges[k]
-            ok = np.isfinite(r) & (r <= max_range_m)
-            sx, sy = x + LASER_FORWARD_M * math.cos(th), y + LASER_FORWARD_M * math.sin(th)
-            pts.append(np.column_stack([sx + r[ok] * np.cos(th + angles[ok]), sy + r[ok] * np.sin(th + angles[ok])]))
-        p = np.concatenate(pts)
-        ax.scatter(p[:, 0], p[:, 1], s=0.2, c="tab:red", linewidths=0, rasterized=True)
-        ax.plot(ref[:, 0], ref[:, 1], "-", c="tab:blue", lw=1.0)
-        ax.plot(ref[0, 0], ref[0, 1], "o", c="tab:green", ms=6)
-        ax.set_xlim(p[:, 0].min() - 1, p[:, 0].max() + 1)
-        ax.set_ylim(p[:, 1].min() - 1, p[:, 1].max() + 1)
-        local = [r for r in rows if r["kind"] == "chain"]
-        flagged = sum(1 for r in local if r["flags"])
-        g = rows[0]
-        hyp = sorted((r for r in rows if r["kind"] == "start_hypothesis"), key=lambda r: -r["objective"])
-        whole = ", ".join(f"{r['objective']:.3f}{'*' if r['flags'].startswith('chosen') else ''}"
-                          f" from ({r['x_m']:.0f}, {r['y_m']:.0f})" for r in hyp[:3])
-        ax.set_title(f"{name}: start ({ref[0, 0]:.2f}, {ref[0, 1]:.2f}) m, "
-                     f"{math.degrees(ref[0, 2]) % 360:.0f} deg; first window {g['score']:.3f} vs runner-up "
-                     f"{g['runner_up_score']:.3f}\nbest whole-log objectives of {len(hyp)} starts: {whole}\n"
-                     f"{flagged} of {len(local)} windows flagged", fontsize=8)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        ax.set_aspect("equal")
-    for ax in axes.ravel()[n:]:
-        ax.axis("off")
-    fig.suptitle("Scan-matching reference: map (black = occupied), scan endpoints at the reference poses (red), "
-                 "path (blue, start green)", fontsize=10)
-    fig.tight_layout()
-    d = os.path.dirname(os.path.abspath(path))
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=".png")
-    os.close(fd)
-    fig.savefig(tmp, dpi=80)
-    os.replace(tmp, path)
 
 
 def main():
@@ -713,6 +523,7 @@ def main():
         write_atomic(os.path.join(args.out_dir, name + ".windows.csv"), windows_text(rows))
         print(f"wrote {os.path.join(args.out_dir, name + '.ref.txt')} and {name}.windows.csv", file=sys.stderr)
     if args.figure:
+        from plot_reference import draw_figure
         draw_figure(args.figure, occupied, res, results, args.max_range)
         print(f"wrote {args.figure}", file=sys.stderr)
 

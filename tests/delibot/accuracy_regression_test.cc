@@ -125,7 +125,7 @@ TEST(AccuracyRegressionTest, GlobalLocalizationOnSimulatedWean) {
 // The simulator stops a ray at an unknown cell, as the ray casters do, and
 // on Wean 24 % of seed 3's beams end there. A likelihood field that scores
 // those end points as misses penalizes the true pose and, with the
-// README's cautious recipe, loses it (the run ends 46 m off after claiming
+// cautious recipe (docs/real_logs_cautious_recipe.md), loses it (the run ends 46 m off after claiming
 // convergence); taking the edge of mapped free space for a surface
 // (--lf-unknown edge) keeps it.
 TEST(AccuracyRegressionTest, UnknownSpaceAsAnEdgeMatchesTheSimulatorOnWean) {

@@ -1,5 +1,5 @@
 #pragma once
-// The README's real-log settings, shared by the tests that check them on the
+// The real-log settings of docs/real_logs.md, shared by the tests that check them on the
 // Wean logs and on simulated traces.
 #include "workloads/delibot/delibot_run.h"
 
@@ -15,7 +15,7 @@ inline DelibotSettings RealLogRecipe() {
   return s;
 }
 
-// The cautious recipe (README, "A recipe whose claims hold"): nav2's cube
+// The cautious recipe (docs/real_logs_cautious_recipe.md): nav2's cube
 // sum with unknown space as an edge, 2,000,000 first particles, a
 // 500-particle floor in a 6-nat window, a set growing to 20000 while rivals
 // are alive.

@@ -8,7 +8,7 @@
 // What is pinned, and why:
 // - Tracking from the reference start with the default beam model (recovery
 //   off) stays within 1 m of the reference at every checkpoint of
-//   robotdata1, 2 and 4 (on robotdata3 it drifts to about 1 m; README).
+//   robotdata1, 2 and 4 (on robotdata3 it drifts to about 1 m; docs/real_logs.md).
 // - Global localization with the real-log recipe (likelihood field, 500,000
 //   initial particles, no random injection) is within 1 m of the reference
 //   at every checkpoint of the second half of robotdata2, 3 and 4, with
@@ -20,8 +20,7 @@
 //   half of every log and holds at every later checkpoint.
 // - Every beam at beam step 1 keeps every weight finite on all four logs.
 // robotdata1 is left out of the recipe's global check: two of three seeds
-// lock onto the door 6 m west of the truth (README, "DeliBot on the real
-// Wean logs"); with nav2's update gating, its cube-sum likelihood or the
+// lock onto the door 6 m west of the truth (docs/real_logs.md); with nav2's update gating, its cube-sum likelihood or the
 // hypothesis floor it localizes, and that is checked.
 #include <algorithm>
 #include <cmath>
@@ -153,7 +152,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogGlobalLocalization, ::testing::Values(kRob
                          PrintName);
 
 // With nav2's update gating the recipe also localizes robotdata1 (3 of 3
-// seeds), at the price of robotdata2 (1 of 3; README).
+// seeds), at the price of robotdata2 (1 of 3; docs/real_logs.md).
 TEST(RealLogGlobalLocalization, GatedRecipeLocalizesRobotdata1) {
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
@@ -166,7 +165,7 @@ TEST(RealLogGlobalLocalization, GatedRecipeLocalizesRobotdata1) {
 
 // nav2 AMCL's flat cube-sum combination (after the product picks the
 // working set out of the dense first set) keeps the true door of robotdata1
-// alive where the product loses it (3 of 3 seeds against 1 of 3; README).
+// alive where the product loses it (3 of 3 seeds against 1 of 3; docs/real_logs.md).
 TEST(RealLogGlobalLocalization, CubeSumRecipeLocalizesRobotdata1) {
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
@@ -192,7 +191,8 @@ TEST(RealLogGlobalLocalization, CubeSumRecipeLocalizesRobotdata1) {
 // (scripts/evidence_vs_particles.py), and was lost in 2 of 3 seeds.
 // Checked on all four logs: the claim comes in the first half of the log,
 // with rivals counted on the way, and from the claim on every checkpoint is
-// within 1 m of the reference (seed 1; README: 37 of 40 runs over 10 seeds).
+// within 1 m of the reference (seed 1; docs/real_logs_particles.md: 37 of 40
+// runs over 10 seeds).
 class RealLogHypothesisFloor : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
@@ -224,7 +224,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
 // 2000 particles with a 500 floor keep the heaviest two, and with seed 4 the
 // true place is not one of them. Letting the set grow to 20000 while rivals
 // are alive keeps it, and the set is back at 2000 by the claim (10 of 10
-// seeds on robotdata1, 3 and 4; README).
+// seeds on robotdata1, 3 and 4; docs/real_logs_particles.md).
 TEST(RealLogGrowingSet, KeepsTheTruePlaceThatAFixedSizeDrops) {
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
@@ -254,7 +254,7 @@ TEST(RealLogGrowingSet, KeepsTheTruePlaceThatAFixedSizeDrops) {
 // checkpoint from the claim on is within 1 m. robotdata2 claims only after
 // record 1260, where the scans first decide against the look-alike 12 m
 // east. (With an 8-nat window robotdata3 left its rival inside the window
-// in 4 of 10 seeds and never claimed; README, "A recipe whose claims hold".)
+// in 4 of 10 seeds and never claimed; docs/real_logs_cautious_recipe.md.)
 class RealLogCautiousRecipe : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogCautiousRecipe, EveryRunClaimsAndEveryClaimHolds) {
@@ -281,7 +281,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogCautiousRecipe,
                          ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4), PrintName);
 
 // The default options (beam model, 2000 particles, recovery on) do not
-// localize the real logs (README). Their first claim comes within 20 records,
+// localize the real logs (docs/real_logs.md). Their first claim comes within 20 records,
 // but the filter later contradicts it (jumps, injected particles), so no
 // claim stands at the end and the run does not report itself localized.
 TEST(RealLogDefaults, NoClaimStandsWhereTheDefaultsAreLost) {

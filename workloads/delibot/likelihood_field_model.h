@@ -23,11 +23,10 @@ struct LikelihoodFieldParams {
   // false (AMCL's field): 0 everywhere inside occupied cells. true: an end
   // point inside a wall scores by its depth below the wall's face, as one in
   // front of it scores by its distance (a signed distance field). Signed
-  // removes a forward bias on maps that match the world (simulated: 1.4 cm
-  // median instead of 10 cm), but on Wean Hall, whose map draws open doors
-  // and glass as walls, the real-log recipe with it ends 3-6 m off on
-  // robotdata1, 3 and 4 (one run each, seed 1), so AMCL's choice stays the
-  // default. See DistanceAt.
+  // removes the unsigned field's forward bias on maps that match the world,
+  // but loses on maps that draw open doors and glass as walls, so AMCL's
+  // choice stays the default (docs/delibot.md, "Likelihood field, signed or
+  // not"). See DistanceAt.
   bool signed_distance = false;
   // How an end point at or in an unknown cell scores. false (the default):
   // as a miss, at the distance cap, whatever is near. true ("edge"): the
@@ -35,9 +34,8 @@ struct LikelihoodFieldParams {
   // `rcbench simulate` treat it (they stop a ray at an unknown cell, as
   // AMCL's map_calc_range does): distances run to the nearest occupied or
   // unknown cell, and an end point inside unknown space scores by its depth
-  // below the edge of free space. On simulated Wean 16-24 % of the beams
-  // (seeds 1, 3 and 5, first 50 records) end at unknown cells; on the real
-  // logs none do at the reference poses, where real beams stop at walls.
+  // below the edge of free space. Where it matters, with numbers:
+  // docs/real_logs_cautious_recipe.md ("unknown space as an edge").
   bool unknown_is_edge = false;
   BeamCombination combination = BeamCombination::kProduct;
   bool IsValid(std::string* error) const;

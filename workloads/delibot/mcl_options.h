@@ -14,58 +14,45 @@ struct MclOptions {
   int particle_count = 2000;          // [1, 10^7]
   // Global localization starts from this many uniform particles (0: the
   // particle count) and the first sensor update resamples them down to
-  // particle_count. In a building of look-alike corridors the uniform set
-  // must be dense enough that some particle starts within the sensor
-  // model's reach of the true pose (~0.2 m, ~5 deg); 2000 particles over
-  // Wean Hall's free space leave the nearest one metres away, and the filter
-  // then locks onto whichever corridor the first scans happen to favour.
+  // particle_count. Why: some particle must start within the sensor model's
+  // reach of the true pose (~0.2 m, ~5 deg), or the filter locks onto
+  // whichever look-alike the first scans favour (docs/real_logs.md, "A dense
+  // first set").
   int initial_particle_count = 0;     // 0 or [particle_count, 10^7]
   std::uint64_t seed = 1;
   OdometryMotionNoise motion;
   BeamSelection beams{6};             // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
   // A particle whose robot centre is not in a free cell (occupied, unknown,
   // or off the map) gets zero weight: the same free space that global
-  // localization samples from. The likelihood field needs this most. It
-  // scores only beam endpoints, and in a map with thick walls and unmapped
-  // space behind them (Wean Hall has metres of both) a particle inside a
-  // wall sees every endpoint land "on an obstacle" and outscores the true
-  // pose; MRPT's likelihood-field filter drifts into Wean's walls that way.
+  // localization samples from. The likelihood field needs this most: it
+  // scores only beam endpoints, so a particle inside a thick wall sees every
+  // endpoint land "on an obstacle" and outscores the true pose
+  // (docs/real_logs.md, "Free space").
   bool reject_poses_in_obstacles = true;
   double resample_ess_fraction = 0.5; // resample when ESS < fraction * N; (0, 1]
   // Hypothesis-preserving resampling (resampling.h): a cluster of particles
   // (clusters: hypothesis_clusters.h, bins of estimate_kernel_radius_m and
-  // 30 deg) whose posterior mass is within window_nats of the heaviest keeps
-  // at least min_particles particles, weighted so the belief is unchanged.
-  // min_particles 0 = plain systematic resampling (the default). While a
-  // second hypothesis is alive the filter does not claim convergence
-  // without ground truth (delibot_run.h). min_particles should be hundreds:
-  // a hypothesis held by few particles loses evidence to sampling (0.5 nats
-  // per update at 20 particles on simulated Wean, 0.05 at 500;
-  // scripts/evidence_vs_particles.py), so a true place held at a small floor
-  // falls out of the window behind a look-alike the scans do not favour.
-  // The window is 200 nats: on robotdata2 the scans favour the door 6 m west
-  // by up to 84 nats before the corridor's end decides for the truth by
-  // hundreds, while on robotdata3 the truth leads by only 264 nats at the
-  // end. Windows of 100, 200 and 300 nats were tried on the four Wean logs
-  // with a 20-particle floor (9, 10 and 9 of 12 runs right by the filter's
-  // own claim; README, "Evidence between look-alike places"); chosen on the
-  // same logs, with no held-out data. Under the cube sum (LikelihoodFieldParams
-  // combination) a scan moves a weight by a factor of 6 at most, so the
-  // evidence between places is tens of nats, not thousands, and the
-  // window must shrink with it: the README's cautious recipe uses 8 nats,
-  // between robotdata2's look-alike's largest lead (4) and robotdata3's
-  // truth's margin (about 10), again chosen on those logs.
+  // 360 / hypothesis_heading_bins deg) whose posterior mass is within
+  // window_nats of the heaviest keeps at least min_particles particles,
+  // weighted so the belief is unchanged. min_particles 0 = plain systematic
+  // resampling (the default). While a second hypothesis is alive the filter
+  // does not claim convergence without ground truth (delibot_run.h).
+  // min_particles should be hundreds: a hypothesis held by few particles
+  // loses evidence to sampling (docs/real_logs_particles.md). The window is
+  // in the nats of the scan likelihood, so it scales with the beam
+  // combination: the default 200 nats suits the product; under the cube sum
+  // (BeamCombination::kAmclCubeSum) the evidence between places is tens of
+  // nats, and the window must shrink with it (docs/real_logs_window.md).
   HypothesisFloor hypothesis_floor{0, 200.0};  // [0, particle_count / 2] particles, [0, 10^4] nats
   // With a floor, the set grows while rivals are alive so that each keeps
   // its floor: a resampling draws max(particle_count, 2 * alive * floor)
   // particles, at most this many (the floor takes at most half the slots).
   // At a fixed size the floor holds only particle_count / (2 * floor)
-  // hypotheses, and on the Wean logs a global localization leaves 17 places
-  // within 21 nats at the second update: a 2000-particle set with a 500
-  // floor keeps the heaviest two and may drop the true one for good. The
-  // set shrinks back as the rivals fall out of the window, as KLD sampling
-  // (Fox 2003; AMCL's max_particles) sizes the set by the support of the
-  // belief. 0 = fixed size (the default). [0 or particle_count, 10^7].
+  // hypotheses and may drop the true one for good
+  // (docs/real_logs_particles.md). The set shrinks back as the rivals fall
+  // out of the window, as KLD sampling (Fox 2003; AMCL's max_particles)
+  // sizes the set by the support of the belief. 0 = fixed size (the
+  // default). [0 or particle_count, 10^7].
   int max_particle_count = 0;
   int hypothesis_heading_bins = 12;          // 30 deg heading bins; [1, 360]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
@@ -76,21 +63,13 @@ struct MclOptions {
   // Checked injection (0 = augmented MCL as published). A random pose
   // replaces a particle only if it explains the scans of the last this-many
   // sensor updates better than that particle does, both replayed back
-  // through the odometry. Published augmented MCL lets a random pose
-  // win on one scan: when a person blocks half the beams, the true cloud
-  // scores worse for a moment, a random pose that happens to face a nearby
-  // wall outscores it, and resampling keeps only that pose (4 of 40
-  // simulated 500-particle tracking runs jumped away that way). A look-alike
-  // rarely fits several scans along the driven path, and after a real
-  // kidnap the estimate stops fitting once the window holds only
-  // post-kidnap scans, so recovery is delayed, not lost. 10 updates at the
-  // 5 cm update distance span about 0.5 m of driving (1-2 s at walking
-  // pace), longer than a person passing in front of the laser blocks it.
-  // Off by default: the check also slows the escape from a wrong global
-  // convergence (a random pose near the truth, not yet refined, must beat a
-  // particle of the wrong cloud over the whole window), and on the office
-  // CI seed global localization then no longer converges in 400 records.
-  // [0, 1000] sensor updates.
+  // through the odometry. Why: published augmented MCL lets a random pose
+  // win on one scan (a person blocking the beams for a moment), while a
+  // look-alike rarely fits several scans along the driven path; after a
+  // real kidnap recovery is delayed by the window, not lost. 10 updates at
+  // the 5 cm update distance span about 0.5 m of driving. Off by default
+  // because it also slows the escape from a wrong global convergence
+  // (docs/delibot.md, "Checked injection"). [0, 1000] sensor updates.
   int injection_check_updates = 0;
   // A sensor update runs only after the odometry has moved this far since
   // the previous one (AMCL's update_min_d / update_min_a); 0 = every scan.
