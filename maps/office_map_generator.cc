@@ -64,41 +64,6 @@ const MetricRect kRooms[] = {
 const double kFurnitureSizes[][2] = {{1.4, 0.7}, {1.0, 0.45}, {0.9, 0.9}, {1.8, 0.4}};
 // clang-format on
 
-struct CellRange {
-  int x0, y0, x1, y1;  // [x0, x1) x [y0, y1), clamped to the grid
-};
-
-// Cells whose centres lie inside the rectangle.
-CellRange CellsOf(const MetricRect& r, const OccupancyGrid& grid) {
-  const double res = grid.resolution_m();
-  auto first = [res](double v) { return static_cast<int>(std::ceil(v / res - 0.5)); };
-  return {std::max(0, first(r.x0_m)), std::max(0, first(r.y0_m)),
-          std::min(grid.size_x(), first(r.x1_m)), std::min(grid.size_y(), first(r.y1_m))};
-}
-
-void Fill(const MetricRect& r, CellState s, OccupancyGrid* grid) {
-  const CellRange c = CellsOf(r, *grid);
-  for (int ix = c.x0; ix < c.x1; ++ix)
-    for (int iy = c.y0; iy < c.y1; ++iy) grid->Set(ix, iy, s);
-}
-
-bool AllFree(const MetricRect& r, const OccupancyGrid& grid) {
-  const CellRange c = CellsOf(r, grid);
-  for (int ix = c.x0; ix < c.x1; ++ix)
-    for (int iy = c.y0; iy < c.y1; ++iy)
-      if (grid.At(ix, iy) != CellState::kFree) return false;
-  return true;
-}
-
-MetricRect Inflate(const MetricRect& r, double dx, double dy) {
-  return {r.x0_m - dx, r.y0_m - dy, r.x1_m + dx, r.y1_m + dy};
-}
-
-bool Overlaps(const MetricRect& a, const MetricRect& b) {
-  return a.x0_m < b.x1_m && b.x0_m < a.x1_m && a.y0_m < b.y1_m && b.y0_m < a.y1_m;
-}
-
-// The zone in front of and behind a door that furniture must leave clear.
 MetricRect DoorKeepOut(const MetricRect& door) {
   const bool in_horizontal_wall = (door.x1_m - door.x0_m) > (door.y1_m - door.y0_m);
   return in_horizontal_wall ? Inflate(door, kDoorKeepOutSideM, kDoorKeepOutDepthM)
@@ -132,9 +97,9 @@ bool PlaceFurniture(const MetricRect& room, RandomStream& rng, std::vector<Metri
                     [&](const MetricRect& a) { return Overlaps(halo, a); }))
       continue;
     if (!AllFree(piece, *grid)) continue;  // walls (e.g. the storage room's) or pillars
-    Fill(piece, CellState::kOccupied, grid);
+    FillRect(piece, CellState::kOccupied, grid);
     if (CountFreeComponents(*grid) != 1) {
-      Fill(piece, CellState::kFree, grid);  // every cell under it was free
+      FillRect(piece, CellState::kFree, grid);  // every cell under it was free
       continue;
     }
     avoid->push_back(piece);
@@ -165,23 +130,14 @@ OccupancyGrid GenerateOfficeMap(const OfficeMapOptions& options) {
   const int size_y = static_cast<int>(std::lround(kOfficeHeightM / options.resolution_m));
   OccupancyGrid grid(size_x, size_y, options.resolution_m, CellState::kFree);
 
-  for (const auto& wall : kWalls) Fill(wall, CellState::kOccupied, &grid);
-  // When the resolution does not divide the extent, the last cell's centre
-  // can fall outside the outer wall; the border ring is closed explicitly.
-  for (int ix = 0; ix < size_x; ++ix) {
-    grid.Set(ix, 0, CellState::kOccupied);
-    grid.Set(ix, size_y - 1, CellState::kOccupied);
-  }
-  for (int iy = 0; iy < size_y; ++iy) {
-    grid.Set(0, iy, CellState::kOccupied);
-    grid.Set(size_x - 1, iy, CellState::kOccupied);
-  }
-  for (const auto& door : kDoors) Fill(door, CellState::kFree, &grid);
+  for (const auto& wall : kWalls) FillRect(wall, CellState::kOccupied, &grid);
+  CloseBorder(&grid);
+  for (const auto& door : kDoors) FillRect(door, CellState::kFree, &grid);
 
   std::vector<MetricRect> avoid;
   for (const auto& door : kDoors) avoid.push_back(DoorKeepOut(door));
   for (const auto& obstacle : kFixedObstacles) {
-    Fill(obstacle, CellState::kOccupied, &grid);
+    FillRect(obstacle, CellState::kOccupied, &grid);
     avoid.push_back(obstacle);
   }
   // One stream per room keeps a room's furniture independent of the others'.

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "maps/metric_rect.h"
 #include "maps/occupancy_grid.h"
 
 namespace rc {
@@ -36,11 +37,6 @@ struct OfficeMapOptions {
   std::uint64_t seed = 1;  // furniture placement only
 
   bool IsValid(std::string* error) const;
-};
-
-// An axis-aligned rectangle [x0, x1) x [y0, y1) in the map frame (m).
-struct MetricRect {
-  double x0_m, y0_m, x1_m, y1_m;
 };
 
 // The door openings (including the corridor's 2 m mouth into the lobby),

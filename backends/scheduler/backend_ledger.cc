@@ -119,8 +119,7 @@ void BackendLedger::Prepare(const KernelRecord& template_record, std::size_t que
     options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
     threshold_has_crossing_ = crossing.has_crossing;
   } else if (options_.policy.kind == SchedulerKind::kAdaptive || options_.policy.kind == SchedulerKind::kOracle) {
-    const KernelRecord probe =
-        MakeUniformProbe(template_record, queries_per_batch, std::max<std::uint32_t>(1, max_nodes / 2), RecordSample());
+    const KernelRecord probe = MakeSpreadProbe(template_record, queries_per_batch, max_nodes, RecordSample());
     std::vector<const Backend*> candidates;
     for (std::size_t k : candidate_index_) candidates.push_back(backend_ptrs_[k]);
     const std::vector<BatchCost> costs = PriceAll(candidates, probe);

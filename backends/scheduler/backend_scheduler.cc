@@ -130,15 +130,20 @@ std::vector<std::size_t> OracleSchedule(const std::vector<std::vector<double>>& 
   const std::size_t k = cycles.front().size();
   if (k == 0) throw std::invalid_argument("oracle needs at least one candidate backend");
   // best[b]: cheapest total for iterations [0, i] ending on b; from[i][b]
-  // the predecessor. Ties keep the lower index, so the result is unique.
+  // the predecessor. Ties stay on the same backend (an iteration with no
+  // kernel work costs 0 everywhere and must not read as a switch), then keep
+  // the lower index, so the result is unique.
   std::vector<double> best(cycles[0]);
   std::vector<std::vector<std::size_t>> from(n, std::vector<std::size_t>(k, 0));
   for (std::size_t i = 1; i < n; ++i) {
     if (cycles[i].size() != k) throw std::invalid_argument("every iteration needs one cost per candidate");
-    std::vector<double> next(k, std::numeric_limits<double>::infinity());
+    std::vector<double> next(k);
     for (std::size_t b = 0; b < k; ++b) {
+      next[b] = best[b] + cycles[i][b];
+      from[i][b] = b;
       for (std::size_t a = 0; a < k; ++a) {
-        const double total = best[a] + (a == b ? 0.0 : switch_cost_cycles) + cycles[i][b];
+        if (a == b) continue;
+        const double total = best[a] + switch_cost_cycles + cycles[i][b];
         if (total < next[b]) {
           next[b] = total;
           from[i][b] = a;

@@ -1,11 +1,28 @@
 #include "backends/scheduler/crossover_threshold.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace rc {
 
 KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::uint32_t nodes,
                               const AddressSample& sample) {
+  return MakeProbe(t, std::vector<std::uint32_t>(queries, nodes), sample);
+}
+
+KernelRecord MakeSpreadProbe(const KernelRecord& t, std::size_t queries, std::uint32_t max_nodes,
+                             const AddressSample& sample) {
+  // Query q fetches 1 + (q * 37) mod max_nodes nodes: every length in
+  // [1, max_nodes] equally often, neighbours in a warp far apart.
+  std::vector<std::uint32_t> nodes(queries);
+  const std::uint32_t top = std::max<std::uint32_t>(1, max_nodes);
+  for (std::size_t q = 0; q < queries; ++q) nodes[q] = 1 + static_cast<std::uint32_t>((q * 37) % top);
+  return MakeProbe(t, nodes, sample);
+}
+
+KernelRecord MakeProbe(const KernelRecord& t, const std::vector<std::uint32_t>& nodes_per_query,
+                       const AddressSample& sample) {
+  const std::size_t queries = nodes_per_query.size();
   KernelRecord probe;
   probe.step_kind = t.step_kind;
   probe.leaf_kind = t.leaf_kind;
@@ -18,13 +35,15 @@ KernelRecord MakeUniformProbe(const KernelRecord& t, std::size_t queries, std::u
   const std::uint64_t elements = region.elements > 0 ? region.elements : 1;
   probe.address_sample = sample;
   probe.fetch_offsets.resize(queries + 1);
-  probe.last_exits.assign(queries, nodes > 0 ? kRayHitReturn : kNoExit);
+  probe.last_exits.resize(queries);
   if (!sample.KeepsAll()) probe.address_offsets.assign(1, 0);
   // Queries start spread over the structure (a large odd stride) and walk
   // consecutive elements, like rays crossing cells of one row.
   constexpr std::uint64_t kStartStride = 7919;
   for (std::size_t q = 0; q < queries; ++q) {
-    probe.fetch_offsets[q + 1] = (q + 1) * nodes;
+    const std::uint32_t nodes = nodes_per_query[q];
+    probe.last_exits[q] = nodes > 0 ? kRayHitReturn : kNoExit;
+    probe.fetch_offsets[q + 1] = probe.fetch_offsets[q] + nodes;
     if (sample.KeepsQuery(q))
       for (std::uint32_t j = 0; j < nodes; ++j) {
         const std::uint64_t element = (q * kStartStride + j) % elements;

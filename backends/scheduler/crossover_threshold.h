@@ -14,6 +14,7 @@
 // cheaper) or +inf (low always cheaper), and the adaptive policy degenerates
 // to a static one, which the summary then says.
 #include <cstdint>
+#include <vector>
 
 #include "backends/backend.h"
 #include "robocore/kernel_record.h"
@@ -26,6 +27,14 @@ namespace rc {
 // queries `sample` keeps.
 KernelRecord MakeUniformProbe(const KernelRecord& template_record, std::size_t queries, std::uint32_t nodes,
                               const AddressSample& sample = {});
+// The same with every length from 1 to max_nodes equally often, interleaved
+// so that a warp's queries diverge: what a batch of rays from poses spread
+// over the map looks like before anything has been measured.
+KernelRecord MakeSpreadProbe(const KernelRecord& template_record, std::size_t queries, std::uint32_t max_nodes,
+                             const AddressSample& sample = {});
+// One query per entry of nodes_per_query, fetching that many nodes.
+KernelRecord MakeProbe(const KernelRecord& template_record, const std::vector<std::uint32_t>& nodes_per_query,
+                       const AddressSample& sample = {});
 
 struct CrossoverResult {
   double threshold_nodes_per_query = 0.0;  // 0 or +inf when there is no crossing
