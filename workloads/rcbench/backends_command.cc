@@ -11,7 +11,7 @@ namespace rc {
 void AddBackendsCommand(CLI::App& app) {
   auto params_path = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand("backends", "Print every backend's cost parameters (value, unit, source)");
-  cmd->add_option("--params", *params_path, "JSON override file to apply first");
+  cmd->add_option("--backend-params", *params_path, "JSON file overriding backend cost parameters, applied first (as every pricing subcommand's --backend-params)");
   cmd->callback([params_path] {
     const BackendParameters params = params_path->empty() ? BackendParameters{} : LoadBackendParameters(*params_path);
     std::cout << "backends:";
