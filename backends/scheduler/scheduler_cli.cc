@@ -91,8 +91,8 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
   for (std::size_t b = 0; b < l.backends.size(); ++b)
     emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
          l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
-  emit("  %-19s %14.0f cycles  %9.4f s  (%ld switches, %.0f cycles each)", policy.c_str(), l.policy_total_cycles,
-       l.policy_total_cycles / clock_hz, l.switches, l.switch_cost_cycles);
+  emit("  %-19s %14.0f cycles  %9.4f s  (%ld %s, %.0f cycles each)", policy.c_str(), l.policy_total_cycles,
+       l.policy_total_cycles / clock_hz, l.switches, l.switches == 1 ? "switch" : "switches", l.switch_cost_cycles);
   const std::string over = l.oracle_candidates.size() == l.backends.size() ? std::string("all backends")
                                                                            : "{" + Join(l.oracle_candidates) + "}";
   emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,

@@ -1,5 +1,7 @@
 #include "workloads/movebot/movebot_report.h"
 
+#include "backends/scheduler/scheduler_cli.h"
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -10,6 +12,7 @@
 #include <ompl/base/PlannerStatus.h>
 #include <ompl/config.h>
 
+#include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
 #include "traces/csv_table.h"
 
@@ -171,17 +174,18 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   if (nn_has_nodes && nn_queries) out << ", " << static_cast<double>(nn_nodes) / nn_queries << " nodes per query";
   out << "\n";
   if (!result.priced) return;
-  out << "modelled cycles (collision + NN kernels; every row priced on every backend; " << ToString(settings.ledger.policy)
-      << " policy):\n";
-  const LedgerSummary& c = result.collision_pricing;
-  const LedgerSummary& n = result.nn_pricing;
-  for (std::size_t b = 0; b < c.backends.size(); ++b)
-    out << "  " << std::left << std::setw(12) << c.backends[b] << std::right << std::setw(16) << std::setprecision(10)
-        << c.static_total_cycles[b] + n.static_total_cycles[b] << "\n";
-  out << "  " << std::left << std::setw(12) << "policy" << std::right << std::setw(16)
-      << c.policy_total_cycles + n.policy_total_cycles << "  (" << c.switches + n.switches << " switches)\n";
-  out << "  " << std::left << std::setw(12) << "oracle" << std::right << std::setw(16)
-      << c.oracle_total_cycles + n.oracle_total_cycles << std::setprecision(6) << "\n";
+  // Two kernels, two ledgers: each is scheduled and graded on its own.
+  out << "collision kernel, ";
+  PrintLedgerSummary(out, result.collision_pricing, settings.ledger, settings.backend_params.gpu.core_clock_hz,
+                     "batch", "nodes per link-OBB query");
+  const auto& nn_totals = result.nn_pricing.static_total_cycles;
+  if (std::all_of(nn_totals.begin(), nn_totals.end(), [](double c) { return c == 0.0; })) {
+    out << "nearest-neighbour kernel: no batch ran on the device (" << ToString(settings.nn) << ")\n";
+    return;
+  }
+  out << "nearest-neighbour kernel, ";
+  PrintLedgerSummary(out, result.nn_pricing, settings.ledger, settings.backend_params.gpu.core_clock_hz, "batch",
+                     "nodes per NN query");
 }
 
 }  // namespace rc
