@@ -1,166 +1,127 @@
 #!/usr/bin/python3
-"""The full DeliBot accuracy study (the CI runs a reduced version:
-tests/delibot/accuracy_regression_test.cc).
+"""Analysis of the DeliBot accuracy study (scripts/workflow/studies/accuracy.yaml;
+the CI runs a reduced version: tests/delibot/accuracy_regression_test.cc).
 
-For each map (the generated office map, and Wean Hall when ../shared/data is
-present) and each of N seeds: simulate a trace with ground truth
-(`rcbench simulate`, default noise: range noise, clutter, people, dropouts,
-drifting odometry), then run
-  - global localization from uniform particles (default 5000 particles), and
-  - tracking from the true first pose,
-and report:
+The study runs, per map and seed, a simulated trace with ground truth, then
+global localization from uniform particles (mode=global) and tracking from
+the true first pose (mode=tracking). This script reports, per map:
   - the fraction of seeds whose global localization converged (error below
     0.2 m and 5 deg for 10 consecutive records, and still so at the end);
   - the median tracking error, the runs still within 0.2 m at the end, and
-    the jumps (estimate moved > 1 m between records) after convergence.
-The default trace is 1000 records (100 s, about 45 m of driving), within the
-range of the real Wean logs (713-2200+ records): at 500 records three of the
-20 simulated Wean seeds had not yet found the true pose (they all do by
-record 917). Tracking runs 500 particles (--tracking-particles): the harder
-case for recovery, since one random particle is a larger share of the set
-(with published augmented MCL, --injection-check 0, 4 of 40 tracked runs
-jumped away).
-Global localization also reports the filter's own (ground-truth-free)
-claim of convergence and whether it held: at least 95 % of the records from
-the claim on within 1 m of the truth (what a user without ground truth would
-have relied on), and the same for the claim standing at the end (a claim the
-filter contradicted later, by a jump or injected particles, is withdrawn).
-Writes <out>/accuracy_study.csv and <out>/accuracy_study.md.
+    the jumps (estimate moved > 1 m between records) after convergence;
+  - whether global localization's own (ground-truth-free) claim of
+    convergence held: at least 95 % of the records from the claim on within
+    1 m of the truth (what a user without ground truth would have relied
+    on), and the same for the claim standing at the end (a claim the filter
+    contradicted later, by a jump or injected particles, is withdrawn).
+Why these settings (1000 records, 500 tracking particles): docs/studies.md.
 
-Usage: scripts/accuracy_study.py [--rcbench build/rcbench] [--out out/accuracy]
-       [--seeds 20] [--particles 5000] [--tracking-particles 500] [--records 1000]
-       [-- EXTRA RCBENCH DELIBOT ARGS]   (e.g. -- --hypothesis-floor 20)
+Writes into OUT_DIR
+  accuracy_study.csv   one row per (map, seed): global_* and tracking_* columns
+  accuracy_summary.csv the per-map summary
+  accuracy_study.md    the same summary as a Markdown table
+Usage: scripts/accuracy_study.py MERGED_CSV OUT_DIR
 """
-import argparse
-import csv
-import json
 import os
 import statistics
-import subprocess
 import sys
 
-from rcbench_files import SHARED_DATA, InputError, read_poses, read_timeline_rows, split_extra_args
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "workflow"))
+import analysis_io  # noqa: E402
+import pandas as pd  # noqa: E402
 
-WEAN = os.path.join(SHARED_DATA, "wean", "wean.dat")
+from rcbench_files import InputError, read_timeline_rows  # noqa: E402
 
-
-def run(cmd):
-    result = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if result.returncode != 0:
-        sys.exit(f"command failed ({result.returncode}): {' '.join(cmd)}\n{result.stderr}")
-
-
-def first_pose(gt_path):
-    """The ground truth's first pose as rcbench's --initial-pose X,Y,THETA."""
-    try:
-        _, x, y, theta = read_poses(gt_path)[0]
-    except InputError as e:
-        sys.exit(f"accuracy_study: {e}")
-    return f"{x!r},{y!r},{theta!r}"
+CLAIM_RADIUS_M = 1.0
+CLAIM_FRACTION = 0.95
 
 
-def read_errors(timeline):
-    """The timeline's (iteration, err_xy_m) rows."""
-    try:
-        return read_timeline_rows(timeline, ("iteration", "err_xy_m"))
-    except InputError as e:
-        sys.exit(f"accuracy_study: {e}")
-
-
-def claim_held(rows, claim):
+def claim_held(timeline, claim):
     """At least 95 % of the records from the claim on within 1 m of the truth."""
     if claim < 0:
         return False
+    try:
+        rows = read_timeline_rows(timeline, ("iteration", "err_xy_m"))
+    except InputError as e:
+        sys.exit(f"accuracy_study: {e}")
     after = [float(r["err_xy_m"]) for r in rows if int(r["iteration"]) >= claim]
-    return bool(after) and sum(e < 1.0 for e in after) >= 0.95 * len(after)
+    return bool(after) and sum(e < CLAIM_RADIUS_M for e in after) >= CLAIM_FRACTION * len(after)
+
+
+def per_seed(ok):
+    rows = []
+    for (map_name, seed), pair in ok.groupby(["map_label", "seed"], sort=False):
+        by_mode = {r["mode"]: r for _, r in pair.iterrows()}
+        if set(by_mode) != {"global", "tracking"}:
+            continue  # one of the two runs failed: the merged table names it
+        row = {"map": map_name, "seed": int(seed)}
+        for mode, r in by_mode.items():
+            row[f"{mode}_converged"] = int(r["accuracy.convergence_iteration"] >= 0 and r["accuracy.converged_at_end"])
+            row[f"{mode}_convergence_iteration"] = int(r["accuracy.convergence_iteration"])
+            row[f"{mode}_median_err_xy_m"] = r["accuracy.median_err_xy_m"]
+            row[f"{mode}_final_err_xy_m"] = r["accuracy.final_err_xy_m"]
+            row[f"{mode}_jumps"] = int(r["accuracy.jumps_after_convergence"])
+            row[f"{mode}_time_per_update_s"] = r["totals.wall_per_update_s"]
+        g = by_mode["global"]
+        timeline = os.path.join(g["folder"], "timeline.csv")
+        claim = int(g["accuracy.convergence_iteration_without_ground_truth"])
+        standing = int(g.get("accuracy.standing_claim_iteration", -1))
+        row["global_own_claim_record"] = claim
+        row["global_own_claim_held"] = int(claim_held(timeline, claim))
+        row["global_standing_claim_record"] = standing
+        row["global_standing_claim_held"] = int(claim_held(timeline, standing))
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def summary(seeds):
+    out = []
+    for name, sel in seeds.groupby("map", sort=False):
+        conv = sel[sel["global_converged"] == 1]
+        trk = sel["tracking_median_err_xy_m"]
+        its = list(conv["global_convergence_iteration"])
+        n = len(sel)
+        out.append({
+            "map": name, "seeds": n,
+            "global_converged": f"{len(conv)}/{n} ({100 * len(conv) / n:.0f}%)",
+            "median_convergence_record": statistics.median(its) if its else "-",
+            "jumps_after_global_convergence": int(conv["global_jumps"].sum()),
+            "tracking_median_err_xy_m": round(float(trk.median()), 3),
+            "worst_tracking_median_err_xy_m": round(float(trk.max()), 3),
+            "tracking_localized_at_end": f"{int(sel['tracking_converged'].sum())}/{n}",
+            "tracking_jumps": int(sel["tracking_jumps"].sum()),
+            "global_own_claim_held": f"{int(sel['global_own_claim_held'].sum())}/{n}",
+            "global_standing_claim_held": f"{int(sel['global_standing_claim_held'].sum())}/{n}",
+        })
+    return pd.DataFrame(out)
+
+
+def markdown(table):
+    head = ["map", "seeds", "global localization converged", "median convergence record",
+            "jumps after global convergence", "tracking median error (m)", "worst tracking median (m)",
+            "tracking still localized at the end", "tracking jumps", "global: own claim held",
+            "global: claim standing at the end held"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for _, r in table.iterrows():
+        lines.append("| " + " | ".join(str(v) for v in r.values) + " |")
+    return "\n".join(lines) + "\n"
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--out", default="out/accuracy")
-    ap.add_argument("--seeds", type=int, default=20)
-    ap.add_argument("--particles", type=int, default=5000)
-    ap.add_argument("--tracking-particles", type=int, default=500)
-    ap.add_argument("--records", type=int, default=1000)
-    own, extra = split_extra_args(sys.argv[1:])
-    args = ap.parse_args(own)
-    os.makedirs(args.out, exist_ok=True)
-
-    maps = []
-    office = os.path.join(args.out, "office.yaml")
-    run([args.rcbench, "make-map", "--output", office])
-    maps.append(("office", office))
-    if os.path.exists(WEAN):
-        maps.append(("wean", os.path.normpath(WEAN)))
-    else:
-        print(f"shared data absent ({WEAN}): Wean Hall skipped", file=sys.stderr)
-
-    rows = []
-    for name, map_path in maps:
-        for seed in range(1, args.seeds + 1):
-            trace = os.path.join(args.out, f"{name}_{seed}.log")
-            gt = os.path.join(args.out, f"{name}_{seed}.gt")
-            run([args.rcbench, "simulate", "--map", map_path, "--output", trace, "--ground-truth", gt,
-                 "--records", str(args.records), "--seed", str(seed)])
-            result = {"map": name, "seed": seed}
-            for mode in ("global", "tracking"):
-                summary = os.path.join(args.out, f"{name}_{seed}_{mode}.json")
-                cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", trace, "--ground-truth", gt,
-                       "--particles", str(args.particles if mode == "global" else args.tracking_particles), "--seed", str(seed),
-                       "--summary", summary, "--quiet", "--no-pricing", *extra]
-                timeline = os.path.join(args.out, f"{name}_{seed}_global.csv")
-                if mode == "global":
-                    cmd += ["--timeline", timeline]
-                else:
-                    cmd += ["--initial-pose", first_pose(gt)]
-                run(cmd)
-                with open(summary) as f:
-                    report = json.load(f)
-                a, t = report["accuracy"], report["totals"]
-                result[f"{mode}_converged"] = int(a["convergence_iteration"] >= 0 and a["converged_at_end"])
-                result[f"{mode}_convergence_iteration"] = a["convergence_iteration"]
-                result[f"{mode}_median_err_xy_m"] = a["median_err_xy_m"]
-                result[f"{mode}_final_err_xy_m"] = a["final_err_xy_m"]
-                result[f"{mode}_jumps"] = a["jumps_after_convergence"]
-                result[f"{mode}_time_per_update_s"] = t["wall_per_update_s"]
-                if mode == "global":
-                    claim = a["convergence_iteration_without_ground_truth"]
-                    result["global_own_claim_record"] = claim
-                    errors = read_errors(timeline)
-                    result["global_own_claim_held"] = int(claim_held(errors, claim))
-                    standing = a.get("standing_claim_iteration", -1)
-                    result["global_standing_claim_record"] = standing
-                    result["global_standing_claim_held"] = int(claim_held(errors, standing))
-            rows.append(result)
-            print(f"{name} seed {seed}: global converged={result['global_converged']} "
-                  f"(record {result['global_convergence_iteration']}), tracking median "
-                  f"{result['tracking_median_err_xy_m']:.3f} m", flush=True)
-
-    with open(os.path.join(args.out, "accuracy_study.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    lines = ["| map | seeds | global localization converged | median convergence record | "
-             "jumps after global convergence | tracking median error (m) | worst tracking median (m) | "
-             "tracking still localized at the end | tracking jumps | global: own claim held | "
-             "global: claim standing at the end held |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, _ in maps:
-        sel = [r for r in rows if r["map"] == name]
-        conv = [r for r in sel if r["global_converged"]]
-        its = [r["global_convergence_iteration"] for r in conv]
-        trk = [r["tracking_median_err_xy_m"] for r in sel]
-        held = sum(1 for r in sel if r["tracking_converged"])
-        lines.append(f"| {name} | {len(sel)} | {len(conv)}/{len(sel)} ({100 * len(conv) / len(sel):.0f}%) | "
-                     f"{statistics.median(its) if its else '-'} | {sum(r['global_jumps'] for r in conv)} | "
-                     f"{statistics.median(trk):.3f} | {max(trk):.3f} | {held}/{len(sel)} | "
-                     f"{sum(r['tracking_jumps'] for r in sel)} | "
-                     f"{sum(r['global_own_claim_held'] for r in sel)}/{len(sel)} | "
-                     f"{sum(r['global_standing_claim_held'] for r in sel)}/{len(sel)} |")
-    with open(os.path.join(args.out, "accuracy_study.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    merged, out_dir = analysis_io.arguments(__doc__)
+    table, ok = analysis_io.load(merged)
+    for column in ("map_label", "mode", "seed"):
+        if column not in table.columns:
+            sys.exit(f"{merged}: no '{column}' column: not the accuracy study's table")
+    seeds = per_seed(ok)
+    if seeds.empty:
+        sys.exit(f"{merged}: no (map, seed) with both runs ok")
+    analysis_io.save_table(seeds, out_dir, "accuracy_study.csv")
+    per_map = summary(seeds)
+    analysis_io.save_table(per_map, out_dir, "accuracy_summary.csv")
+    md = markdown(per_map)
+    analysis_io.save_text(md, out_dir, "accuracy_study.md")
+    print(md)
 
 
 if __name__ == "__main__":

@@ -25,17 +25,24 @@ def read_curve(path, x_column):
         reader = csv.DictReader(f)
         for column in (x_column, "best_cost_rad"):
             if column not in reader.fieldnames:
-                sys.exit(f"{path}: no column '{column}' (is it an anytime CSV from rcbench movebot --anytime?)")
+                raise ValueError(f"{path}: no column '{column}' (is it an anytime CSV from rcbench movebot --anytime?)")
         for line, row in enumerate(reader, start=2):
             try:
                 x = float(row[x_column])
                 y = float(row["best_cost_rad"]) if row["best_cost_rad"] else None
             except ValueError as e:
-                sys.exit(f"{path}:{line}: {e}")
+                raise ValueError(f"{path}:{line}: {e}") from None
             if y is not None:
                 xs.append(x)
                 ys.append(y)
     return xs, ys
+
+
+def label_axes(ax, x_column):
+    ax.set_xlabel("planning time (s)" if x_column == "time_s" else "RRTstar iterations")
+    ax.set_ylabel("best path cost (rad, joint-space length)")
+    ax.set_title("MoveBot anytime curve (OMPL RRTstar)")
+    ax.grid(True, alpha=0.3)
 
 
 def main():
@@ -50,15 +57,15 @@ def main():
         sys.exit("--labels needs one label per run")
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for path, label in zip(args.runs, labels):
-        xs, ys = read_curve(path, args.x)
+        try:
+            xs, ys = read_curve(path, args.x)
+        except ValueError as e:
+            sys.exit(str(e))
         if not xs:
             print(f"{path}: no solution in the run; nothing to draw", file=sys.stderr)
             continue
         ax.step(xs, ys, where="post", label=label)
-    ax.set_xlabel("planning time (s)" if args.x == "time_s" else "RRTstar iterations")
-    ax.set_ylabel("best path cost (rad, joint-space length)")
-    ax.set_title("MoveBot anytime curve (OMPL RRTstar)")
-    ax.grid(True, alpha=0.3)
+    label_axes(ax, args.x)
     ax.legend()
     fig.tight_layout()
     fig.savefig(args.output, dpi=120)

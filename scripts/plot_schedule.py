@@ -13,24 +13,17 @@ import csv
 import math
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("timeline")
-    ap.add_argument("png")
-    ap.add_argument("--title", default="")
-    ap.add_argument("--clock-hz", type=float, default=1.365e9, help="modelled core clock (Hz), for seconds")
-    args = ap.parse_args()
-    with open(args.timeline) as f:
-        rows = list(csv.DictReader(f))
-    if not rows or "cum_cycles_policy" not in rows[0]:
-        raise SystemExit(f"{args.timeline}: no backend pricing columns (run rcbench delibot without --no-pricing)")
+CLOCK_HZ = 1.365e9  # the default modelled core clock (Hz), to show cycles as seconds
 
+
+def draw(rows, title="", clock_hz=CLOCK_HZ):
+    """The two-panel figure of a priced timeline's rows (dicts of strings)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     it = [int(r["iteration"]) for r in rows]
-    ms = lambda col: [1e3 * float(r[col]) / args.clock_hz for r in rows]
+    ms = lambda col: [1e3 * float(r[col]) / clock_hz for r in rows]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 7), sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     for col, label, style in [("cum_cycles_simt", "SIMT (CUDA cores)", "-"), ("cum_cycles_ttaplus", "TTA+", "--"),
                               ("cum_cycles_ttaplus_cr", "TTA+ (cond. return)", ":"),
@@ -42,7 +35,7 @@ def main():
     top.set_ylabel("cumulative modelled time (ms)")
     top.legend(fontsize=8)
     top.grid(alpha=0.3)
-    top.set_title(args.title or "DeliBot: cumulative execution time and switching", fontsize=10)
+    top.set_title(title or "DeliBot: cumulative execution time and switching", fontsize=10)
 
     npr = [float(r["nodes_per_ray"]) if r["nodes_per_ray"] else math.nan for r in rows]
     bottom.plot(it, npr, ".", markersize=3, label="nodes per ray")
@@ -60,7 +53,21 @@ def main():
     bottom.legend(fontsize=8)
     bottom.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(args.png, dpi=110)
+    return fig
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("timeline")
+    ap.add_argument("png")
+    ap.add_argument("--title", default="")
+    ap.add_argument("--clock-hz", type=float, default=CLOCK_HZ, help="modelled core clock (Hz), for seconds")
+    args = ap.parse_args()
+    with open(args.timeline) as f:
+        rows = list(csv.DictReader(f))
+    if not rows or "cum_cycles_policy" not in rows[0]:
+        raise SystemExit(f"{args.timeline}: no backend pricing columns (run rcbench delibot without --no-pricing)")
+    draw(rows, args.title, args.clock_hz).savefig(args.png, dpi=110)
     print(f"wrote {args.png}")
 
 

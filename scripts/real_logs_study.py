@@ -1,24 +1,22 @@
 #!/usr/bin/python3
-"""DeliBot on the real CMU Wean Hall logs, judged against a scan-matching reference.
+"""Analysis of DeliBot on the real CMU Wean Hall logs, judged against a
+scan-matching reference (scripts/workflow/studies/real_logs.yaml).
 
-Runs `rcbench delibot` (global localization, or with --track-from-reference
-tracking from the reference's first pose) on robotdata1..4 for several
-seeds, with --ground-truth set to the reference trajectory of
-scripts/scan_match_reference.py when <reference-dir>/robotdataN.ref.txt
-exists (the reference is an estimate, not ground truth: its own error is
-about 0.1-1 m, larger along featureless corridors; see that script). Every
-run uses --quiet --no-pricing --threads 1 plus the arguments after `--`;
-two runs at a time (--jobs). Reads each run's --summary JSON and --timeline
-CSV and writes
-  <out>/real_logs_study.csv   one row per (log, seed)
-  <out>/real_logs_study.md    one Markdown table per log, one row per seed
-  --figure FILE               position error against the reference vs record,
-                              one panel per log, one line per seed
+The study runs `rcbench delibot` on robotdata1..4 for several seeds, with
+--ground-truth set to the reference trajectory of
+scripts/scan_match_reference.py (the reference is an estimate, not ground
+truth: its own error is about 0.1-1 m, larger along featureless corridors;
+see that script). This script reads each point's summary (the merged CSV)
+and its timeline, and writes into OUT_DIR
+  real_logs_study.csv   one row per (log, seed)
+  real_logs_study.md    one Markdown table per log, one row per seed
+  real_logs_error.png   position error against the reference vs record,
+                        one panel per log, one line per seed
 Columns: the record where the filter declared convergence (-1 = never),
 whether it is still converged at the end, median scan consistency and jumps
 after convergence (rcbench's ground-truth-free measures), and against the
 reference: the fraction of records from convergence on (every record when
-tracking) with error < 1 m,
+tracking, i.e. when the point set --initial-pose) with error < 1 m,
 the median error from convergence on and over all records, the final error
 (m), plus whether any non-finite value appeared (weights, estimates). With a
 reference, rcbench's "converged" is judged against it (within 0.2 m and 5
@@ -34,24 +32,22 @@ wrong, or none when the filter never claimed; - without a reference).
 rcbench's own err_xy_m timeline column must agree with the error computed
 here (a check that the reference pairs with the right records).
 
-Usage: scripts/real_logs_study.py [--rcbench build/rcbench] [--data-dir DIR]
-       [--reference-dir out/reference] [--seeds 5] [--out out/real_logs]
-       [--figure F.png (default <out>/real_logs_error.png)] [--track-from-reference]
-       [-- EXTRA RCBENCH ARGS]
+Usage: scripts/real_logs_study.py MERGED_CSV OUT_DIR
 """
-import argparse
-import concurrent.futures
 import csv
+import io
 import json
 import math
 import os
-import subprocess
 import sys
-import tempfile
 
 import numpy as np
+import pandas as pd
 
-from rcbench_files import SHARED_DATA, InputError, read_poses, read_timeline_rows, split_extra_args
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "workflow"))
+import analysis_io  # noqa: E402
+
+from rcbench_files import InputError, read_poses, read_timeline_rows  # noqa: E402
 
 GOOD_ERROR_M = 1.0
 RIGHT_FRACTION = 0.95
@@ -79,14 +75,6 @@ def read_timeline(path):
     est = np.array([[float(r["est_x_m"]), float(r["est_y_m"]), float(r["est_theta_rad"])] for r in rows])
     err = np.array([float(r["err_xy_m"]) for r in rows]) if "err_xy_m" in rows[0] else None
     return it, est, err
-
-
-def run_one(job):
-    cmd, log_name, seed = job
-    result = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if result.returncode != 0:
-        return log_name, seed, f"exit {result.returncode}: {' '.join(cmd)}\n{result.stderr.strip()}"
-    return log_name, seed, None
 
 
 def judge(log_name, seed, summary_path, timeline_path, reference, tracking):
@@ -204,16 +192,7 @@ def percent(fraction):
     return "-" if math.isnan(fraction) else f"{100 * fraction:.0f} %"
 
 
-def write_atomic(path, text):
-    d = os.path.dirname(os.path.abspath(path))
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
-
-
-def plot(path, logs, curves, rows):
+def plot(logs, curves, rows):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -238,94 +217,65 @@ def plot(path, logs, curves, rows):
     for ax in axes.ravel()[len(logs):]:
         ax.axis("off")
     fig.tight_layout()
-    d = os.path.dirname(os.path.abspath(path))
-    os.makedirs(d, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=d, prefix=".tmp-", suffix=".png")
-    os.close(fd)
-    fig.savefig(tmp, dpi=80)
-    os.replace(tmp, path)
+    return fig
+
+
+def judged_rows(ok):
+    """(rows, curves, tracking) of every successful point: judge() per (log, seed)."""
+    rows, curves = [], {}
+    tracking_flags = set()
+    references = {}
+    for _, p in ok.iterrows():
+        log, seed = p["log"], int(p["seed"])
+        ref_path = p.get("ground_truth")
+        reference = None
+        if isinstance(ref_path, str) and ref_path:
+            if ref_path not in references:
+                references[ref_path] = read_reference(ref_path)
+            reference = references[ref_path]
+        tracking = isinstance(p.get("initial_pose"), str) and p.get("initial_pose") != ""
+        tracking_flags.add(tracking)
+        row, it, err = judge(log, seed, os.path.join(p["folder"], "summary.json"),
+                             os.path.join(p["folder"], "timeline.csv"), reference, tracking)
+        rows.append({"point": p["point"], **row})
+        curves[(log, seed)] = (it, err)
+    if len(tracking_flags) > 1:
+        fail("the table mixes tracking and global-localization points; split them into two studies")
+    return rows, curves, tracking_flags == {True}
+
+
+def common_options(ok):
+    """'option=value' of the options every point shares (files left out): the recipe."""
+    record = {"point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "started_utc",
+              "rcbench_sha256", "folder", "log", "seed", "map", "trace", "ground_truth"}
+    shared = [c for c in ok.columns if c not in record and "." not in c and ok[c].astype(str).nunique() == 1]
+    return [f"{c}={ok[c].iloc[0]}" for c in shared if not pd.isna(ok[c].iloc[0])]
 
 
 def main():
-    argv, extra = split_extra_args(sys.argv[1:])
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--data-dir", default=os.path.join(SHARED_DATA, "wean"), help="holds wean.dat and robotdataN.log")
-    ap.add_argument("--logs", default="1,2,3,4", help="which robotdataN.log (comma-separated N)")
-    ap.add_argument("--reference-dir", default="out/reference", help="holds robotdataN.ref.txt (optional)")
-    ap.add_argument("--seeds", type=int, default=5, help="seeds 1..S per log (count)")
-    ap.add_argument("--jobs", type=int, default=2, help="runs at a time (count)")
-    ap.add_argument("--track-from-reference", action="store_true",
-                    help="tracking mode: --initial-pose at the reference's first pose (needs the reference)")
-    ap.add_argument("--out", default="out/real_logs")
-    # Default inside --out: a study run must not overwrite the committed figures.
-    ap.add_argument("--figure", default="", help="PNG of error against record (default <out>/real_logs_error.png)")
-    args = ap.parse_args(argv)
-    if args.seeds < 1 or args.jobs < 1:
-        fail("--seeds and --jobs must be >= 1")
-    if not (os.path.isfile(args.rcbench) and os.access(args.rcbench, os.X_OK)):
-        fail(f"rcbench not found or not executable at '{args.rcbench}' (build it, or pass --rcbench)")
-    map_path = os.path.join(args.data_dir, "wean.dat")
-    try:
-        numbers = [int(v) for v in args.logs.split(",")]
-    except ValueError:
-        fail(f"--logs '{args.logs}' is not a comma-separated list of integers")
-    logs = [f"robotdata{n}" for n in numbers]
-    for p in [map_path] + [os.path.join(args.data_dir, log + ".log") for log in logs]:
-        if not os.path.isfile(p):
-            fail(f"data file '{p}' is missing (see --data-dir)")
-
-    references, jobs = {}, []
-    run_dir = os.path.join(args.out, "runs")
-    os.makedirs(run_dir, exist_ok=True)
-    for log in logs:
-        ref_path = os.path.join(args.reference_dir, log + ".ref.txt")
-        references[log] = (ref_path, read_reference(ref_path)) if os.path.isfile(ref_path) else (None, None)
-        if references[log][0] is None:
-            print(f"real_logs_study: no reference {ref_path}; {log} gets no error columns", file=sys.stderr)
-        for seed in range(1, args.seeds + 1):
-            stem = os.path.join(run_dir, f"{log}_seed{seed}")
-            cmd = [args.rcbench, "delibot", "--map", map_path, "--trace", os.path.join(args.data_dir, log + ".log"),
-                   "--seed", str(seed), "--quiet", "--no-pricing", "--threads", "1",
-                   "--summary", stem + ".json", "--timeline", stem + ".csv", *extra]
-            if references[log][0]:
-                cmd += ["--ground-truth", references[log][0]]
-                if args.track_from_reference:
-                    x, y, theta = references[log][1][0, 1:]
-                    cmd += ["--initial-pose", f"{x!r},{y!r},{theta!r}"]
-            elif args.track_from_reference:
-                fail(f"--track-from-reference needs {ref_path}")
-            jobs.append((cmd, log, seed))
-
-    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-        failures = [f"{log} seed {seed}: {msg}" for log, seed, msg in pool.map(run_one, jobs) if msg]
-    if failures:
-        fail("rcbench failed:\n" + "\n".join(failures))
-
-    rows, curves = [], {}
-    for _, log, seed in jobs:
-        stem = os.path.join(run_dir, f"{log}_seed{seed}")
-        row, it, err = judge(log, seed, stem + ".json", stem + ".csv", references[log][1],
-                             args.track_from_reference)
-        rows.append(row)
-        curves[(log, seed)] = (it, err)
-
-    import io
+    merged, out_dir = analysis_io.arguments(__doc__)
+    table, ok = analysis_io.load(merged)
+    if "log" not in table.columns or "seed" not in table.columns:
+        fail(f"{merged}: no 'log' and 'seed' columns: not a real-log study's table")
+    if ok.empty:
+        fail(f"{merged}: no successful point")
+    rows, curves, tracking = judged_rows(ok)
+    logs = list(dict.fromkeys(r["log"] for r in rows))
+    described = common_options(ok)
     text = io.StringIO()
     w = csv.DictWriter(text, fieldnames=list(rows[0]), lineterminator="\n")
     w.writeheader()
     for r in rows:
         w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
-    write_atomic(os.path.join(args.out, "real_logs_study.csv"), text.getvalue())
-    md = markdown(rows, logs, extra, args.track_from_reference)
-    write_atomic(os.path.join(args.out, "real_logs_study.md"), md + "\n")
-    figure = args.figure or os.path.join(args.out, "real_logs_error.png")
-    figure = figure if any(e is not None for _, e in curves.values()) else ""
-    if figure:
-        plot(figure, logs, curves, rows)
+    analysis_io.save_text(text.getvalue(), out_dir, "real_logs_study.csv")
+    md = markdown(rows, logs, described, tracking)
+    analysis_io.save_text(md + "\n", out_dir, "real_logs_study.md")
+    if any(e is not None for _, e in curves.values()):
+        fig = plot(logs, curves, rows)
+        analysis_io.save_figure(fig, out_dir, "real_logs_error.png",
+                                "Position error against the scan-matching reference, per log, one line per seed "
+                                "(dotted: declared convergence; dashed: 1 m).", dpi=80)
     print(md)
-    print(f"wrote {os.path.join(args.out, 'real_logs_study.csv')}, real_logs_study.md"
-          f"{', ' + figure if figure else ' (no figure: no reference)'}", file=sys.stderr)
 
 
 if __name__ == "__main__":

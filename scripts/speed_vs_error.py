@@ -1,171 +1,125 @@
 #!/usr/bin/python3
-"""Speed-vs-error study for DeliBot.
+"""Speed-vs-error analysis of a DeliBot study (scripts/workflow/studies/speed_vs_error.yaml).
 
-Sweeps particles x beam step x ray caster x sensor model (the likelihood
-field with AMCL's unsigned distance and with the signed one) on simulated traces
-with ground truth (made by `rcbench simulate`), runs `rcbench delibot` for
-each configuration, plus MRPT's CMonteCarloLocalization2D (`--engine mrpt`)
-at the same particle counts and beam steps as a reference curve (leave it
-out with --no-mrpt), and writes
-  <out>/speed_vs_error.csv   one row per run (time per update in s, errors in m)
-  <out>/speed_vs_error.png   localization error against time per update
-Tracking mode (the filter starts around the true first pose) isolates the
-per-update cost/accuracy trade-off from the luck of global convergence; pass
---global for global localization instead.
+Reads the study's merged CSV and writes into OUT_DIR
+  speed_vs_error.png   median position error against host time per filter
+                       update, one marker style per (engine, sensor model,
+                       ray caster / field distance), marker size = particles,
+                       with the Pareto front over every configuration drawn
+                       and its points ringed;
+  speed_vs_error.csv   one row per run: the old script's columns;
+  pareto_front.csv     the non-dominated runs (no other run is both faster
+                       and more accurate), fastest first.
+A run without an error after convergence (it never converged) is left out
+of the figure and the front, and counted in the caption.
 
-Usage: scripts/speed_vs_error.py [--rcbench build/rcbench] [--out out/study]
-       [--map FILE] [--quick] [--global] [--threads N] [--no-mrpt]
-MRPT's filter runs on one thread whatever --threads says; pass --threads 1
-to compare the engines at equal hardware.
+The runs themselves are the study's points:
+  snakemake --profile scripts/workflow/profiles/local --cores 2 \
+      --configfile scripts/workflow/studies/speed_vs_error.yaml
+Usage: scripts/speed_vs_error.py MERGED_CSV OUT_DIR
 """
-import argparse
-import csv
-import itertools
-import json
 import os
-import platform
-import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "workflow"))
+import analysis_io  # noqa: E402
 
-def run(cmd):
-    result = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if result.returncode != 0:
-        sys.exit(f"command failed ({result.returncode}): {' '.join(cmd)}\n{result.stderr}")
-    return result.stdout
+TIME = "totals.wall_per_update_s"
+ERROR = "accuracy.median_err_xy_m"
 
-
-def first_pose(gt_path):
-    with open(gt_path) as f:
-        for line in f:
-            if line.strip() and not line.startswith("#"):
-                _, x, y, theta = line.split()
-                return f"{x},{y},{theta}"
-    sys.exit(f"{gt_path}: no pose")
-
-
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
+# (engine, model, ray caster, field distance) -> colour, marker, label
+STYLES = {("ours", "beam", "march", "-"): ("tab:red", "o", "beam / march"),
+          ("ours", "beam", "dda", "-"): ("tab:blue", "s", "beam / dda"),
+          ("ours", "beam", "rm", "-"): ("tab:green", "^", "beam / rm"),
+          ("ours", "likelihood", "-", "unsigned"): ("tab:purple", "D", "likelihood field (unsigned, AMCL)"),
+          ("ours", "likelihood", "-", "signed"): ("tab:pink", "d", "likelihood field (signed)"),
+          ("mrpt", "beam", "-", "-"): ("black", "v", "MRPT beam"),
+          ("mrpt", "likelihood", "-", "unsigned"): ("tab:orange", "P", "MRPT likelihood field")}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--rcbench", default="build/rcbench")
-    ap.add_argument("--out", default="out/study")
-    ap.add_argument("--map", default="", help="map to simulate on (default: the generated office map)")
-    ap.add_argument("--records", type=int, default=300)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--quick", action="store_true", help="a small sweep (for a smoke test)")
-    ap.add_argument("--global", dest="global_loc", action="store_true", help="global localization, not tracking")
-    ap.add_argument("--no-mrpt", action="store_true", help="leave out MRPT's localizer (the reference curve)")
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+def runs_table(ok):
+    """The old script's columns, one row per run, from the merged table's options and metrics."""
+    def column(name, default):
+        return ok[name] if name in ok.columns else default
+    out = ok[["point"]].copy()
+    out["engine"] = column("engine", "ours").fillna("ours")
+    out["particles"] = ok["particles"]
+    out["beam_step"] = ok["beam_step"]
+    out["sensor_model"] = ok["sensor_model"]
+    beam_ours = (out["sensor_model"] == "beam") & (out["engine"] == "ours")
+    out["ray_caster"] = column("raycaster", "rm").fillna("rm").where(beam_ours, "-")
+    distance = column("lf_distance", "unsigned").fillna("unsigned")
+    out["lf_distance"] = distance.where(out["sensor_model"] == "likelihood", "-")
+    out["time_per_update_s"] = ok[TIME]
+    for src, dst in [("totals.rays_per_s", "rays_per_s"), ("totals.nodes_per_ray", "nodes_per_ray"),
+                     (ERROR, "median_err_xy_m"), ("accuracy.p95_err_xy_m", "p95_err_xy_m"),
+                     ("accuracy.median_err_theta_rad", "median_err_theta_rad"),
+                     ("accuracy.convergence_iteration", "convergence_iteration"),
+                     ("accuracy.converged_at_end", "converged_at_end"), ("threads", "threads")]:
+        out[dst] = column(src, float("nan"))
+    return out
 
-    trace = os.path.join(args.out, "sweep_trace.log")
-    gt = os.path.join(args.out, "sweep_trace.gt")
-    sim = [args.rcbench, "simulate", "--output", trace, "--ground-truth", gt, "--records", str(args.records),
-           "--seed", str(args.seed)]
-    map_args = []
-    if args.map:
-        sim += ["--map", args.map]
-        map_args = ["--map", args.map]
-    else:
-        office = os.path.join(args.out, "office.yaml")
-        run([args.rcbench, "make-map", "--output", office])
-        map_args = ["--map", office]
-    run(sim)
 
-    particles = [250, 1000] if args.quick else [250, 500, 1000, 2000, 5000]
-    beam_steps = [6] if args.quick else [3, 6, 12]
-    configs = []
-    for p, k in itertools.product(particles, beam_steps):
-        for caster in (["dda"] if args.quick else ["march", "dda", "rm"]):
-            configs.append((p, k, "beam", caster))
-        configs.append((p, k, "likelihood", "-"))
-        configs.append((p, k, "likelihood", "signed"))
-        if not args.no_mrpt:
-            configs += [(p, k, "beam", "mrpt"), (p, k, "likelihood", "mrpt")]
+def pareto_front(runs):
+    """The runs no other run beats in both time and error, fastest first."""
+    valid = runs[runs["median_err_xy_m"].notna() & (runs["median_err_xy_m"] >= 0)]
+    ordered = valid.sort_values(["time_per_update_s", "median_err_xy_m"])
+    front, best = [], float("inf")
+    for idx, r in ordered.iterrows():
+        if r["median_err_xy_m"] < best:
+            front.append(idx)
+            best = r["median_err_xy_m"]
+    return ordered.loc[front]
 
-    rows = []
-    for i, (p, k, model, caster) in enumerate(configs):
-        summary_path = os.path.join(args.out, "sweep_summary.json")
-        cmd = [args.rcbench, "delibot", *map_args, "--trace", trace, "--ground-truth", gt, "--particles", str(p),
-               "--beam-step", str(k), "--sensor-model", model, "--seed", str(args.seed), "--summary", summary_path,
-               "--threads", str(args.threads), "--quiet", "--no-pricing"]
-        if caster == "mrpt":
-            cmd += ["--engine", "mrpt"]
-        elif caster == "signed":
-            cmd += ["--lf-distance", "signed"]
-        elif caster != "-":
-            cmd += ["--raycaster", caster]
-        if not args.global_loc:
-            cmd += ["--initial-pose", first_pose(gt)]
-        run(cmd)
-        with open(summary_path) as f:
-            s = json.load(f)
-        t, a = s["totals"], s["accuracy"]
-        rows.append({
-            "engine": "mrpt" if caster == "mrpt" else "ours",
-            "particles": p, "beam_step": k, "sensor_model": model,
-            "ray_caster": caster if model == "beam" and caster != "mrpt" else "-",
-            "lf_distance": ("signed" if caster == "signed" else "unsigned") if model == "likelihood" else "-",
-            "time_per_update_s": t["wall_per_update_s"], "rays_per_s": t["rays_per_s"],
-            "nodes_per_ray": t["nodes_per_ray"],
-            "median_err_xy_m": a.get("median_err_xy_m", -1), "p95_err_xy_m": a.get("p95_err_xy_m", -1),
-            "median_err_theta_rad": a.get("median_err_theta_rad", -1),
-            "convergence_iteration": a["convergence_iteration"], "converged_at_end": int(a["converged_at_end"]),
-        })
-        print(f"[{i + 1}/{len(configs)}] {p} particles, step {k}, {model}/{caster}: "
-              f"{1e3 * t['wall_per_update_s']:.2f} ms/update, median error {a.get('median_err_xy_m', -1):.3f} m",
-              flush=True)
 
-    csv_path = os.path.join(args.out, "speed_vs_error.csv")
-    with open(csv_path + ".tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    os.replace(csv_path + ".tmp", csv_path)
-
+def draw(runs, front, threads_note):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    # (engine, model, ray caster, field distance) -> colour, marker, label
-    styles = {("ours", "beam", "march", "-"): ("tab:red", "o", "beam / march"),
-              ("ours", "beam", "dda", "-"): ("tab:blue", "s", "beam / dda"),
-              ("ours", "beam", "rm", "-"): ("tab:green", "^", "beam / rm"),
-              ("ours", "likelihood", "-", "unsigned"): ("tab:purple", "D", "likelihood field (unsigned, AMCL)"),
-              ("ours", "likelihood", "-", "signed"): ("tab:pink", "d", "likelihood field (signed)"),
-              ("mrpt", "beam", "-", "-"): ("black", "v", "MRPT beam"),
-              ("mrpt", "likelihood", "-", "unsigned"): ("tab:orange", "P", "MRPT likelihood field")}
-    for key, (color, marker, label) in styles.items():
-        sel = [r for r in rows if (r["engine"], r["sensor_model"], r["ray_caster"], r["lf_distance"]) == key
-               and r["median_err_xy_m"] >= 0]
-        if not sel:
-            continue
-        ax.scatter([1e3 * r["time_per_update_s"] for r in sel], [r["median_err_xy_m"] for r in sel],
-                   s=[12 + r["particles"] / 40 for r in sel], c=color, marker=marker, alpha=0.75, label=label)
+    valid = runs[runs["median_err_xy_m"].notna() & (runs["median_err_xy_m"] >= 0)]
+    for key, (color, marker, label) in STYLES.items():
+        sel = valid[(valid["engine"] == key[0]) & (valid["sensor_model"] == key[1]) & (valid["ray_caster"] == key[2])
+                    & (valid["lf_distance"] == key[3])]
+        if len(sel):
+            ax.scatter(1e3 * sel["time_per_update_s"], sel["median_err_xy_m"], s=12 + sel["particles"] / 40,
+                       c=color, marker=marker, alpha=0.75, label=label)
+    ax.step(1e3 * front["time_per_update_s"], front["median_err_xy_m"], where="post", color="0.3", lw=1.0,
+            ls="--", label="Pareto front (no run both faster and more accurate)")
+    ax.scatter(1e3 * front["time_per_update_s"], front["median_err_xy_m"], s=150, facecolors="none",
+               edgecolors="0.2", linewidths=1.2)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("host time per filter update (ms, log)")
     ax.set_ylabel("median position error after convergence (m, log)")
-    mode = "global localization" if args.global_loc else "tracking"
-    ax.set_title(f"DeliBot speed vs error ({mode}); marker size = particles\n{cpu_name()}, "
-                 f"ours on {args.threads or os.cpu_count()} thread(s), MRPT on 1", fontsize=9)
+    ax.set_title(f"DeliBot speed vs error (tracking); marker size = particles\n{analysis_io.cpu_name()}, "
+                 f"{threads_note}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    png_path = os.path.join(args.out, "speed_vs_error.png")
+    ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(png_path, dpi=110)
-    print(f"wrote {csv_path} and {png_path}")
+    return fig
+
+
+def main():
+    merged, out_dir = analysis_io.arguments(__doc__)
+    table, ok = analysis_io.load(merged)
+    ok = ok[ok["workload"] == "delibot"]
+    if ok.empty:
+        sys.exit(f"{merged}: no successful DeliBot point")
+    runs = runs_table(ok)
+    front = pareto_front(runs)
+    analysis_io.save_table(runs, out_dir, "speed_vs_error.csv")
+    analysis_io.save_table(front, out_dir, "pareto_front.csv")
+    threads = sorted(set(int(t) for t in runs["threads"].dropna()))
+    threads_note = f"ours on {','.join(map(str, threads)) or '?'} thread(s), MRPT on 1"
+    unconverged = int((runs["median_err_xy_m"].isna() | (runs["median_err_xy_m"] < 0)).sum())
+    fig = draw(runs, front, threads_note)
+    analysis_io.save_figure(
+        fig, out_dir, "speed_vs_error.png",
+        f"{len(runs)} runs of {len(table)} points ({len(table) - len(ok)} failed); {unconverged} never converged and "
+        f"are not drawn. The dashed step line is the Pareto front over every configuration ({len(front)} runs, "
+        f"ringed; pareto_front.csv).")
+    print(f"{len(runs)} runs, {len(front)} on the Pareto front")
 
 
 if __name__ == "__main__":

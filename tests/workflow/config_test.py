@@ -1,0 +1,196 @@
+#!/usr/bin/python3
+"""Unit tests of the study configuration (scripts/workflow/study_config.py),
+the option-unit column names and the metric flattening; every study shipped
+in scripts/workflow/studies/ must expand.
+Usage: config_test.py [PATH_TO_RCBENCH]   (with rcbench: the units its --help states)
+"""
+import glob
+import os
+import sys
+import unittest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(REPO, "scripts", "workflow"))
+import option_units  # noqa: E402
+import point_metrics  # noqa: E402
+from study_config import Study, StudyError, command_line, load_yaml  # noqa: E402
+
+RCBENCH = sys.argv.pop(1) if len(sys.argv) > 1 else None
+
+
+def base(**over):
+    config = {
+        "study": "t", "out": "/tmp/out_t", "rcbench": "/bin/rcbench",
+        "inputs": {"office": {"command": "make-map", "files": {"output": "office.yaml"}},
+                   "trace": {"command": "simulate", "options": {"map": "{map}", "seed": "{seed}"},
+                             "files": {"output": "t.log", "ground-truth": "t.gt"}}},
+        "points": {"workload": "delibot",
+                   "options": {"trace": "{trace.output}", "ground-truth": "{trace.ground-truth}", "quiet": True},
+                   "grid": {"map": {"office": "{office.output}", "wean": "/data/wean.dat"},
+                            "seed": {"range": [1, 3]},
+                            "mode": {"global": {"particles": 5000},
+                                     "tracking": {"particles": 500,
+                                                  "initial-pose": {"first_pose": "{trace.ground-truth}"}}}}},
+    }
+    config.update(over)
+    return config
+
+
+class Expansion(unittest.TestCase):
+    def test_grid_is_the_cross_product(self):
+        s = Study(base())
+        self.assertEqual(len(s.points), 2 * 3 * 2)
+        self.assertEqual(len(s.order), len(set(s.order)))
+
+    def test_one_input_instance_per_combination_of_the_axes_it_uses(self):
+        s = Study(base())
+        traces = [i for i in s.inputs.values() if i["name"] == "trace"]
+        offices = [i for i in s.inputs.values() if i["name"] == "office"]
+        self.assertEqual(len(traces), 2 * 3)   # map x seed, shared by both modes
+        self.assertEqual(len(offices), 1)
+        office_trace = next(t for t in traces if t["axes"]["seed"] == 2 and "office" in t["id"])
+        self.assertEqual(office_trace["options"]["map"], offices[0]["files"]["output"])
+        self.assertEqual(office_trace["depends"], [offices[0]["id"]])
+
+    def test_points_name_their_inputs_and_labels(self):
+        s = Study(base())
+        p = next(p for p in s.points.values() if p["labels"] == {"map_label": "wean", "mode": "tracking"}
+                 and p["options"]["seed"] == 3)
+        self.assertEqual(p["options"]["map"], "/data/wean.dat")
+        self.assertEqual(p["options"]["particles"], 500)
+        self.assertEqual(p["options"]["initial-pose"], {"first_pose": p["options"]["ground-truth"]})
+        self.assertTrue(p["options"]["trace"].startswith("/tmp/out_t/inputs/trace-"))
+        self.assertEqual(len(p["depends"]), 1)
+        self.assertEqual(p["options"]["threads"], 1)   # delibot gets the point's core count
+        self.assertTrue(p["outputs"]["summary"].endswith(f"points/{p['id']}/summary.json"))
+
+    def test_ids_do_not_depend_on_order_or_location(self):
+        a = Study(base())
+        config = base(out="/elsewhere/out")
+        grid = config["points"]["grid"]
+        config["points"]["grid"] = {k: grid[k] for k in reversed(list(grid))}
+        config["points"]["grid"]["seed"] = {"range": [1, 3]}
+        b = Study(config)
+        self.assertEqual(sorted(a.points), sorted(b.points))
+
+    def test_a_changed_option_is_a_new_point(self):
+        a = Study(base())
+        config = base()
+        config["points"]["options"]["beam-step"] = 3
+        b = Study(config)
+        self.assertFalse(set(a.points) & set(b.points))
+
+    def test_list_and_groups(self):
+        config = base(points=[{"name": "a", "workload": "movebot", "list": [{"seed": 1}, {"seed": 2, "nn": "p-ray"}]},
+                              {"name": "b", "workload": "carribot", "options": {"map": "m.map"},
+                               "grid": {"weight": [1, 2]}, "outputs": {"plot": "path.png"}}])
+        s = Study(config)
+        self.assertEqual(len(s.points), 4)
+        movebot = [p for p in s.points.values() if p["workload"] == "movebot"]
+        self.assertEqual(movebot[0]["ok_exit_codes"], [0, 3])  # 3: no exact path, outputs written
+        self.assertNotIn("threads", movebot[0]["options"])
+        carribot = next(p for p in s.points.values() if p["workload"] == "carribot")
+        self.assertTrue(carribot["outputs"]["plot"].endswith("path.png"))
+
+    def test_command_line(self):
+        spec = {"rcbench": "rc", "workload": "delibot", "options": {"quiet": True, "no-pricing": False,
+                                                                    "particles": 10, "x": None},
+                "outputs": {"summary": "s.json"}}
+        self.assertEqual(command_line(spec), ["rc", "delibot", "--quiet", "--particles", "10", "--summary", "s.json"])
+
+
+class Errors(unittest.TestCase):
+    def assertStudyError(self, config, *fragments):
+        with self.assertRaises(StudyError) as e:
+            Study(config)
+        for f in fragments:
+            self.assertIn(f, str(e.exception))
+
+    def test_unknown_keys(self):
+        self.assertStudyError(base(sweep=1), "unknown top-level key", "sweep")
+        config = base()
+        config["points"]["gird"] = {}
+        self.assertStudyError(config, "unknown key", "gird")
+
+    def test_bad_templates(self):
+        config = base()
+        config["points"]["options"]["trace"] = "{nosuch.output}"
+        self.assertStudyError(config, "option 'trace'", "nosuch")
+        config = base()
+        config["points"]["options"]["trace"] = "{trace.nofile}"
+        self.assertStudyError(config, "no file 'nofile'")
+        config = base()
+        config["points"]["options"]["x"] = "{undefined}"
+        self.assertStudyError(config, "'{undefined}'", "neither an axis")
+
+    def test_bad_values(self):
+        config = base()
+        config["points"]["grid"]["seed"] = {"range": [3, 1]}
+        self.assertStudyError(config, "range")
+        config = base()
+        config["points"]["grid"]["seed"] = []
+        self.assertStudyError(config, "no values")
+        self.assertStudyError(base(study="a b"), "'study'")
+        config = base()
+        config["points"]["options"]["summary"] = "mine.json"
+        self.assertStudyError(config, "'summary' is an output")
+
+    def test_an_input_cannot_depend_on_itself(self):
+        config = base()
+        config["inputs"]["office"]["options"] = {"x": "{office.output}"}
+        self.assertStudyError(config, "depends on itself")
+
+
+class ShippedStudies(unittest.TestCase):
+    def test_every_study_expands(self):
+        paths = sorted(glob.glob(os.path.join(REPO, "scripts", "workflow", "studies", "*.yaml")))
+        self.assertGreaterEqual(len(paths), 6)
+        for path in paths:
+            with self.subTest(path=os.path.basename(path)):
+                s = Study(load_yaml(path))
+                self.assertEqual(s.name, os.path.splitext(os.path.basename(path))[0])
+                self.assertGreater(len(s.points), 0)
+                for script in s.analysis:
+                    self.assertTrue(os.path.isfile(os.path.join(REPO, "scripts", script)), script)
+
+
+HELP = """Options:
+  -h,--help                   Print this help message and exit
+  --map TEXT REQUIRED         Map file
+  --particles UINT [2000]     Particle count (count)
+  --initial-sigma-xy FLOAT [0.25]
+                              Spread of the initial particles (m) around
+                              --initial-pose
+  --hypothesis-window FLOAT [6]
+                              Window (nats; 0 = off)
+  --resolution,--map-resolution FLOAT
+                              Cell size (m) for MovingAI maps
+"""
+
+
+class Units(unittest.TestCase):
+    def test_parse_help(self):
+        units = option_units.parse_help(HELP)
+        self.assertEqual(units["particles"], "")
+        self.assertEqual(units["initial-sigma-xy"], "m")
+        self.assertEqual(units["hypothesis-window"], "nats")
+        self.assertEqual(units["map"], "")
+        self.assertEqual(units["map-resolution"], "m")
+
+    @unittest.skipIf(RCBENCH is None, "no rcbench given")
+    def test_units_from_rcbench(self):
+        u = option_units.OptionUnits(RCBENCH)
+        self.assertEqual(u.column("delibot", "initial-sigma-xy"), "initial_sigma_xy_m")
+        self.assertEqual(u.column("delibot", "particles"), "particles")
+        self.assertEqual(u.column("delibot", "map"), "map")
+        self.assertEqual(u.column("movebot", "time"), "time_s")
+
+
+class Metrics(unittest.TestCase):
+    def test_flatten(self):
+        flat = point_metrics.flatten({"a": {"b_m": 1.5, "c": {"d": True}}, "e": [1, 2], "f": [{"g": 1}]})
+        self.assertEqual(flat, {"a.b_m": 1.5, "a.c.d": 1, "e": "1;2", "f": '[{"g": 1}]'})
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)
