@@ -43,7 +43,7 @@ def option_value(v):
 
 def point_row(study, pid, units):
     spec = study.points[pid]
-    path = study.point_done(pid)
+    path = study.point_record(pid)
     with open(path) as f:
         record = json.load(f)
     row = {"point": pid, "group": spec["group"], "workload": spec["workload"], "status": record["status"],

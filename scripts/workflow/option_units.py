@@ -15,7 +15,7 @@ UNIT_SUFFIX = {
     "m": "m", "s": "s", "rad": "rad", "J": "j", "m/s": "m_per_s", "rad/s": "rad_per_s", "1/m": "per_m",
     "rad/m": "rad_per_m", "deg": "deg", "Hz": "hz", "nats": "nats", "cells": "cells", "core cycles": "cycles",
     "cycles": "cycles", "nodes per ray": "nodes_per_ray", "nodes per query": "nodes_per_query",
-    "tree nodes per kernel query": "nodes_per_query", "m, m, rad": "m_m_rad", "1/sensor update": "per_update",
+    "tree nodes per kernel query": "nodes_per_query", "m, m, rad": "x_m_y_m_theta_rad", "1/sensor update": "per_update",
     "updates": "updates",
     "count": "", "count N": "", "unitless": "", "unitless fraction": "", "fraction": "", "probability": "",
     "index": "", "index k": "", "record index": "", "rad^2/rad^2": "", "rad^2/m^2": "", "m^2/m^2": "",

@@ -2,7 +2,8 @@
 one flat dict per point, units in the names (the merged CSV's columns).
 
   delibot   its --summary JSON, flattened: section.key (totals.wall_per_update_s,
-            accuracy.median_err_xy_m, pricing.policy_total_cycles, ...);
+            accuracy.median_err_xy_m, config.particles: the effective settings,
+            defaults included, ...); top-level scalars as summary.KEY;
   movebot   exact_path (exit code 0), the last anytime row (anytime.best_cost_rad,
             anytime.time_s, anytime.iterations), the first solution's time,
             and the timeline's sums of queries and cycles (timeline.*);
@@ -75,7 +76,9 @@ def delibot(spec, record):
         raise MetricsError(f"{path}: {e.strerror}") from None
     except ValueError as e:
         raise MetricsError(f"{path}: not JSON ({e})") from None
-    return flatten(summary)
+    # Sections keep their names (totals.wall_per_update_s); top-level scalars
+    # (workload, engine) would collide with the parameter columns: summary.engine.
+    return {(k if "." in k else f"summary.{k}"): v for k, v in flatten(summary).items()}
 
 
 def movebot(spec, record):

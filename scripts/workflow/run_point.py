@@ -2,7 +2,10 @@
 """Runs one study point (or one generated input): a single rcbench command in
 its own folder, and records what happened in <folder>/point.json (inputs:
 input.json), written last and atomically, so the file exists only for a
-finished run.
+finished run. Then it writes <folder>/point.done (input.done), the file
+Snakemake tracks. A folder that already holds a record is not run again:
+the record is kept and the marker written (a run that finished just before
+the study was stopped, before Snakemake saw it finish).
 
   run_point.py SPEC_JSON            (the Snakefile passes the spec)
 
@@ -34,7 +37,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from study_config import command_line  # noqa: E402
 
 INTERRUPTIONS = {signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGKILL}
-RECORD_FILES = ("point.json", "input.json")
 
 
 class PointFailure(Exception):
@@ -87,9 +89,7 @@ def resolve_functions(options):
 
 def check_inputs(spec):
     """Raises PointFailure if a generated input this run depends on failed."""
-    out_root = os.path.dirname(os.path.dirname(spec["folder"]))
-    for iid in spec.get("depends", []):
-        record = os.path.join(out_root, "inputs", iid, "input.json")
+    for iid, record in zip(spec.get("depends", []), spec.get("depends_records", [])):
         try:
             with open(record) as f:
                 r = json.load(f)
@@ -134,12 +134,10 @@ def write_json_atomic(path, obj):
     os.replace(tmp, path)
 
 
-def clean_folder(folder, keep):
+def clean_folder(folder):
     """Removes what an interrupted earlier attempt left, so no stale file is read as this run's."""
     os.makedirs(folder, exist_ok=True)
     for name in os.listdir(folder):
-        if name in keep:
-            continue
         path = os.path.join(folder, name)
         if os.path.isdir(path) and not os.path.islink(path):
             shutil.rmtree(path)
@@ -147,14 +145,34 @@ def clean_folder(folder, keep):
             os.remove(path)
 
 
+def finished_record(path):
+    """The record at path if it is a complete one, else None."""
+    try:
+        with open(path) as f:
+            record = json.load(f)
+    except (OSError, ValueError):
+        return None
+    return record if record.get("status") in ("ok", "failed") else None
+
+
+def mark_done(spec, status):
+    with open(spec["done"], "w") as f:
+        f.write(status + "\n")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: run_point.py SPEC_JSON")
     spec = json.loads(sys.argv[1])
     folder = spec["folder"]
-    record_name = "input.json" if "command" in spec and "workload" not in spec else "point.json"
-    record_path = os.path.join(folder, record_name)
-    clean_folder(folder, keep=())
+    record_path = spec["record"]
+    earlier = finished_record(record_path)
+    if earlier is not None:
+        print(f"{spec['id']}: {earlier['status']} (recorded {earlier.get('started_utc', '?')}; not run again)",
+              file=sys.stderr)
+        mark_done(spec, earlier["status"])
+        return 0
+    clean_folder(folder)
     record = dict(spec)
     record.update({"host": socket.gethostname(), "started_utc": datetime.datetime.now(datetime.timezone.utc)
                    .isoformat(timespec="seconds"), "rcbench_sha256": sha256_of(spec["rcbench"]),
@@ -188,6 +206,7 @@ def main():
     record["missing_outputs"] = sorted(k for k, p in (spec.get("outputs") or spec.get("files") or {}).items()
                                        if not os.path.exists(p))
     write_json_atomic(record_path, record)
+    mark_done(spec, record["status"])
     print(f"{spec['id']}: {record['status']}{' (' + record['error'] + ')' if record['error'] else ''}",
           file=sys.stderr)
     return 0

@@ -240,7 +240,9 @@ class Study:
                 "id": iid, "name": name, "command": spec["command"], "options": options,
                 "files": {opt: os.path.join(folder, f) for opt, f in spec["files"].items()},
                 "folder": folder, "axes": used_axes, "depends": sorted(set(deps)), "rcbench": self.rcbench,
-                "ok_exit_codes": [0], "threads": 1,
+                "ok_exit_codes": [0], "threads": 1, "record": os.path.join(folder, "input.json"),
+                "done": os.path.join(folder, "input.done"),
+                "depends_records": [self.inputs[d]["record"] for d in sorted(set(deps))],
             }
         return iid
 
@@ -328,6 +330,8 @@ class Study:
             "outputs": {opt: os.path.normpath(os.path.join(folder, f)) for opt, f in outputs.items()},
             "folder": folder, "depends": sorted(set(deps)), "rcbench": self.rcbench,
             "ok_exit_codes": ok_codes, "threads": self.threads, "study": self.name,
+            "record": os.path.join(folder, "point.json"), "done": os.path.join(folder, "point.done"),
+            "depends_records": [self.inputs[d]["record"] for d in sorted(set(deps))],
         }
         self.order.append(pid)
 
@@ -343,11 +347,21 @@ class Study:
         return [(f, hint) for f, hint in self.requires if not os.path.exists(f)]
 
     # -- paths Snakemake needs -------------------------------------------
+    # A run's record (point.json, input.json: run_point.py) and the marker
+    # Snakemake tracks as the rule's output (point.done, input.done). Two files,
+    # because Snakemake deletes the output of a job it did not see finish: a
+    # record written just before an interruption is kept and reused.
+    def point_record(self, pid):
+        return self.points[pid]["record"]
+
     def point_done(self, pid):
-        return os.path.join(self.points[pid]["folder"], "point.json")
+        return self.points[pid]["done"]
+
+    def input_record(self, iid):
+        return self.inputs[iid]["record"]
 
     def input_done(self, iid):
-        return os.path.join(self.inputs[iid]["folder"], "input.json")
+        return self.inputs[iid]["done"]
 
     def merged_csv(self):
         return os.path.join(self.out, f"{self.name}.csv")

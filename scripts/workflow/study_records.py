@@ -3,7 +3,8 @@ between the points and the report: forgetting failed runs on request,
 running the study's analysis scripts, and the final verdict.
 
 A point's record is <out>/points/<id>/point.json (run_point.py); an input's
-is <out>/inputs/<id>/input.json. The analysis step writes
+is <out>/inputs/<id>/input.json; point.done and input.done beside them are
+the files Snakemake tracks. The analysis step writes
 <out>/analysis/analysis.json: per script, its command, exit code, the files
 it wrote, and its stderr when it failed.
 """
@@ -18,17 +19,33 @@ def read_record(path):
         return json.load(f)
 
 
+def downstream_outputs(study):
+    """What the engine makes from the point records: the merged CSV, the analysis, the report, the verdict."""
+    return [study.merged_csv(), os.path.join(study.out, "analysis", "analysis.json"),
+            os.path.join(study.out, "report.html"), os.path.join(study.out, "study.ok")]
+
+
 def forget_failed(study):
-    """Removes the records of failed points and inputs (retry_failed=true), so they run again."""
+    """Removes the records of failed points and inputs (retry_failed=true), so they run again,
+    and what was made from them: Snakemake does not remake a missing record whose
+    merged table is up to date."""
     removed = []
-    records = [study.point_done(p) for p in study.order] + [study.input_done(i) for i in study.inputs]
-    for path in records:
+    records = ([(study.point_record(p), study.point_done(p)) for p in study.order]
+               + [(study.input_record(i), study.input_done(i)) for i in study.inputs])
+    for record, done in records:
         try:
-            if read_record(path).get("status") == "failed":
-                os.remove(path)
-                removed.append(path)
+            if read_record(record).get("status") != "failed":
+                continue
         except (OSError, ValueError):
             continue
+        for path in (record, done):
+            if os.path.exists(path):
+                os.remove(path)
+        removed.append(record)
+    if removed:
+        for path in downstream_outputs(study):
+            if os.path.exists(path):
+                os.remove(path)
     return removed
 
 
