@@ -27,7 +27,7 @@ def main():
     ok = ok[ok["workload"] == "movebot"]
     if ok.empty:
         sys.exit(f"{merged}: no successful MoveBot point")
-    runs = pd.DataFrame({"nn": ok["nn"], "seed": ok["seed"], "exact": ok["exact_path"],
+    runs = pd.DataFrame({"nn": ok["nn"], "seed": ok["seed"], "exact": ok["result.exact_path"],
                          "final_cost_rad": ok["anytime.best_cost_rad"]})
     analysis_io.save_table(runs, out_dir, "movebot_cost_study.csv")
     rows = []

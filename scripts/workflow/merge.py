@@ -4,7 +4,8 @@ the configuration's order, with every parameter and every metric.
 
 Columns, left to right:
   point, group, workload, status (ok | failed), error, exit_code, wall_s,
-  host, started_utc, rcbench_sha256, folder (the point's own folder);
+  host, slurm_job_id (empty outside Slurm), started_utc, rcbench_sha256,
+  folder (the point's own folder);
   the label columns of named axes (AXIS, or AXIS_label for labelled values);
   every option the point passed to rcbench, named like the option with its
   unit from `rcbench <workload> --help` (--initial-sigma-xy -> initial_sigma_xy_m);
@@ -28,8 +29,8 @@ import option_units  # noqa: E402
 import point_metrics  # noqa: E402
 from study_config import Study, load_yaml  # noqa: E402
 
-RECORD_COLUMNS = ["point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "started_utc",
-                  "rcbench_sha256", "folder"]
+RECORD_COLUMNS = ["point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "slurm_job_id",
+                  "started_utc", "rcbench_sha256", "folder"]
 
 
 def option_value(v):
@@ -49,6 +50,7 @@ def point_row(study, pid, units):
     row = {"point": pid, "group": spec["group"], "workload": spec["workload"], "status": record["status"],
            "error": record.get("error", ""), "exit_code": record.get("exit_code"),
            "wall_s": record.get("wall_s"), "host": record.get("host", ""),
+           "slurm_job_id": record.get("slurm_job_id", ""),
            "started_utc": record.get("started_utc", ""), "rcbench_sha256": record.get("rcbench_sha256", ""),
            "folder": spec["folder"]}
     row.update(spec["labels"])

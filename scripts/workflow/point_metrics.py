@@ -4,11 +4,13 @@ one flat dict per point, units in the names (the merged CSV's columns).
   delibot   its --summary JSON, flattened: section.key (totals.wall_per_update_s,
             accuracy.median_err_xy_m, config.particles: the effective settings,
             defaults included, ...); top-level scalars as summary.KEY;
-  movebot   exact_path (exit code 0), the last anytime row (anytime.best_cost_rad,
-            anytime.time_s, anytime.iterations), the first solution's time,
-            and the timeline's sums of queries and cycles (timeline.*);
-  carribot  per-query timeline aggregated: queries, found, sums of lengths,
-            expansions and cycles, and the final cum_cycles_policy / _oracle;
+  movebot   result.exact_path (exit code 0), the last anytime row
+            (anytime.best_cost_rad, anytime.time_s, anytime.iterations), the
+            first solution's time, and the timeline's sums of queries and
+            cycles (timeline.*);
+  carribot  per-query timeline aggregated: timeline.queries, timeline.found,
+            sums over the queries of lengths, expansions and cycles, and the
+            final cum_cycles_policy / _oracle;
   collide   its timeline (section,key,value) as section.key.
 Only `rcbench delibot` writes a summary JSON; for the others the numbers are
 aggregated here from their CSVs, each with the rule stated above.
@@ -22,8 +24,9 @@ import os
 KEY_METRICS = [
     "totals.wall_per_update_s", "accuracy.median_err_xy_m", "accuracy.p95_err_xy_m",
     "accuracy.convergence_iteration", "accuracy.converged_at_end", "pricing.policy_total_cycles",
-    "pricing.oracle_total_cycles", "exact_path", "anytime.best_cost_rad", "anytime.first_solution_s",
-    "queries", "found", "path_length_m", "expanded", "summary.queries", "summary.collisions",
+    "pricing.oracle_total_cycles", "result.exact_path", "anytime.best_cost_rad", "anytime.first_solution_s",
+    "timeline.queries", "timeline.found", "timeline.path_length_m", "timeline.expanded", "summary.queries",
+    "summary.collisions",
     "summary.nodes_per_query_mean",
 ]
 
@@ -82,7 +85,7 @@ def delibot(spec, record):
 
 
 def movebot(spec, record):
-    out = {"exact_path": int(record.get("exit_code") == 0)}
+    out = {"result.exact_path": int(record.get("exit_code") == 0)}
     path = spec["outputs"]["anytime"]
     rows = read_csv_rows(path)
     if rows:
@@ -98,7 +101,7 @@ def movebot(spec, record):
         for column in rows[0]:
             if column in ("collision_queries", "nn_queries", "collision_configurations") or \
                     column.startswith("cycles_") or column == "energy_j":
-                out[f"timeline.{column}"] = sum(number(timeline, i + 1, column, r[column]) or 0.0
+                out[f"timeline.{column}"] = sum(number(timeline, i + 1, column, r[column])
                                                 for i, r in enumerate(rows) if r[column] != "")
         out["timeline.rows"] = len(rows)
     return out
@@ -108,16 +111,16 @@ def carribot(spec, record):
     path = spec["outputs"]["timeline"]
     rows = read_csv_rows(path)
     queries = [r for r in rows if r["status"] != "setup"]
-    out = {"queries": len(queries), "found": sum(r["status"] == "found" for r in queries)}
+    out = {"timeline.queries": len(queries), "timeline.found": sum(r["status"] == "found" for r in queries)}
     sums = ["path_length_cells", "path_length_m", "optimal_length_cells", "turns", "expanded", "collision_queries",
             "kernel_launches", "kernel_queries", "wall_s", "energy_j"]
     for column in sums + [c for c in (rows[0] if rows else {}) if c.startswith("cycles_")]:
         if rows and column in rows[0]:
             values = [number(path, i + 1, column, r[column]) for i, r in enumerate(rows)]
-            out[column if column != "wall_s" else "kernel_wall_s"] = sum(v for v in values if not math.isnan(v))
+            out[f"timeline.{column}"] = sum(v for v in values if not math.isnan(v))
     for column in ("cum_cycles_policy", "cum_cycles_oracle"):
         if rows and column in rows[0]:
-            out[column] = number(path, len(rows), column, rows[-1][column])
+            out[f"timeline.{column}"] = number(path, len(rows), column, rows[-1][column])
     return out
 
 

@@ -27,11 +27,11 @@ import sys
 import pandas as pd
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import merge  # noqa: E402
 import report_figures  # noqa: E402
 from study_config import Study, load_yaml  # noqa: E402
 
-RECORD_COLUMNS = {"point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "started_utc",
-                  "rcbench_sha256", "folder"}
+RECORD_COLUMNS = set(merge.RECORD_COLUMNS)
 MAX_TABLE_ROWS = 400
 
 STYLE = """
@@ -132,17 +132,17 @@ def table_html(frame, max_rows=MAX_TABLE_ROWS):
 
 
 def overview(table):
-    """The label columns, the parameters that vary, status, wall time and the key metrics."""
-    varying = [c for c in table.columns if c not in RECORD_COLUMNS and "." not in c
-               and table[c].astype(str).nunique() > 1]
-    metrics = [c for c in table.columns if c in report_figures_key_metrics()]
-    cols = ["point", "group"] + varying + ["status", "wall_s"] + metrics
-    return table[[c for c in dict.fromkeys(cols) if c in table.columns]]
-
-
-def report_figures_key_metrics():
+    """One table per group: labels, the parameters that vary in it, status, wall time, key metrics."""
     import point_metrics
-    return point_metrics.KEY_METRICS
+    parts = []
+    for group, rows in table.groupby("group", sort=False):
+        varying = [c for c in rows.columns if c not in RECORD_COLUMNS and "." not in c
+                   and rows[c].astype(str).nunique() > 1]
+        metrics = [c for c in point_metrics.KEY_METRICS if c in rows.columns and rows[c].notna().any()]
+        cols = ["point"] + varying + ["status", "wall_s"] + metrics
+        parts.append(f"<h3>Group {esc(group)} ({len(rows)} points, {rows['workload'].iloc[0]})</h3>"
+                     + table_html(rows[list(dict.fromkeys(cols))]))
+    return "\n".join(parts)
 
 
 def analysis_sections(analysis_dir):
@@ -211,8 +211,8 @@ def write_report(study, merged_csv, analysis_dir, out_html, config_files=(), eff
     figures = report_figures.all_figures(table)
     parts += ["<h2>Figures from the points' own outputs</h2>"]
     parts += [figure_html(*f) for f in figures] or ["<p>None of this study's points wrote such outputs.</p>"]
-    parts += ["<h2>Points</h2>", "<p>Labels, the parameters that vary, and the key metrics; the merged CSV has "
-              "every parameter and metric.</p>", table_html(overview(table))]
+    parts += ["<h2>Points</h2>", "<p>Per group: labels, the parameters that vary, and the key metrics; the merged "
+              "CSV has every parameter and metric.</p>", overview(table)]
     parts.append("<h2>Configuration</h2>")
     for path in config_files:
         with open(path) as f:

@@ -18,7 +18,6 @@ Every curve is drawn from a file a point wrote.
 """
 import csv
 import io
-import math
 import os
 import sys
 
@@ -30,6 +29,8 @@ import numpy as np  # noqa: E402
 
 SCRIPTS_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, SCRIPTS_DIR)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import merge  # noqa: E402
 import plot_anytime  # noqa: E402
 import plot_schedule  # noqa: E402
 from rcbench_files import read_poses  # noqa: E402
@@ -49,12 +50,14 @@ def describe(row, table):
     group = table[table["group"] == row["group"]]
     parts = []
     for c in group.columns:
-        if c in ("point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "started_utc",
-                 "rcbench_sha256", "folder") or "." in c:
+        if c in merge.RECORD_COLUMNS or "." in c:
             continue
         values = group[c].dropna().astype(str).unique()
-        if len(values) > 1 and not str(row[c]).startswith(("out/", "/")) and len(str(row[c])) < 40:
-            parts.append(f"{c}={row[c]}")
+        v = row[c]
+        if isinstance(v, float) and v.is_integer():
+            v = int(v)
+        if len(values) > 1 and not str(v).startswith(("out/", "/")) and len(str(v)) < 40:
+            parts.append(f"{c}={v}")
     return ", ".join(parts) or row["point"]
 
 
@@ -117,8 +120,8 @@ def trajectory(table):
         if drawn:
             image, extent, origin = drawn
             ax.imshow(image, cmap="gray", extent=extent, origin=origin, vmin=0, vmax=255, interpolation="nearest")
-        ax.plot(truth[:, 1], truth[:, 2], "-", color="tab:green", lw=2, label="ground truth")
-        ax.plot(est[:, 0], est[:, 1], ".", color="tab:red", ms=2.5, label="estimate (per record)")
+        ax.plot(est[:, 0], est[:, 1], ".", color="tab:red", ms=3, label="estimate (per record)")
+        ax.plot(truth[:, 1], truth[:, 2], "-", color="tab:green", lw=1.5, alpha=0.8, label="ground truth")
         if len(it) and it.max() < len(truth):
             ax.plot(truth[it[0], 1], truth[it[0], 2], "o", color="tab:green", ms=8, label="start")
         ax.set_aspect("equal")
@@ -164,10 +167,10 @@ def anytime(table):
     plot_anytime.label_axes(ax, "time_s")
     if drawn:
         ax.legend(fontsize=7)
-    more = f" (the first {MAX_CURVES} of {len(rows)})" if len(rows) > MAX_CURVES else ""
-    return [("RRT* cost over time", f"Best path cost against planning time, one line per MoveBot point{more}; "
-             f"{len(rows) - drawn if len(rows) <= MAX_CURVES else 'some'} point(s) without a solution draw nothing.",
-             png_of(fig))]
+    shown = min(len(rows), MAX_CURVES)
+    return [("RRT* cost over time", f"Best path cost against planning time, one line per MoveBot point with a "
+             f"solution: {drawn} of the {shown} points shown" + (f" (of {len(rows)})" if len(rows) > shown else "")
+             + f" found one within their budget.", png_of(fig))]
 
 
 def exit_axes(table):
@@ -210,6 +213,3 @@ def all_figures(table):
             figures.append((f"{make.__name__}: not drawn", f"{type(e).__name__}: {e}", None))
     return figures
 
-
-def finite(v):
-    return isinstance(v, (int, float)) and math.isfinite(v)

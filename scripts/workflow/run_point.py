@@ -11,8 +11,8 @@ the study was stopped, before Snakemake saw it finish).
 
 The record holds the spec (workload, options, output files), the exact
 command, status "ok" or "failed", the exit code, the error (rcbench's own
-message where it printed one), the wall time, the host, the start time and
-the SHA-256 of the rcbench binary. stdout.log and stderr.log keep the run's
+message where it printed one), the wall time, the host, the Slurm job id
+(empty outside Slurm), the start time and the SHA-256 of the rcbench binary. stdout.log and stderr.log keep the run's
 output.
 
 A failed run is a result: the record is written and this script exits 0, so
@@ -174,7 +174,7 @@ def main():
         return 0
     clean_folder(folder)
     record = dict(spec)
-    record.update({"host": socket.gethostname(), "started_utc": datetime.datetime.now(datetime.timezone.utc)
+    record.update({"host": socket.gethostname(), "slurm_job_id": os.environ.get("SLURM_JOB_ID", ""), "started_utc": datetime.datetime.now(datetime.timezone.utc)
                    .isoformat(timespec="seconds"), "rcbench_sha256": sha256_of(spec["rcbench"]),
                    "wall_s": 0.0, "exit_code": None, "error": "", "command": []})
     try:

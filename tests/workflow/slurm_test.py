@@ -53,6 +53,9 @@ def main():
         checks.check((table["status"] == "ok").all(), "every point ok")
         checks.check(table["accuracy.median_err_xy_m"].notna().all(), "every point has its metrics")
         checks.check(sorted(table["particles"]) == [200, 200, 300, 300], "the grid's particle counts")
+        jobs = set(str(int(j)) for j in table["slurm_job_id"].dropna())
+        checks.check(len(jobs) == POINTS and jobs <= set(submitted),
+                     f"each point ran inside its own Slurm job (SLURM_JOB_ID {sorted(jobs)})")
     checks.check(os.path.exists(os.path.join(out, "report.html")), "report written")
     if checks.failures:
         print(log[-6000:])
