@@ -7,7 +7,8 @@ Reads the study's merged CSV and writes into OUT_DIR
                        ray caster / field distance), marker size = particles,
                        with the Pareto front over every configuration drawn
                        and its points ringed;
-  speed_vs_error.csv   one row per run: the old script's columns;
+  speed_vs_error_runs.csv  one row per run: engine, model, ray caster, field
+                       distance, time per update (s), errors (m), convergence;
   pareto_front.csv     the non-dominated runs (no other run is both faster
                        and more accurate), fastest first.
 A run without an error after convergence (it never converged) is left out
@@ -76,7 +77,7 @@ def draw(runs, front, threads_note):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    fig, ax = plt.subplots(figsize=(10, 5.5))
     valid = runs[runs["median_err_xy_m"].notna() & (runs["median_err_xy_m"] >= 0)]
     for key, (color, marker, label) in STYLES.items():
         sel = valid[(valid["engine"] == key[0]) & (valid["sensor_model"] == key[1]) & (valid["ray_caster"] == key[2])
@@ -95,7 +96,7 @@ def draw(runs, front, threads_note):
     ax.set_title(f"DeliBot speed vs error (tracking); marker size = particles\n{analysis_io.cpu_name()}, "
                  f"{threads_note}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     return fig
 
@@ -108,7 +109,7 @@ def main():
         sys.exit(f"{merged}: no successful DeliBot point")
     runs = runs_table(ok)
     front = pareto_front(runs)
-    analysis_io.save_table(runs, out_dir, "speed_vs_error.csv")
+    analysis_io.save_table(runs, out_dir, "speed_vs_error_runs.csv")
     analysis_io.save_table(front, out_dir, "pareto_front.csv")
     threads = sorted(set(int(t) for t in runs["threads"].dropna()))
     threads_note = f"ours on {','.join(map(str, threads)) or '?'} thread(s), MRPT on 1"

@@ -16,7 +16,7 @@ Each name in the study's `tables` (a CSV every point writes, e.g.
 sensitivity.csv) is concatenated over the points into <study>_<name>.csv,
 each row prefixed with its point's id and parameters.
 
-Standalone: merge.py STUDY.yaml [KEY=VALUE ...]   (the same overrides as --config)
+Run by the Snakefile as: merge.py OUT/study_config.json
 """
 import json
 import os
@@ -27,7 +27,7 @@ import pandas as pd
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import option_units  # noqa: E402
 import point_metrics  # noqa: E402
-from study_config import Study, load_yaml  # noqa: E402
+from study_config import load_snapshot  # noqa: E402
 
 RECORD_COLUMNS = ["point", "group", "workload", "status", "error", "exit_code", "wall_s", "host", "slurm_job_id",
                   "started_utc", "rcbench_sha256", "folder"]
@@ -103,13 +103,9 @@ def merge_study(study, out_csv):
 
 
 def main():
-    if len(sys.argv) < 2:
-        sys.exit("usage: merge.py STUDY.yaml [KEY=VALUE ...]")
-    config = load_yaml(sys.argv[1])
-    for kv in sys.argv[2:]:
-        k, _, v = kv.partition("=")
-        config[k] = v
-    study = Study(config)
+    if len(sys.argv) != 2:
+        sys.exit("usage: merge.py OUT/study_config.json   (the Snakefile writes it)")
+    study, _ = load_snapshot(sys.argv[1])
     merge_study(study, study.merged_csv())
 
 

@@ -12,7 +12,7 @@ A small script in the page counts the images the browser decoded and writes
 the count into the page (<body data-images-decoded="N/M">), so a headless
 browser can check it (tests/workflow/report_browser_test.py).
 
-Standalone: report.py STUDY.yaml [KEY=VALUE ...]   (after the study ran)
+Run by the Snakefile as: report.py OUT/study_config.json
 """
 import base64
 import datetime
@@ -29,7 +29,7 @@ import pandas as pd
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import merge  # noqa: E402
 import report_figures  # noqa: E402
-from study_config import Study, load_yaml  # noqa: E402
+from study_config import load_snapshot  # noqa: E402
 
 RECORD_COLUMNS = set(merge.RECORD_COLUMNS)
 MAX_TABLE_ROWS = 400
@@ -189,7 +189,7 @@ def provenance(table):
                                for k, v in rows) + "</table>"
 
 
-def write_report(study, merged_csv, analysis_dir, out_html, config_files=(), effective_config=None):
+def write_report(study, merged_csv, analysis_dir, out_html, snapshot):
     table = pd.read_csv(merged_csv)
     n_ok = int((table["status"] == "ok").sum())
     failed = table[table["status"] != "ok"]
@@ -214,13 +214,11 @@ def write_report(study, merged_csv, analysis_dir, out_html, config_files=(), eff
     parts += ["<h2>Points</h2>", "<p>Per group: labels, the parameters that vary, and the key metrics; the merged "
               "CSV has every parameter and metric.</p>", overview(table)]
     parts.append("<h2>Configuration</h2>")
-    for path in config_files:
-        with open(path) as f:
-            parts.append(f"<h3>{esc(path)}</h3><pre>{esc(f.read())}</pre>")
-    if effective_config is not None:
-        import yaml
-        parts.append("<h3>Effective configuration (files and command-line overrides)</h3>"
-                     f"<pre>{esc(yaml.safe_dump(dict(effective_config), sort_keys=False))}</pre>")
+    for path, text in snapshot["config_files"].items():
+        parts.append(f"<h3>{esc(path)}</h3><pre>{esc(text)}</pre>")
+    import yaml
+    parts.append("<h3>Effective configuration (the files and the command line's --config overrides)</h3>"
+                 f"<pre>{esc(yaml.safe_dump(snapshot['config'], sort_keys=False))}</pre>")
     parts.append(DECODE_CHECK + "</body></html>\n")
     tmp = f"{out_html}.tmp-{os.getpid()}"
     with open(tmp, "w") as f:
@@ -230,15 +228,11 @@ def write_report(study, merged_csv, analysis_dir, out_html, config_files=(), eff
 
 
 def main():
-    if len(sys.argv) < 2:
-        sys.exit("usage: report.py STUDY.yaml [KEY=VALUE ...]")
-    config = load_yaml(sys.argv[1])
-    for kv in sys.argv[2:]:
-        k, _, v = kv.partition("=")
-        config[k] = v
-    study = Study(config)
+    if len(sys.argv) != 2:
+        sys.exit("usage: report.py OUT/study_config.json   (the Snakefile writes it)")
+    study, snapshot = load_snapshot(sys.argv[1])
     write_report(study, study.merged_csv(), os.path.join(study.out, "analysis"),
-                 os.path.join(study.out, "report.html"), config_files=[sys.argv[1]], effective_config=config)
+                 os.path.join(study.out, "report.html"), snapshot)
 
 
 if __name__ == "__main__":

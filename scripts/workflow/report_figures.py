@@ -170,7 +170,7 @@ def anytime(table):
     shown = min(len(rows), MAX_CURVES)
     return [("RRT* cost over time", f"Best path cost against planning time, one line per MoveBot point with a "
              f"solution: {drawn} of the {shown} points shown" + (f" (of {len(rows)})" if len(rows) > shown else "")
-             + f" found one within their budget.", png_of(fig))]
+             + " found one within their budget.", png_of(fig))]
 
 
 def exit_axes(table):

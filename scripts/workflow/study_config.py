@@ -366,6 +366,41 @@ class Study:
     def merged_csv(self):
         return os.path.join(self.out, f"{self.name}.csv")
 
+    def snapshot_path(self):
+        return os.path.join(self.out, "study_config.json")
+
+
+def write_snapshot(study, config, config_files):
+    """Writes <out>/study_config.json: the effective configuration and the text of
+    each configuration file, rewritten only when it changes."""
+    texts = {}
+    for path in config_files:
+        try:
+            with open(path) as f:
+                texts[path] = f.read()
+        except OSError:
+            texts[path] = "(unreadable)"
+    text = json.dumps({"config": dict(config), "config_files": texts}, indent=1, sort_keys=True, default=str)
+    path = study.snapshot_path()
+    try:
+        with open(path) as f:
+            if f.read() == text:
+                return
+    except OSError:
+        pass
+    os.makedirs(study.out, exist_ok=True)
+    tmp = f"{path}.tmp-{os.getpid()}"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def load_snapshot(path):
+    """(Study, the snapshot) from <out>/study_config.json."""
+    with open(path) as f:
+        snapshot = json.load(f)
+    return Study(snapshot["config"]), snapshot
+
 
 def load_yaml(path):
     import yaml

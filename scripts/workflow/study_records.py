@@ -2,6 +2,8 @@
 between the points and the report: forgetting failed runs on request,
 running the study's analysis scripts, and the final verdict.
 
+Run by the Snakefile as: study_records.py analysis|verdict OUT/study_config.json
+
 A point's record is <out>/points/<id>/point.json (run_point.py); an input's
 is <out>/inputs/<id>/input.json; point.done and input.done beside them are
 the files Snakemake tracks. The analysis step writes
@@ -97,3 +99,26 @@ def verdict(study, merged_csv, analysis_json, ok_path):
                            + "\n  ".join(shown))
     with open(ok_path, "w") as f:
         f.write(f"{len(table)} points, all ok\n")
+
+
+def main():
+    usage = "usage: study_records.py analysis|verdict OUT/study_config.json   (the Snakefile runs it)"
+    if len(sys.argv) != 3 or sys.argv[1] not in ("analysis", "verdict"):
+        sys.exit(usage)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from study_config import load_snapshot
+    study, _ = load_snapshot(sys.argv[2])
+    analysis_dir = os.path.join(study.out, "analysis")
+    if sys.argv[1] == "analysis":
+        scripts_dir = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+        run_analysis(study, scripts_dir, sys.executable, study.merged_csv(), analysis_dir)
+        return
+    try:
+        verdict(study, study.merged_csv(), os.path.join(analysis_dir, "analysis.json"),
+                os.path.join(study.out, "study.ok"))
+    except RuntimeError as e:
+        sys.exit(str(e))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,16 +1,22 @@
 #!/usr/bin/python3
-"""Unit tests of the study configuration (scripts/workflow/study_config.py),
-the option-unit column names and the metric flattening; every study shipped
-in scripts/workflow/studies/ must expand.
-Usage: config_test.py [PATH_TO_RCBENCH]   (with rcbench: the units its --help states)
+"""Unit tests of the study engine's pieces (scripts/workflow/): the
+configuration's expansion and its errors, every study shipped in
+scripts/workflow/studies/, the option-unit column names, the metric
+flattening, and the merge of point records (tidy table, failed points,
+per-point tables concatenated).
+Usage: unit_test.py [PATH_TO_RCBENCH]   (with rcbench: the units its --help states)
 """
 import glob
+import json
 import os
+import shutil
 import sys
+import tempfile
 import unittest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(REPO, "scripts", "workflow"))
+import merge  # noqa: E402
 import option_units  # noqa: E402
 import point_metrics  # noqa: E402
 from study_config import Study, StudyError, command_line, load_yaml  # noqa: E402
@@ -190,6 +196,50 @@ class Metrics(unittest.TestCase):
     def test_flatten(self):
         flat = point_metrics.flatten({"a": {"b_m": 1.5, "c": {"d": True}}, "e": [1, 2], "f": [{"g": 1}]})
         self.assertEqual(flat, {"a.b_m": 1.5, "a.c.d": 1, "e": "1;2", "f": '[{"g": 1}]'})
+
+
+class Merge(unittest.TestCase):
+    """Point records written by hand (as run_point.py writes them), merged."""
+
+    def setUp(self):
+        self.work = tempfile.mkdtemp(prefix="rc_merge_test_")
+
+    def tearDown(self):
+        shutil.rmtree(self.work)
+
+    def test_tidy_table_with_a_failed_point_and_per_point_tables(self):
+        config = {"study": "m", "out": self.work, "rcbench": "/nonexistent/rcbench",
+                  "points": {"workload": "collide", "options": {"scene": "shelf"},
+                             "grid": {"traversal": ["dfs", "bfs"], "variant": {"a": {}, "b": {"epsilon": 0.1}}}},
+                  "tables": ["extra.csv"]}
+        study = Study(config)
+        for k, pid in enumerate(study.order):
+            spec = study.points[pid]
+            os.makedirs(spec["folder"])
+            failed = k == 1
+            record = {**spec, "status": "failed" if failed else "ok", "exit_code": 1 if failed else 0,
+                      "error": "exit 1: rcbench: error: x" if failed else "", "wall_s": 0.5, "host": "h",
+                      "started_utc": "t", "rcbench_sha256": "s", "slurm_job_id": ""}
+            with open(spec["record"], "w") as f:
+                json.dump(record, f)
+            if not failed:
+                with open(spec["outputs"]["timeline"], "w") as f:
+                    f.write(f"section,key,value\nsummary,queries,{10 + k}\nsummary,backend,robocore\n")
+                with open(os.path.join(spec["folder"], "extra.csv"), "w") as f:
+                    f.write(f"ratio,value\nr1,{k}\nr2,{k + 0.5}\n")
+        table = merge.merge_study(study, study.merged_csv())
+        self.assertEqual(list(table["point"]), study.order)
+        self.assertEqual(list(table["status"]), ["ok", "failed", "ok", "ok"])
+        self.assertEqual(list(table["summary.queries"].fillna(-1)), [10, -1, 12, 13])
+        self.assertEqual(table["error"].iloc[1], "exit 1: rcbench: error: x")
+        self.assertEqual(list(table["traversal"]), ["dfs", "dfs", "bfs", "bfs"])
+        self.assertEqual(list(table["variant"]), ["a", "b", "a", "b"])
+        import pandas as pd
+        extra = pd.read_csv(os.path.join(self.work, "m_extra.csv"))
+        self.assertEqual(len(extra), 6)   # two rows from each of the three ok points
+        self.assertEqual(list(extra.columns[:3]), ["point", "group", "workload"])
+        self.assertIn("traversal", extra.columns)
+        self.assertEqual(list(extra["value"]), [0, 0.5, 2, 2.5, 3, 3.5])
 
 
 if __name__ == "__main__":
