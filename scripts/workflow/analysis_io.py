@@ -30,10 +30,15 @@ def _atomic(path, write):
     os.replace(tmp, path)
 
 
+def _write_text(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def save_figure(fig, out_dir, name, caption, dpi=110):
     path = os.path.join(out_dir, name)
     _atomic(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format="png"))
-    _atomic(path[:-4] + ".caption", lambda tmp: open(tmp, "w").write(caption + "\n"))
+    _atomic(path[:-4] + ".caption", lambda tmp: _write_text(tmp, caption + "\n"))
     return path
 
 
@@ -45,7 +50,7 @@ def save_table(frame, out_dir, name):
 
 def save_text(text, out_dir, name):
     path = os.path.join(out_dir, name)
-    _atomic(path, lambda tmp: open(tmp, "w").write(text))
+    _atomic(path, lambda tmp: _write_text(tmp, text))
     return path
 
 

@@ -8,6 +8,9 @@ Figures and tables come from two places: the study's analysis scripts
 (<out>/analysis/: *.png figures, *.csv tables, *.md notes, in name order)
 and report_figures.py (what any study's points can show by themselves).
 
+The generic figures are also written as PNG files into <out>/report_figures/,
+with overview.png tiling them all.
+
 A small script in the page counts the images the browser decoded and writes
 the count into the page (<body data-images-decoded="N/M">), so a headless
 browser can check it (tests/workflow/report_browser_test.py).
@@ -189,6 +192,35 @@ def provenance(table):
                                for k, v in rows) + "</table>"
 
 
+def save_figures(figures, folder, tile_height=420, columns=3):
+    """The generic figures as PNG files too (<out>/report_figures/NN_title.png), and all of
+    them tiled into overview.png, for documents."""
+    import io
+    from PIL import Image
+    os.makedirs(folder, exist_ok=True)
+    for name in os.listdir(folder):
+        os.remove(os.path.join(folder, name))
+    tiles = []
+    for k, (title, _, png) in enumerate(figures):
+        if png is None:
+            continue
+        slug = "".join(c if c.isalnum() else "_" for c in title.lower()).strip("_")[:60]
+        with open(os.path.join(folder, f"{k + 1:02d}_{slug}.png"), "wb") as f:
+            f.write(png)
+        image = Image.open(io.BytesIO(png)).convert("RGB")
+        tiles.append(image.resize((max(1, round(image.width * tile_height / image.height)), tile_height)))
+    if tiles:
+        rows = [tiles[i:i + columns] for i in range(0, len(tiles), columns)]
+        width = max(sum(t.width for t in row) for row in rows)
+        sheet = Image.new("RGB", (width, tile_height * len(rows)), "white")
+        for r, row in enumerate(rows):
+            x = 0
+            for t in row:
+                sheet.paste(t, (x, r * tile_height))
+                x += t.width
+        sheet.save(os.path.join(folder, "overview.png"), optimize=True)
+
+
 def write_report(study, merged_csv, analysis_dir, out_html, snapshot):
     table = pd.read_csv(merged_csv)
     n_ok = int((table["status"] == "ok").sum())
@@ -209,6 +241,7 @@ def write_report(study, merged_csv, analysis_dir, out_html, snapshot):
                   table_html(failed[["point", "group", "exit_code", "error", "folder"]])]
     parts += ["<h2>Analysis</h2>", analysis_sections(analysis_dir) or "<p>No analysis scripts.</p>"]
     figures = report_figures.all_figures(table)
+    save_figures(figures, os.path.join(study.out, "report_figures"))
     parts += ["<h2>Figures from the points' own outputs</h2>"]
     parts += [figure_html(*f) for f in figures] or ["<p>None of this study's points wrote such outputs.</p>"]
     parts += ["<h2>Points</h2>", "<p>Per group: labels, the parameters that vary, and the key metrics; the merged "

@@ -41,7 +41,6 @@ Ids are content hashes of what the run does (readable prefix + hash), so a
 finished point is found again however the configuration is reordered, and
 a point whose options change is a new point.
 """
-import copy
 import hashlib
 import json
 import os
@@ -422,7 +421,3 @@ def command_line(spec, resolved_options=None):
     for k, v in (spec.get("outputs") or spec.get("files") or {}).items():
         args += [f"--{k}", v]
     return args
-
-
-def deep_copy(spec):
-    return copy.deepcopy(spec)
