@@ -97,8 +97,9 @@ def machine():
             mem = f"{kb / 2**20:.1f} GiB"
     except (OSError, StopIteration, ValueError):
         pass
+    os_name = run(["sh", "-c", ". /etc/os-release; echo $PRETTY_NAME"])
     return {"host": socket.gethostname(), "cpu": cpu, "logical cores": os.cpu_count(), "memory": mem,
-            "os": f"{platform.system()} {platform.release()} ({run(['sh', '-c', '. /etc/os-release; echo $PRETTY_NAME'])})",
+            "os": f"{platform.system()} {platform.release()} ({os_name})",
             "python": platform.python_version(), "pandas": pd.__version__,
             "snakemake": run([sys.executable, "-c", "import snakemake; print(snakemake.__version__)"])}
 

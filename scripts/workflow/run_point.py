@@ -174,8 +174,9 @@ def main():
         return 0
     clean_folder(folder)
     record = dict(spec)
-    record.update({"host": socket.gethostname(), "slurm_job_id": os.environ.get("SLURM_JOB_ID", ""), "started_utc": datetime.datetime.now(datetime.timezone.utc)
-                   .isoformat(timespec="seconds"), "rcbench_sha256": sha256_of(spec["rcbench"]),
+    started = datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+    record.update({"host": socket.gethostname(), "slurm_job_id": os.environ.get("SLURM_JOB_ID", ""),
+                   "started_utc": started, "rcbench_sha256": sha256_of(spec["rcbench"]),
                    "wall_s": 0.0, "exit_code": None, "error": "", "command": []})
     try:
         check_inputs(spec)
@@ -186,15 +187,16 @@ def main():
         if not (os.path.isfile(spec["rcbench"]) and os.access(spec["rcbench"], os.X_OK)):
             raise PointFailure(f"rcbench not found or not executable at '{spec['rcbench']}'")
         start = time.monotonic()
-        with open(os.path.join(folder, "stdout.log"), "w") as out, open(os.path.join(folder, "stderr.log"), "w+") as err:
+        with open(os.path.join(folder, "stdout.log"), "w") as out, \
+                open(os.path.join(folder, "stderr.log"), "w+") as err:
             code, interrupted = run_forwarding_signals(cmd, out, err)
             err.seek(0)
             stderr_text = err.read()
         record["wall_s"] = round(time.monotonic() - start, 6)
         record["exit_code"] = code
         if interrupted or (code < 0 and -code in INTERRUPTIONS):
-            print(f"run_point: {spec['id']} interrupted by signal {-code}; not recorded, it runs again next time",
-                  file=sys.stderr)
+            print(f"run_point: {spec['id']} interrupted (rcbench exit {code}); not recorded, it runs again next "
+                  f"time", file=sys.stderr)
             return 1
         if code not in spec["ok_exit_codes"]:
             raise PointFailure(error_message(stderr_text, code) if code >= 0 else

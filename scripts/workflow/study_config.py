@@ -16,6 +16,7 @@ its own folder. The configuration (docs/studies.md has the full reference):
     NAME: {command: simulate, options: {...}, files: {output: t.log, ground-truth: t.gt}}
   points:                      # one group, or a list of groups
     workload: delibot          # the rcbench subcommand
+    vars: {NAME: VALUE}        # template variables of this group only
     options: {...}             # fixed options of every point of the group
     grid: {AXIS: VALUES, ...}  # cross product of the axes, or
     list: [{OPTION: VALUE, ...}, ...]   # explicit points
@@ -51,7 +52,7 @@ TEMPLATE_RE = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)(?:\.([A-Za-z0-9_-]+))?\}")
 TOP_LEVEL_KEYS = {"study", "description", "rcbench", "out", "threads", "vars", "requires", "inputs", "points",
                   "analysis", "tables", "retry_failed"}
 DEFAULT_VARS = {"shared_data": "../shared/data"}
-GROUP_KEYS = {"name", "workload", "options", "grid", "list", "outputs", "ok_exit_codes"}
+GROUP_KEYS = {"name", "workload", "vars", "options", "grid", "list", "outputs", "ok_exit_codes"}
 INPUT_KEYS = {"command", "options", "files"}
 FUNCTIONS = {"first_pose"}
 
@@ -143,6 +144,9 @@ def _expand_group(name, group):
     values that templates may name: the grid's axes, or a list entry's scalars;
     `readable` gives each a short text for folder names."""
     base = dict(group.get("options") or {})
+    group_vars = group.get("vars") or {}
+    if not isinstance(group_vars, dict) or any(isinstance(v, (dict, list)) for v in group_vars.values()):
+        raise StudyError(f"points group '{name}': 'vars' must map names to scalars")
     if "list" in group:
         entries = group["list"]
         if not isinstance(entries, list) or not entries or not all(isinstance(e, dict) for e in entries):
@@ -151,12 +155,12 @@ def _expand_group(name, group):
         for e in entries:
             scalars = {k: v for k, v in e.items() if not isinstance(v, (dict, list))}
             readable = {k: f"{k}{v}" for k, v in scalars.items() if "/" not in str(v)}
-            out.append(({}, {**base, **e}, scalars, readable))
+            out.append(({}, {**base, **e}, {**group_vars, **scalars}, readable))
         return out
     grid = group.get("grid") or {}
     if not isinstance(grid, dict):
         raise StudyError(f"points group '{name}': 'grid' must map axes to values")
-    combos = [({}, dict(base), {}, {})]
+    combos = [({}, dict(base), dict(group_vars), {})]
     for axis, values in grid.items():
         expanded = []
         for labels, options, axes, readable in combos:
@@ -281,7 +285,8 @@ class Study:
             name, field = m.group(1), m.group(2)
             if field is not None:
                 if name not in self.input_defs:
-                    raise StudyError(f"{where}: '{{{name}.{field}}}' names no input (inputs: {sorted(self.input_defs)})")
+                    raise StudyError(f"{where}: '{{{name}.{field}}}' names no input "
+                                     f"(inputs: {sorted(self.input_defs)})")
                 files = self.input_defs[name]["files"]
                 if field not in files:
                     raise StudyError(f"{where}: input '{name}' has no file '{field}' (files: {sorted(files)})")

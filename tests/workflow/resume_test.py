@@ -57,7 +57,8 @@ def scenario(checks, rcbench, name, stop_signal):
 
     if stop_signal == signal.SIGKILL:
         unlock = sts.run(cmd + ["--unlock"], cwd=work)
-        checks.check(unlock.returncode == 0, f"{name}: snakemake --unlock after the power cut (exit {unlock.returncode})")
+        checks.check(unlock.returncode == 0,
+                     f"{name}: snakemake --unlock after the power cut (exit {unlock.returncode})")
     # Snakemake plans a job for every point it did not see finish. A point whose
     # record was written just before the stop can be among them: its job reuses
     # the record (run_point.py: "not run again") and runs no rcbench.
