@@ -98,6 +98,17 @@ class Expansion(unittest.TestCase):
         carribot = next(p for p in s.points.values() if p["workload"] == "carribot")
         self.assertTrue(carribot["outputs"]["plot"].endswith("path.png"))
 
+    def test_group_vars_reach_templates_but_not_the_command(self):
+        config = base()
+        config["inputs"]["trace"]["options"] = {"map": "/m.yaml", "seed": "{traceseed}"}
+        config["points"] = [{"name": g, "workload": "delibot", "vars": {"traceseed": k},
+                             "options": {"trace": "{trace.output}"}, "grid": {"seed": [1, 2]}}
+                            for g, k in (("a", 7), ("b", 8))]
+        s = Study(config)
+        self.assertEqual(sorted(i["options"]["seed"] for i in s.inputs.values()), ["7", "8"])
+        for p in s.points.values():
+            self.assertNotIn("traceseed", p["options"])
+
     def test_command_line(self):
         spec = {"rcbench": "rc", "workload": "delibot", "options": {"quiet": True, "no-pricing": False,
                                                                     "particles": 10, "x": None},
