@@ -46,15 +46,10 @@ def speedup_results(calibration_csv):
         return {row["result"] for row in csv.DictReader(f) if row["unit"] == "x faster"}
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("csv")
-    parser.add_argument("png")
-    parser.add_argument("--results", type=int, default=0, help="panels (0: every result)")
-    parser.add_argument("--parameters", type=int, default=12, help="bars per panel, widest first")
-    args = parser.parse_args()
-    order, baseline, spans = read(args.csv)
-    speedups = speedup_results(os.path.join(os.path.dirname(os.path.abspath(args.csv)), "calibration.csv"))
+def figure(sensitivity_csv, results=0, parameters=12):
+    """The tornado figure of one sweep (calibration.csv must sit beside sensitivity.csv)."""
+    order, baseline, spans = read(sensitivity_csv)
+    speedups = speedup_results(os.path.join(os.path.dirname(os.path.abspath(sensitivity_csv)), "calibration.csv"))
     panels = []
     for name in order:
         if name not in speedups:
@@ -65,13 +60,13 @@ def main():
             if hi - lo > 1e-12 * max(1.0, abs(baseline[name])):
                 bars.append((hi - lo, parameter, lo, hi))
         bars.sort(reverse=True)
-        panels.append((name, bars[: args.parameters]))
-    if args.results > 0:
+        panels.append((name, bars[:parameters]))
+    if results > 0:
         panels.sort(key=lambda p: -(p[1][0][0] if p[1] else 0))
-        panels = panels[: args.results]
+        panels = panels[:results]
     cols = 2
-    rows = math.ceil(len(panels) / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(14, 2.2 + 0.34 * args.parameters * rows), squeeze=False)
+    rows = max(1, math.ceil(len(panels) / cols))
+    fig, axes = plt.subplots(rows, cols, figsize=(14, 2.2 + 0.34 * parameters * rows), squeeze=False)
     for ax, (name, bars) in zip(axes.flat, panels):
         base = baseline[name]
         neutral = 1.0
@@ -91,7 +86,17 @@ def main():
     fig.suptitle("Sensitivity of each result to one parameter at a time (red: the range crosses the neutral point)",
                  fontsize=10)
     fig.tight_layout()
-    fig.savefig(args.png, dpi=110)
+    return fig
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("csv")
+    parser.add_argument("png")
+    parser.add_argument("--results", type=int, default=0, help="panels (0: every result)")
+    parser.add_argument("--parameters", type=int, default=12, help="bars per panel, widest first")
+    args = parser.parse_args()
+    figure(args.csv, args.results, args.parameters).savefig(args.png, dpi=110)
 
 
 if __name__ == "__main__":

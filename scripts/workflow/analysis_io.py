@@ -8,9 +8,14 @@ import pandas as pd
 
 
 def arguments(usage):
-    """(merged CSV path, output folder) from argv; exits with `usage` otherwise."""
+    """(merged CSV path, output folder) from argv; exits with `usage` otherwise
+    (status 0 for -h / --help, 2 for wrong arguments)."""
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(f"usage: {os.path.basename(sys.argv[0])} MERGED_CSV OUT_DIR\n{usage}")
+        sys.exit(0)
     if len(sys.argv) != 3 or sys.argv[1].startswith("-"):
-        sys.exit(f"usage: {os.path.basename(sys.argv[0])} MERGED_CSV OUT_DIR\n{usage}")
+        print(f"usage: {os.path.basename(sys.argv[0])} MERGED_CSV OUT_DIR\n{usage}", file=sys.stderr)
+        sys.exit(2)
     os.makedirs(sys.argv[2], exist_ok=True)
     return sys.argv[1], sys.argv[2]
 

@@ -89,6 +89,8 @@ def _axis_values(group_name, axis, values):
     where = f"points group '{group_name}', axis '{axis}'"
     if isinstance(values, dict) and set(values) == {"range"}:
         r = values["range"]
+        if isinstance(r, list):  # --config values arrive as strings ("1"): integers in digits are integers
+            r = [int(v) if isinstance(v, str) and re.fullmatch(r"-?[0-9]+", v) else v for v in r]
         if not (isinstance(r, list) and len(r) == 2 and all(isinstance(v, int) for v in r) and r[0] <= r[1]):
             raise StudyError(f"{where}: range must be [FIRST, LAST] integers, FIRST <= LAST (got {r!r})")
         return [(None, None, v, {axis: v}) for v in range(r[0], r[1] + 1)]

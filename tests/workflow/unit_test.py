@@ -86,6 +86,26 @@ class Expansion(unittest.TestCase):
         b = Study(config)
         self.assertFalse(set(a.points) & set(b.points))
 
+    def test_a_config_override_merged_by_snakemake(self):
+        # `--config 'points={options: {hypothesis-floor: 20}, grid: {seed: {range: [1, 2]}}}'`:
+        # Snakemake parses the value with YAML's BaseLoader (strings only) and
+        # merges it key by key into the file's configuration.
+        from snakemake.utils import update_config
+        import yaml
+        config = base()
+        update_config(config, {"study": "t_floor",
+                               "points": yaml.load("{options: {hypothesis-floor: 20}, grid: {seed: {range: [1, 2]}}}",
+                                                   Loader=yaml.BaseLoader)})
+        s = Study(config)
+        self.assertEqual(len(s.points), 2 * 2 * 2)
+        self.assertEqual({p["options"]["seed"] for p in s.points.values()}, {1, 2})
+        self.assertTrue(all(p["options"]["hypothesis-floor"] == "20" for p in s.points.values()))
+        self.assertTrue(all(p["options"]["quiet"] is True for p in s.points.values()))  # the file's options stay
+        self.assertFalse(set(s.points) & set(Study(base()).points))  # new options: new points
+        config["points"]["grid"]["seed"] = {"range": ["1", "x"]}
+        with self.assertRaisesRegex(StudyError, "range"):
+            Study(config)
+
     def test_list_and_groups(self):
         config = base(points=[{"name": "a", "workload": "movebot", "list": [{"seed": 1}, {"seed": 2, "nn": "p-ray"}]},
                               {"name": "b", "workload": "carribot", "options": {"map": "m.map"},
