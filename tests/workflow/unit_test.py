@@ -273,5 +273,41 @@ class Merge(unittest.TestCase):
         self.assertEqual(list(extra["value"]), [0, 0.5, 2, 2.5, 3, 3.5])
 
 
+class SensitivityAnalysis(unittest.TestCase):
+    """scripts/sensitivity_study.py on one point's sweep: the ranges, and a
+    flip exactly where a variant crosses 1x."""
+
+    def test_ranges_and_flips(self):
+        import subprocess
+        import pandas as pd
+        work = tempfile.mkdtemp(prefix="rc_sensitivity_test_")
+        self.addCleanup(shutil.rmtree, work)
+        folder = os.path.join(work, "p1")
+        os.makedirs(folder)
+        with open(os.path.join(folder, "calibration.csv"), "w") as f:
+            f.write("result,unit,paper_value,ours\nA vs B,x faster,1.1,1.5\nC vs D,x faster,2,3\nE,cycles,,7\n")
+        with open(os.path.join(folder, "sensitivity.csv"), "w") as f:
+            f.write("ratio,parameter,value,result\nA vs B,,,1.5\nC vs D,,,3\nE,,,7\n"
+                    "A vs B,p.x,0.5,0.8\nA vs B,p.x,2,2.5\nA vs B,p.y,0.5,1.4\nA vs B,p.y,2,\n"
+                    "C vs D,p.x,0.5,2\nC vs D,p.x,2,4\nE,p.x,0.5,3\n")
+        merged = os.path.join(work, "m.csv")
+        pd.DataFrame([{"point": "p1", "group": "g", "workload": "calibrate", "status": "ok", "folder": folder,
+                       "particles": 500}]).to_csv(merged, index=False)
+        out = os.path.join(work, "analysis")
+        script = os.path.join(REPO, "scripts", "sensitivity_study.py")
+        p = subprocess.run([sys.executable, script, merged, out], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        ranges = pd.read_csv(os.path.join(out, "sensitivity_ranges.csv"))
+        self.assertEqual(sorted(zip(ranges["result"], ranges["parameter"])),
+                         [("A vs B", "p.x"), ("A vs B", "p.y"), ("C vs D", "p.x")])  # E is not a speedup
+        ab = ranges[(ranges["result"] == "A vs B") & (ranges["parameter"] == "p.x")].iloc[0]
+        self.assertEqual((ab["low_x"], ab["high_x"], bool(ab["flips"])), (0.8, 2.5, True))
+        self.assertFalse(ranges[ranges["parameter"] == "p.y"]["flips"].any())   # 1.4-1.5: same side
+        self.assertFalse(ranges[ranges["result"] == "C vs D"]["flips"].any())  # 2-4: same side
+        self.assertTrue(os.path.getsize(os.path.join(out, "sensitivity.png")) > 0)
+        with open(os.path.join(out, "sensitivity_flips.md")) as f:
+            self.assertIn("| A vs B | p.x |", f.read())
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)
