@@ -3,8 +3,8 @@
 (each point is one `rcbench calibrate --sensitivity` run, which writes
 sensitivity.csv, calibration.csv and flips.md into the point's folder).
 
-Writes into OUT_DIR, for every successful point (its id in the file names
-when the study has more than one):
+Writes into OUT_DIR, for every successful point (its particles and beams
+in the figure's name when the study has more than one point):
   sensitivity.png        the tornado plot of scripts/plot_sensitivity.py: per
                          speedup result, the range each parameter moves it
                          over (x0.5 and x2, one at a time), widest first;
@@ -53,7 +53,7 @@ def main():
         csv = os.path.join(row["folder"], "sensitivity.csv")
         if not os.path.exists(csv):
             sys.exit(f"{csv}: missing (was the point run with sensitivity: true?)")
-        suffix = "" if len(ok) == 1 else f"_{row['point']}"
+        suffix = "" if len(ok) == 1 else "_" + ("_".join(f"{c}{row[c]}" for c in label_columns) or row["point"])
         where = ", ".join(f"{c} {row[c]}" for c in label_columns) or row["point"]
         fig = plot_sensitivity.figure(csv)
         analysis_io.save_figure(fig, out_dir, f"sensitivity{suffix}.png",
