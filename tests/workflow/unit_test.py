@@ -102,6 +102,13 @@ class Expansion(unittest.TestCase):
         self.assertTrue(all(p["options"]["hypothesis-floor"] == "20" for p in s.points.values()))
         self.assertTrue(all(p["options"]["quiet"] is True for p in s.points.values()))  # the file's options stay
         self.assertFalse(set(s.points) & set(Study(base()).points))  # new options: new points
+        update_config(config, {"points": yaml.load("{options: {quiet: null}}", Loader=yaml.BaseLoader)})
+        self.assertTrue(all("quiet" not in p["options"] for p in Study(config).points.values()))  # null: left out
+        without = base()
+        del without["points"]["options"]["quiet"]
+        nulled = base()
+        nulled["points"]["options"]["quiet"] = None
+        self.assertEqual(sorted(Study(without).points), sorted(Study(nulled).points))  # and not in the id
         config["points"]["grid"]["seed"] = {"range": ["1", "x"]}
         with self.assertRaisesRegex(StudyError, "range"):
             Study(config)
