@@ -18,12 +18,14 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kSerialPricingQueries = 1024;  // launches up to 32 warps are priced on one thread
 double SecondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Every launch of the kernel checker, recorded and priced on every backend
-// into the ledger's open iteration, and counted.
+// Every launch of the kernel checker, recorded in the kernel's pass (its
+// addresses kept for the ledger's sample of SMs, --replay-sms), priced on
+// every backend into the ledger's open iteration, and counted.
 class LaunchRecorder {
  public:
   LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : ledger_(ledger) {
-    checker.set_batch_observer([this](const CollisionBatch& batch) { Record(batch); });
+    checker.set_record_observer([this](const KernelRecord& record) { Record(record); },
+                                ledger ? ledger->RecordSample() : AddressSample{});
   }
   // The work since the last call.
   KernelWork TakeWork() {
@@ -34,20 +36,20 @@ class LaunchRecorder {
   double pricing_wall_s() const { return pricing_wall_s_; }
 
  private:
-  void Record(const CollisionBatch& batch) {
+  void Record(const KernelRecord& record) {
     ++open_.launches;
-    open_.queries += batch.query_count();
-    open_.node_visits += batch.visits.size();
+    open_.queries += record.query_count();
+    open_.node_visits += record.total_nodes();
     if (!ledger_) return;
     const auto t0 = Clock::now();
     // A per-expansion launch is a handful of queries (one warp): the cost
     // models' OpenMP loops over SMs then have nothing to share, and their
     // fork/join costs far more than the pricing (measured 60x on a loaded
     // 2-core machine). Prices do not depend on the thread count.
-    const bool small = batch.query_count() <= kSerialPricingQueries;
+    const bool small = record.query_count() <= kSerialPricingQueries;
     const int threads = omp_get_max_threads();
     if (small) omp_set_num_threads(1);
-    ledger_->AddLaunch(SactKernelRecord(batch));
+    ledger_->AddLaunch(record);
     if (small) omp_set_num_threads(threads);
     pricing_wall_s_ += SecondsSince(t0);
   }
