@@ -18,17 +18,26 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kSerialPricingQueries = 1024;  // launches up to 32 warps are priced on one thread
 double SecondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Every launch of the kernel checker, recorded in the kernel's pass (its
-// addresses kept for the ledger's sample of SMs, --replay-sms), priced on
-// every backend into the ledger's open iteration, and counted.
+// Every launch of the kernel checker, counted and, with a ledger, recorded
+// in the kernel's pass (its addresses kept for the ledger's sample of SMs,
+// --replay-sms) and priced on every backend into the ledger's open
+// iteration. Without a ledger nothing is recorded: the checker's own
+// counters give the work.
 class LaunchRecorder {
  public:
-  LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : ledger_(ledger) {
-    checker.set_record_observer([this](const KernelRecord& record) { Record(record); },
-                                ledger ? ledger->RecordSample() : AddressSample{});
+  LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : checker_(checker), ledger_(ledger) {
+    if (ledger)
+      checker.set_record_observer([this](const KernelRecord& record) { Record(record); }, ledger->RecordSample());
   }
   // The work since the last call.
   KernelWork TakeWork() {
+    if (!ledger_) {
+      const KernelWork total{checker_.batches(), checker_.kernel_queries(), checker_.node_visits()};
+      const KernelWork w{total.launches - taken_.launches, total.queries - taken_.queries,
+                         total.node_visits - taken_.node_visits};
+      taken_ = total;
+      return w;
+    }
     KernelWork w = open_;
     open_ = {};
     return w;
@@ -40,7 +49,6 @@ class LaunchRecorder {
     ++open_.launches;
     open_.queries += record.query_count();
     open_.node_visits += record.total_nodes();
-    if (!ledger_) return;
     const auto t0 = Clock::now();
     // A per-expansion launch is a handful of queries (one warp): the cost
     // models' OpenMP loops over SMs then have nothing to share, and their
@@ -54,8 +62,10 @@ class LaunchRecorder {
     pricing_wall_s_ += SecondsSince(t0);
   }
 
+  const KernelFootprintChecker& checker_;
   BackendLedger* ledger_;
   KernelWork open_;
+  KernelWork taken_;  // the checker's counters at the last TakeWork (no ledger)
   double pricing_wall_s_ = 0.0;
 };
 
