@@ -9,7 +9,8 @@ resident memory (MB) of each side, and the median of the paired ratios
 
 The query is RoWild's (cmu-roboarch/rowild, e2e/CarriBot/harness.cpp):
 Intel.map split into s x s cells, start (227, 33) and goal (59, 217) times s,
-a 10 x 4-cell car, 8 headings. RoWild's (x, y) is the car's corner; ours is
+a 10 x 4-cell car, 8 headings, heading 0 at start and goal (RoWild's goal
+test compares the whole state). RoWild's (x, y) is the car's corner; ours is
 the footprint's centre, hence --offset 5,2 (cells of the scaled map) at
 every scale. The car is 4 x 10 cells of the scaled map: a MovingAI map has
 1 m cells, so at scale s a cell is 1/s m and --footprint is (4/s)x(10/s) m.
@@ -55,7 +56,7 @@ def rowild_cmd(binary, intel_map, scale, out):
 def ours_cmd(rcbench, intel_map, scale, pricing, out):
     cell = 1.0 / scale  # m; MovingAI maps have 1 m cells
     cmd = [rcbench, "carribot", "--quiet", "--map", intel_map, "--map-scale", str(scale), "--start", "227,33",
-           "--goal", "59,217", "--offset", "5,2", "--footprint", "%.17gx%.17g" % (4 * cell, 10 * cell),
+           "--goal", "59,217", "--offset", "5,2", "--start-heading", "0", "--goal-heading", "0", "--footprint", "%.17gx%.17g" % (4 * cell, 10 * cell),
            "--headings", "8", "--path", out]
     return cmd + ([] if pricing else ["--no-pricing"])
 
