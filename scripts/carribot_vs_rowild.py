@@ -4,8 +4,9 @@
 For each map scale, runs RoWild's carribot.out and `rcbench carribot` (with
 pricing, and with --no-pricing) alternately, --repeats times each, under
 /usr/bin/time -v, and prints the median wall time (s) and median peak
-resident memory (MB) of each side, and the median of the paired ratios
-(RoWild wall / ours wall: above 1 means ours is faster).
+resident memory (MB) of each side, and the medians of the paired ratios
+RoWild / ours of wall time and of CPU time (user + system; above 1 means ours
+is faster). On a loaded machine the CPU ratio is the steadier one.
 
 The query is RoWild's (cmu-roboarch/rowild, e2e/CarriBot/harness.cpp):
 Intel.map split into s x s cells, start (227, 33) and goal (59, 217) times s,
@@ -79,7 +80,8 @@ def main():
         sys.exit("carribot_vs_rowild.py: %s: no such map" % args.map)
 
     sides = ["ours_priced", "ours_no_pricing"] + (["rowild"] if args.rowild else [])
-    print("scale,side,runs,median_wall_s,median_cpu_s,median_peak_rss_mb,median_ratio_rowild_over_ours")
+    print("scale,side,runs,median_wall_s,median_cpu_s,median_peak_rss_mb,median_wall_ratio_rowild_over_ours,"
+          "median_cpu_ratio_rowild_over_ours")
     with tempfile.TemporaryDirectory() as tmp:
         for scale in args.scales:
             runs = {side: [] for side in sides}
@@ -97,12 +99,15 @@ def main():
                 walls = [w for w, _, _ in runs[side]]
                 rss = [m for _, m, _ in runs[side]]
                 cpu = [c for _, _, c in runs[side]]
-                ratio = ""
+                ratio, cpu_ratio = "", ""
                 if "rowild" in runs and side != "rowild":
                     ratio = "%.2f" % statistics.median(
                         rw / w for (rw, _, _), (w, _, _) in zip(runs["rowild"], runs[side]))
-                print("%d,%s,%d,%.3f,%.3f,%.0f,%s" % (scale, side, len(walls), statistics.median(walls),
-                                                      statistics.median(cpu), statistics.median(rss), ratio),
+                    cpu_ratio = "%.2f" % statistics.median(
+                        rc / c for (_, _, rc), (_, _, c) in zip(runs["rowild"], runs[side]))
+                print("%d,%s,%d,%.3f,%.3f,%.0f,%s,%s" % (scale, side, len(walls), statistics.median(walls),
+                                                         statistics.median(cpu), statistics.median(rss), ratio,
+                                                         cpu_ratio),
                       flush=True)
 
 
