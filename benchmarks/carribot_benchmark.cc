@@ -15,6 +15,14 @@
 //       kernel on the host and do not price it (pricing has its own
 //       benchmark); counters kernel_queries and nodes_per_query say what a
 //       backend would be asked to do.
+//   BM_IntelRoWildQueryDefaultPath/<scale>/<pricing>  the same query on
+//       the path `rcbench carribot --footprint` takes by default
+//       (RunCarribot: the configuration space filled by the collision
+//       kernel, every launch priced on every backend with the CLI's default
+//       ledger options; pricing 0: --no-pricing), map loading and the
+//       kernel's tree included. The end-to-end comparison with RoWild's
+//       process (wall time and peak memory, start-up included) is
+//       scripts/carribot_vs_rowild.py; docs/carribot_performance.md has both.
 //
 // RoWild's query (cmu-roboarch/rowild, e2e/CarriBot/harness.cpp): Intel.map
 // scaled by 1, 2 or 4 (--scale-map; each cell becomes s x s cells), start
@@ -39,6 +47,8 @@
 #include <benchmark/benchmark.h>
 
 #include "maps/movingai_map_loader.h"
+#include "backends/scheduler/scheduler_cli.h"
+#include "workloads/carribot/carribot_run.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/grid_upscaling.h"
 #include "workloads/carribot/kernel_footprint_checker.h"
@@ -150,6 +160,48 @@ void BM_IntelRoWildQuery(benchmark::State& state) {
 BENCHMARK(BM_IntelRoWildQuery)
     ->ArgNames({"scale", "mode"})
     ->ArgsProduct({{1, 2, 4}, {0, 1, 2, 3, 4}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_IntelRoWildQueryDefaultPath(benchmark::State& state) {
+  const int scale = static_cast<int>(state.range(0));
+  const bool pricing = state.range(1) != 0;
+  const std::string path = DataPath("intel/Intel.map");
+  if (!std::filesystem::exists(path)) {
+    state.SkipWithError(("shared data absent: " + path).c_str());
+    return;
+  }
+  CarribotSettings settings;
+  settings.price_backends = pricing;
+  const SchedulerCli cli_defaults;
+  settings.ledger = ToLedgerOptions(cli_defaults);
+  settings.backend_params = BackendParametersOf(cli_defaults);
+  CarribotResult run;
+  for (auto _ : state) {
+    const OccupancyGrid grid = UpscaleGrid(LoadMovingAiMap(path), scale);
+    const double cell = grid.resolution_m();
+    settings.planner.footprint = RectangleFootprint{4 * cell, 10 * cell, 8, FootprintCheckMode::kPrecomputed};
+    // RoWild's corner (227, 33) -> (59, 217) times the scale, plus (5, 2)
+    // cells to the car's centre (rcbench carribot --offset 5,2).
+    const CarribotQuery query{0, std::nullopt, {227 * scale + 5, 33 * scale + 2, 0},
+                              {59 * scale + 5, 217 * scale + 2, 0}, std::nullopt, "RoWild's Intel query"};
+    run = RunCarribot(grid, {query}, settings, true);
+  }
+  if (run.rows.empty() || !run.rows.front().result.found()) {
+    state.SkipWithError("no path");
+    return;
+  }
+  state.counters["setup_s"] = run.setup_wall_s;
+  state.counters["plan_s"] = run.rows.front().result.wall_s;
+  state.counters["pricing_s"] = run.pricing_wall_s;
+  state.counters["kernel_queries"] = static_cast<double>(run.setup_kernel.queries);
+  state.counters["nodes_per_query"] = run.setup_kernel.NodesPerQuery();
+  state.counters["path_length_m"] = run.rows.front().result.length_m;
+}
+
+BENCHMARK(BM_IntelRoWildQueryDefaultPath)
+    ->ArgNames({"scale", "pricing"})
+    ->ArgsProduct({{1, 2, 4}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -47,13 +47,18 @@ struct TraversalOutcome {
 
 // NodeTest: NodeVisit(const FlatNode<Scalar>&), filling exit, axes_tested
 // and decided_by. `visits`, if given, gets this query's visits appended.
+// `scratch`, if given, holds the pending nodes (its contents are replaced),
+// so a caller running many queries allocates the list once.
 template <typename Scalar, typename NodeTest>
 TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder order, NodeTest&& test,
-                                 std::vector<NodeVisit>* visits) {
+                                 std::vector<NodeVisit>* visits, std::vector<std::uint32_t>* scratch = nullptr) {
   TraversalOutcome out;
   const auto& nodes = tree.nodes();
   if (nodes.empty()) return out;
-  std::vector<std::uint32_t> pending{0};  // a stack (depth-first) or a queue from `head` (breadth-first)
+  std::vector<std::uint32_t> local;
+  // A stack (depth-first) or a queue from `head` (breadth-first).
+  std::vector<std::uint32_t>& pending = scratch ? *scratch : local;
+  pending.assign(1, 0);
   std::size_t head = 0;
   const bool depth_first = order == TraversalOrder::kDepthFirst;
   while (depth_first ? !pending.empty() : head < pending.size()) {

@@ -58,6 +58,7 @@
 // RoboCore datapath runs natively and TTA+ expands (TtaPlusExpansion:
 // PRE = 4 VEC3-SUB + 1 R-XFORM, BOX = 2 DOT + 1 VEC3-SUB + 1 VEC3-CMP,
 // EDGE = 1 CROSS + 1 VEC3-CMP; 47 micro-ops for a full test).
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -112,6 +113,96 @@ struct SactResult {
 template <typename Scalar>
 SactResult TestObbAabb(const Obb<Scalar>& obb, const Aabb<Scalar>& box,
                        const SactOptions<Scalar>& options = {});
+
+// The part of the pre-process that depends on the OBB alone (R = axes^T
+// and |R| + epsilon), computed once for a query that a traversal tests
+// against many boxes. TestPreparedObbAabb(PrepareSactObb(obb, options), box)
+// runs the same operations in the same order as TestObbAabb(obb, box,
+// options) (which is written as exactly that), so it returns the same result
+// bit for bit; it only skips recomputing R and |R| at every node.
+template <typename Scalar>
+struct SactPreparedObb {
+  Obb<Scalar> obb;
+  Eigen::Matrix<Scalar, 3, 3> R;      // obb.axes^T
+  Eigen::Matrix<Scalar, 3, 3> abs_r;  // |R_ij| + options.parallel_epsilon
+  SactOptions<Scalar> options;
+};
+
+template <typename Scalar>
+SactPreparedObb<Scalar> PrepareSactObb(const Obb<Scalar>& obb, const SactOptions<Scalar>& options = {}) {
+  SactPreparedObb<Scalar> p;
+  p.obb = obb;
+  // B's axes are the world axes, so R_ij = A_i[j] exactly: R needs no
+  // arithmetic at all, one reason the OBB/AABB test is more robust than the
+  // general OBB/OBB test.
+  p.R = obb.axes.transpose();
+  p.abs_r = p.R.cwiseAbs().array() + options.parallel_epsilon;
+  p.options = options;
+  return p;
+}
+
+// The sphere pre-tests (options.sphere_pretests): a decision, or nullopt
+// when the axes must decide.
+template <typename Scalar>
+std::optional<SactResult> SactSpherePretest(const Obb<Scalar>& obb, const Aabb<Scalar>& box);
+
+// A = the OBB (centre a, axes A_i = columns, half extents ea), B = the AABB
+// (centre b, axes = world x, y, z, half extents eb). Ericson 4.4.1 with
+// R_ij = A_i . B_j and t = the translation in A's frame. Inline: a
+// traversal calls it once per node.
+template <typename Scalar>
+[[gnu::always_inline]] inline SactResult TestPreparedObbAabb(const SactPreparedObb<Scalar>& p, const Aabb<Scalar>& box) {
+  using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
+  const SactOptions<Scalar>& options = p.options;
+  if (options.sphere_pretests) {
+    if (const auto decided = SactSpherePretest(p.obb, box)) return *decided;
+  }
+  const Vec3 d = box.centre - p.obb.centre;
+  const auto& R = p.R;
+  const Vec3 t = options.convention == TranslationConvention::kBoxFrame ? Vec3(R * d) : Vec3(p.obb.axes * d);
+  const auto& abs_r = p.abs_r;
+  const Vec3& ea = p.obb.half;
+  const Vec3& eb = box.half;
+
+  SactResult result;
+  // Box-normal stage, A's axes: |t_i| against ea_i + sum_j eb_j |R_ij|.
+  for (int i = 0; i < 3; ++i) {
+    ++result.axes_tested;
+    if (std::abs(t[i]) > ea[i] + eb.dot(abs_r.row(i).transpose())) {
+      result.separating_axis = static_cast<std::int8_t>(i);
+      return result;
+    }
+  }
+  // Box-normal stage, B's axes. The translation along world axis j is d_j;
+  // Ericson writes it as t . R_col(j), which is the same number after one
+  // more rounding. The artifact's convention needs the rotated form to keep
+  // its (wrong) t.
+  const Vec3 t_b = options.convention == TranslationConvention::kBoxFrame ? d : Vec3(R.transpose() * t);
+  for (int j = 0; j < 3; ++j) {
+    ++result.axes_tested;
+    if (std::abs(t_b[j]) > eb[j] + ea.dot(abs_r.col(j))) {
+      result.separating_axis = static_cast<std::int8_t>(3 + j);
+      return result;
+    }
+  }
+  // Edge x edge stage: L = A_i x B_j; in A's frame L = e_i x R_col(j), so
+  // t . L = t[i2] R[i1][j] - t[i1] R[i2][j], with (i, i1, i2) and (j, j1, j2)
+  // cyclic (Ericson's nine unrolled cases, as one loop).
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      ++result.axes_tested;
+      const Scalar ra = ea[i1] * abs_r(i2, j) + ea[i2] * abs_r(i1, j);
+      const Scalar rb = eb[j1] * abs_r(i, j2) + eb[j2] * abs_r(i, j1);
+      if (std::abs(t[i2] * R(i1, j) - t[i1] * R(i2, j)) > ra + rb) {
+        result.separating_axis = static_cast<std::int8_t>(6 + 3 * i + j);
+        return result;
+      }
+    }
+  }
+  return result;  // no axis separates: overlap (touching included)
+}
 
 // "A0".."A2", "B0".."B2", "A0xB0".."A2xB2"; "overlap", "sphere".
 std::string SactAxisName(int axis);

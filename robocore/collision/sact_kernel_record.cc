@@ -1,5 +1,6 @@
 #include "robocore/collision/sact_kernel_record.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <vector>
 
@@ -13,25 +14,78 @@ bool Fail(std::string* why, const std::string& reason) {
   return false;
 }
 
-// One query's visits as fetch addresses and exits (exit_of maps a visit).
+std::uint8_t SactExitOf(const NodeVisit& v) { return v.exit >= 0 ? static_cast<std::uint8_t>(v.exit) : kNoExit; }
+
+// A bitset over the sectors of a node array: which ones a batch touched
+// (every sector of every fetched node), numbered from the array's base.
+class TouchedSectors {
+ public:
+  TouchedSectors(std::uint64_t node_count, std::uint64_t node_bytes, int sector_bytes) : node_bytes_(node_bytes) {
+    while ((1 << shift_) < sector_bytes) ++shift_;
+    const std::uint64_t sectors = node_bytes == 0 || node_count == 0 ? 0 : ((node_count * node_bytes - 1) >> shift_) + 1;
+    bits_.assign((sectors + 63) / 64, 0);
+  }
+  void Mark(std::uint32_t node) {
+    const std::uint64_t offset = std::uint64_t{node} * node_bytes_;
+    for (std::uint64_t s = offset >> shift_; s <= (offset + node_bytes_ - 1) >> shift_; ++s)
+      bits_[s >> 6] |= std::uint64_t{1} << (s & 63);
+  }
+  void Merge(const TouchedSectors& other) {
+    for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] |= other.bits_[w];
+  }
+  std::uint64_t Count() const {
+    std::uint64_t n = 0;
+    for (const std::uint64_t b : bits_) n += static_cast<std::uint64_t>(__builtin_popcountll(b));
+    return n;
+  }
+
+ private:
+  std::uint64_t node_bytes_;
+  int shift_ = 0;
+  std::vector<std::uint64_t> bits_;
+};
+
+// The batch as a record: query i's fetches are its visits, in order
+// (fetch_offsets = the batch's visit offsets); exit_of maps a visit to its
+// exit. Addresses are kept for the queries `sample` keeps.
 template <typename ExitOf>
 KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program,
-                         StepProgramKind kind, ExitOf&& exit_of) {
-  KernelRecordBuilder builder(std::move(program), kind, TreeNodeRegion(batch));
-  std::vector<std::uint64_t> addresses;
-  std::vector<std::uint8_t> exits;
-  for (std::size_t q = 0; q < batch.query_count(); ++q) {
-    addresses.clear();
-    exits.clear();
-    for (std::uint64_t k = batch.visit_offsets[q]; k < batch.visit_offsets[q + 1]; ++k) {
-      const NodeVisit& v = batch.visits[k];
-      addresses.push_back(batch.Address(v));
-      exits.push_back(exit_of(v));
-    }
-    builder.AddQuery(addresses, exits);
-  }
-  KernelRecord record = builder.Build();
+                         StepProgramKind kind, const AddressSample& sample, ExitOf&& exit_of) {
+  KernelRecord record;
+  record.program = std::move(program);
+  record.step_kind = kind;
+  record.regions.push_back(TreeNodeRegion(batch));
+  record.node_bytes = record.regions.front().element_bytes;
   record.scalar_bytes = batch.scalar_bytes;
+  record.fetch_offsets = batch.visit_offsets;
+  const std::size_t n = batch.query_count();
+  const std::vector<NodeVisit>& visits = batch.visits;
+  record.node_exits.resize(visits.size());
+  for (std::size_t k = 0; k < visits.size(); ++k) record.node_exits[k] = exit_of(visits[k]);
+  record.address_sample = sample;
+  if (sample.KeepsAll()) {
+    record.fetch_addresses.resize(visits.size());
+    for (std::size_t k = 0; k < visits.size(); ++k) record.fetch_addresses[k] = batch.Address(visits[k]);
+    record.Validate();
+    return record;
+  }
+  record.address_offsets.assign(n + 1, 0);
+  for (std::size_t q = 0; q < n; ++q)
+    record.address_offsets[q + 1] =
+        record.address_offsets[q] +
+        (sample.KeepsQuery(q) ? batch.visit_offsets[q + 1] - batch.visit_offsets[q] : 0);
+  record.fetch_addresses.reserve(record.address_offsets.back());
+  // Sectors the whole batch touched, numbered from the region's base (the
+  // record's footprint_begin()).
+  TouchedSectors touched(batch.node_count, batch.node_bytes, sample.sector_bytes);
+  for (std::size_t q = 0; q < n; ++q) {
+    const bool keep = sample.KeepsQuery(q);
+    for (std::uint64_t k = batch.visit_offsets[q]; k < batch.visit_offsets[q + 1]; ++k) {
+      touched.Mark(visits[k].node);
+      if (keep) record.fetch_addresses.push_back(batch.Address(visits[k]));
+    }
+  }
+  record.touched_sectors = touched.Count();
   record.Validate();
   return record;
 }
@@ -39,12 +93,16 @@ KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const Micr
 }  // namespace
 
 MemoryRegion TreeNodeRegion(const CollisionBatch& batch) {
+  return TreeNodeRegion(batch.base_address, batch.node_bytes, batch.node_count);
+}
+
+MemoryRegion TreeNodeRegion(std::uint64_t base_address, std::uint32_t node_bytes, std::uint64_t node_count) {
   MemoryRegion region;
   region.name = "box tree nodes";
   region.kind = FetchKind::kTreeNode;
-  region.base = batch.base_address;
-  region.element_bytes = batch.node_bytes;
-  region.elements = batch.node_count;
+  region.base = base_address;
+  region.element_bytes = node_bytes;
+  region.elements = node_count;
   return region;
 }
 
@@ -87,7 +145,8 @@ bool KeepsSactExitContract(const MicroProgram& program, std::string* why) {
   return true;
 }
 
-KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program) {
+KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program,
+                              const AddressSample& sample) {
   if (batch.robot_model != CollisionRobotModel::kObb)
     throw std::invalid_argument("SactKernelRecord: a sphere-robot batch is priced by SphereKernelRecord");
   if (batch.sphere_pretests)
@@ -95,10 +154,102 @@ KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const
   if (!program) program = ShippedStepProgram(StepProgramKind::kSactTest);
   std::string why;
   if (!KeepsSactExitContract(*program, &why)) throw std::invalid_argument("SactKernelRecord: " + why);
-  return BuildRecord(batch, std::move(program), StepProgramKind::kSactTest, [](const NodeVisit& v) {
-    return v.exit >= 0 ? static_cast<std::uint8_t>(v.exit) : kNoExit;
-  });
+  return BuildRecord(batch, std::move(program), StepProgramKind::kSactTest, sample, SactExitOf);
 }
+
+template <typename Scalar>
+void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                          const CollisionOptions<Scalar>& options, const AddressSample& sample,
+                          std::vector<TraversalOutcome>* outcomes, KernelRecord* record,
+                          std::uint64_t base_address) {
+  std::string error;
+  if (!options.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
+  if (record && options.sact.sphere_pretests)
+    throw std::invalid_argument("CollideBatchRecorded: the SACT program has no sphere pre-test section");
+  const long n = static_cast<long>(obbs.size());
+  const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);
+  const long blocks = (n + block - 1) / block;
+  outcomes->resize(obbs.size());
+  const std::uint64_t node_count = tree.nodes().size();
+  const std::uint32_t node_bytes = tree.node_bytes();
+  // Per block: its queries' exits and, for a kept block, their addresses.
+  std::vector<std::vector<std::uint8_t>> block_exits(record ? static_cast<std::size_t>(blocks) : 0);
+  std::vector<std::vector<std::uint64_t>> block_addresses(record ? static_cast<std::size_t>(blocks) : 0);
+  const bool mark = record && !sample.KeepsAll();
+  std::vector<TouchedSectors> touched;
+#pragma omp parallel if (blocks > 1)
+  {
+    std::vector<NodeVisit> visits;
+    std::vector<std::uint32_t> scratch;
+    TouchedSectors mine(mark ? node_count : 0, node_bytes, sample.sector_bytes);
+#pragma omp for schedule(dynamic, 1)
+    for (long b = 0; b < blocks; ++b) {
+      const long lo = b * block, hi = std::min(n, lo + block);
+      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
+      for (long i = lo; i < hi; ++i) {
+        visits.clear();
+        (*outcomes)[i] = CollideObb(tree, obbs[i], options, record ? &visits : nullptr, &scratch);
+        if (!record) continue;
+        std::vector<std::uint8_t>& exits = block_exits[b];
+        for (const NodeVisit& v : visits) {
+          exits.push_back(SactExitOf(v));
+          if (mark) mine.Mark(v.node);
+          if (keep) block_addresses[b].push_back(base_address + std::uint64_t{v.node} * node_bytes);
+        }
+      }
+    }
+    if (mark) {
+#pragma omp critical(rc_collision_touched_sectors)
+      touched.push_back(std::move(mine));
+    }
+  }
+  if (!record) return;
+
+  record->program = ShippedStepProgram(StepProgramKind::kSactTest);
+  record->step_kind = StepProgramKind::kSactTest;
+  record->leaf = nullptr;
+  record->leaf_kind = LeafProgramKind::kNone;
+  record->regions.assign(1, TreeNodeRegion(base_address, node_bytes, node_count));
+  record->node_bytes = node_bytes;
+  record->scalar_bytes = sizeof(Scalar);
+  record->fetch_offsets.assign(obbs.size() + 1, 0);
+  for (long i = 0; i < n; ++i) record->fetch_offsets[i + 1] = record->fetch_offsets[i] + (*outcomes)[i].nodes_visited;
+  record->last_exits.clear();
+  record->node_exits.resize(record->fetch_offsets.back());
+  record->address_sample = sample;
+  record->address_offsets.clear();
+  if (!sample.KeepsAll()) {
+    record->address_offsets.assign(obbs.size() + 1, 0);
+    for (long i = 0; i < n; ++i)
+      record->address_offsets[i + 1] =
+          record->address_offsets[i] + (sample.KeepsQuery(static_cast<std::size_t>(i)) ? (*outcomes)[i].nodes_visited : 0);
+  }
+  std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
+  for (long b = 0; b < blocks; ++b) {
+    exit_start[b + 1] = exit_start[b] + block_exits[b].size();
+    address_start[b + 1] = address_start[b] + block_addresses[b].size();
+  }
+  record->fetch_addresses.resize(address_start.back());
+#pragma omp parallel for schedule(static) if (blocks > 1)
+  for (long b = 0; b < blocks; ++b) {
+    std::copy(block_exits[b].begin(), block_exits[b].end(), record->node_exits.begin() + exit_start[b]);
+    std::copy(block_addresses[b].begin(), block_addresses[b].end(),
+              record->fetch_addresses.begin() + address_start[b]);
+  }
+  record->touched_sectors = 0;
+  if (mark) {
+    for (std::size_t t = 1; t < touched.size(); ++t) touched.front().Merge(touched[t]);
+    record->touched_sectors = touched.empty() ? 0 : touched.front().Count();
+  }
+  record->Validate();
+}
+
+template void CollideBatchRecorded(const FlatBoxTree<float>&, const std::vector<Obb<float>>&,
+                                   const CollisionOptions<float>&, const AddressSample&,
+                                   std::vector<TraversalOutcome>*, KernelRecord*, std::uint64_t);
+template void CollideBatchRecorded(const FlatBoxTree<double>&, const std::vector<Obb<double>>&,
+                                   const CollisionOptions<double>&, const AddressSample&,
+                                   std::vector<TraversalOutcome>*, KernelRecord*, std::uint64_t);
 
 bool KeepsSphereExitContract(const MicroProgram& program, std::string* why) {
   if (!program.has_loop()) return Fail(why, "program '" + program.name() + "' has no loop: section");
@@ -112,13 +263,14 @@ bool KeepsSphereExitContract(const MicroProgram& program, std::string* why) {
   return true;
 }
 
-KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program) {
+KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program,
+                                const AddressSample& sample) {
   if (batch.robot_model != CollisionRobotModel::kSpheres)
     throw std::invalid_argument("SphereKernelRecord: an OBB batch is priced by SactKernelRecord");
   if (!program) program = ShippedStepProgram(StepProgramKind::kSphereTest);
   std::string why;
   if (!KeepsSphereExitContract(*program, &why)) throw std::invalid_argument("SphereKernelRecord: " + why);
-  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, [](const NodeVisit& v) {
+  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, sample, [](const NodeVisit& v) {
     return v.overlaps() ? kNoExit : std::uint8_t{0};
   });
 }

@@ -26,6 +26,7 @@
 #include <memory>
 #include <string>
 
+#include "robocore/address_sample.h"
 #include "robocore/collision/tree_collision.h"
 #include "robocore/kernel_record.h"
 
@@ -33,6 +34,7 @@ namespace rc {
 
 // The node array the batch fetched from, as a record region.
 MemoryRegion TreeNodeRegion(const CollisionBatch& batch);
+MemoryRegion TreeNodeRegion(std::uint64_t base_address, std::uint32_t node_bytes, std::uint64_t node_count);
 
 // True if `program` keeps the SACT exit contract: a loop whose RETURN_IF #k
 // (k = 0..14) comes after the micro-op that tests axis k (BOX k for
@@ -40,11 +42,35 @@ MemoryRegion TreeNodeRegion(const CollisionBatch& batch);
 // false, with the reason in `why`.
 bool KeepsSactExitContract(const MicroProgram& program, std::string* why);
 
+// Node counts and exits are kept for every query; `sample` says whose
+// addresses are kept (robocore/address_sample.h; the default keeps every
+// query's). A sampled record also counts the sectors the whole batch
+// touched (every sector of every fetched node), as the memory replay's
+// estimate of the unsampled SMs needs (backends/memory_replay.h).
+//
 // Throws std::invalid_argument if the batch is not an OBB batch, used
 // sphere pre-tests, or `program` (default: the shipped SACT program) does
 // not keep the SACT exit contract.
 KernelRecord SactKernelRecord(const CollisionBatch& batch,
-                              std::shared_ptr<const MicroProgram> program = nullptr);
+                              std::shared_ptr<const MicroProgram> program = nullptr,
+                              const AddressSample& sample = AddressSample{});
+
+// CollideBatch and SactKernelRecord in one pass, without keeping the visits
+// (8 bytes each): the same outcomes, and, when `record` is given, the record
+// SactKernelRecord(CollideBatch(tree, obbs, options, base_address), nullptr,
+// sample) returns, array for array. Parallel with OpenMP over blocks of the
+// sample's placement (warp_size x warps_per_block queries); each block's
+// exits and kept addresses go to a buffer of its own, joined in launch
+// order, so neither the outcomes nor the record depend on the thread count.
+// Without `record`, only the outcomes (and their node counts) are computed.
+// Buffers in `outcomes` and `record` are reused. Throws
+// std::invalid_argument for invalid SACT options or sphere pre-tests (the
+// SACT program has no sphere section).
+template <typename Scalar>
+void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                          const CollisionOptions<Scalar>& options, const AddressSample& sample,
+                          std::vector<TraversalOutcome>* outcomes, KernelRecord* record,
+                          std::uint64_t base_address = kDefaultTreeBase);
 
 // True if `program` keeps the sphere exit contract: a loop with exactly one
 // RETURN_IF (#0: the sphere misses the node) and no SACT micro-op.
@@ -54,7 +80,8 @@ bool KeepsSphereExitContract(const MicroProgram& program, std::string* why);
 // (CollideSphereBatch) or `program` (default: the shipped sphere program)
 // does not keep the sphere exit contract.
 KernelRecord SphereKernelRecord(const CollisionBatch& batch,
-                                std::shared_ptr<const MicroProgram> program = nullptr);
+                                std::shared_ptr<const MicroProgram> program = nullptr,
+                                const AddressSample& sample = AddressSample{});
 
 // The same fetches with another step program and every node exit passed
 // through `remap` (an exit of the shipped program, or kNoExit, to an exit of

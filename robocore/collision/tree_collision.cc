@@ -14,18 +14,38 @@ TraversalOrder ParseTraversalOrder(const std::string& name) {
   throw std::invalid_argument("traversal order '" + name + "': expected dfs or bfs");
 }
 
+namespace {
+
+// One query: its OBB prepared once (PrepareSactObb), then one SACT per
+// visited node.
 template <typename Scalar>
-TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
-                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits) {
+TraversalOutcome CollidePrepared(const FlatBoxTree<Scalar>& tree, const SactPreparedObb<Scalar>& prepared,
+                                 TraversalOrder order, std::vector<NodeVisit>* visits,
+                                 std::vector<std::uint32_t>* scratch) {
   auto sact = [&](const FlatNode<Scalar>& node) {
-    const SactResult r = TestObbAabb(obb, node.box(), options.sact);
+    const SactResult r = TestPreparedObbAabb(prepared, node.box());
     NodeVisit v;
     v.exit = r.separating_axis;
     v.axes_tested = r.axes_tested;
     v.decided_by = r.decided_by;
     return v;
   };
-  return TraverseBoxTree(tree, options.order, sact, visits);
+  return TraverseBoxTree(tree, order, sact, visits, scratch);
+}
+
+}  // namespace
+
+template <typename Scalar>
+TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits) {
+  return CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, visits, nullptr);
+}
+
+template <typename Scalar>
+TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits,
+                            std::vector<std::uint32_t>* scratch) {
+  return CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, visits, scratch);
 }
 
 template <typename Scalar>
@@ -37,32 +57,49 @@ bool CollidesBruteForce(const std::vector<Aabb<Scalar>>& boxes, const Obb<Scalar
 }
 
 template <typename Scalar>
-CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
-                            const CollisionOptions<Scalar>& options, std::uint64_t base_address) {
+void CollideBatchInto(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                      const CollisionOptions<Scalar>& options, CollisionBatch* batch, std::uint64_t base_address) {
   std::string error;
   if (!options.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
-  CollisionBatch batch;
-  batch.base_address = base_address;
-  batch.node_bytes = tree.node_bytes();
-  batch.scalar_bytes = sizeof(Scalar);
-  batch.node_count = tree.nodes().size();
-  batch.sphere_pretests = options.sact.sphere_pretests;
-  batch.outcomes.reserve(obbs.size());
-  batch.visit_offsets.reserve(obbs.size() + 1);
+  batch->robot_model = CollisionRobotModel::kObb;
+  batch->base_address = base_address;
+  batch->node_bytes = tree.node_bytes();
+  batch->scalar_bytes = sizeof(Scalar);
+  batch->node_count = tree.nodes().size();
+  batch->sphere_pretests = options.sact.sphere_pretests;
+  batch->outcomes.clear();
+  batch->outcomes.reserve(obbs.size());
+  batch->visit_offsets.assign(1, 0);
+  batch->visit_offsets.reserve(obbs.size() + 1);
+  batch->visits.clear();
+  std::vector<std::uint32_t> scratch;
   for (const Obb<Scalar>& obb : obbs) {
-    batch.outcomes.push_back(CollideObb(tree, obb, options, &batch.visits));
-    batch.visit_offsets.push_back(batch.visits.size());
+    batch->outcomes.push_back(
+        CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, &batch->visits, &scratch));
+    batch->visit_offsets.push_back(batch->visits.size());
   }
+}
+
+template <typename Scalar>
+CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                            const CollisionOptions<Scalar>& options, std::uint64_t base_address) {
+  CollisionBatch batch;
+  CollideBatchInto(tree, obbs, options, &batch, base_address);
   return batch;
 }
 
 #define RC_INSTANTIATE(Scalar)                                                                           \
   template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                   \
                                        const CollisionOptions<Scalar>&, std::vector<NodeVisit>*);        \
+  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                   \
+                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*,         \
+                                       std::vector<std::uint32_t>*);                                     \
   template bool CollidesBruteForce(const std::vector<Aabb<Scalar>>&, const Obb<Scalar>&,                 \
                                    const SactOptions<Scalar>&);                                          \
   template CollisionBatch CollideBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,      \
-                                       const CollisionOptions<Scalar>&, std::uint64_t);
+                                       const CollisionOptions<Scalar>&, std::uint64_t);                  \
+  template void CollideBatchInto(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,            \
+                                 const CollisionOptions<Scalar>&, CollisionBatch*, std::uint64_t);
 RC_INSTANTIATE(float)
 RC_INSTANTIATE(double)
 #undef RC_INSTANTIATE

@@ -36,6 +36,12 @@ struct CollisionOptions {
 template <typename Scalar>
 TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits = nullptr);
+// The same with a reusable pending list (box_tree_traversal.h), for a caller
+// that runs many queries.
+template <typename Scalar>
+TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                            const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits,
+                            std::vector<std::uint32_t>* scratch);
 
 // Tests every box in order until one overlaps: what the tree must equal.
 template <typename Scalar>
@@ -65,5 +71,13 @@ struct CollisionBatch {
 template <typename Scalar>
 CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                             const CollisionOptions<Scalar>& options, std::uint64_t base_address = kDefaultTreeBase);
+
+// The same into `batch`, whose contents are replaced and whose buffers are
+// reused: a caller that launches many batches (a configuration space)
+// allocates and page-faults its visit buffer once instead of per launch.
+template <typename Scalar>
+void CollideBatchInto(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                      const CollisionOptions<Scalar>& options, CollisionBatch* batch,
+                      std::uint64_t base_address = kDefaultTreeBase);
 
 }  // namespace rc

@@ -147,6 +147,29 @@ TEST(CarribotCommand, EveryBackendPlansTheSamePathAndPricesEveryLaunch) {
             2);
 }
 
+// --offset moves start and goal by cells of the scaled map, after the
+// --map-scale multiplication: at scale 2, start 1,1 with offset 1,0 is cell
+// (3, 2), a cell no start X,Y can name (every scaled start is even).
+TEST(CarribotCommand, OffsetMovesStartAndGoalInScaledCells) {
+  test::TempDir dir;
+  const std::string map = dir.Write("open.map", "type octile\nheight 4\nwidth 6\nmap\n"
+                                                "......\n......\n......\n......\n");
+  const std::string timeline = dir.Path("t.csv");
+  ASSERT_EQ(RunCarribot({"--map", map, "--map-scale", "2", "--start", "1,1", "--goal", "4,2", "--offset", "1,0",
+                         "--timeline", timeline}),
+            0);
+  const CsvContents t = ReadCsv(timeline);
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(Cell(t, 0, "sx"), "3");
+  EXPECT_EQ(Cell(t, 0, "sy"), "2");
+  EXPECT_EQ(Cell(t, 0, "gx"), "9");
+  EXPECT_EQ(Cell(t, 0, "gy"), "4");
+  // Outside the 12 x 8 scaled map after the offset, and --offset without --start.
+  EXPECT_EQ(RunCarribot({"--map", map, "--map-scale", "2", "--start", "1,1", "--goal", "5,3", "--offset", "2,0"}), 2);
+  EXPECT_EQ(RunCarribot({"--map", map, "--start", "1,1", "--goal", "4,2", "--offset", "-2,0"}), 2);
+  EXPECT_EQ(RunCarribot({"--map", map, "--offset", "1,0"}), 2);
+}
+
 TEST(CarribotCommand, UsageErrorsExitWithTwo) {
   RC_REQUIRE_SHARED_DATA("movingai/den312d.map");
   test::TempDir dir;

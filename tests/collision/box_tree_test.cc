@@ -5,9 +5,12 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include "common/random_stream.h"
 #include "pair_generator.h"
 #include "robocore/collision/exact_overlap_reference.h"
+#include "robocore/collision/sact_kernel_record.h"
 #include "robocore/collision/sphere_robot.h"
 #include "robocore/collision/tree_collision.h"
 #include "scene_test_util.h"
@@ -102,6 +105,50 @@ TEST(TreeTraversal, FarFromTheOrigin) {
   for (Aabbd& b : scene) b.centre += Vec3(3e5, -7e5, 1e5);
   ExpectTreeEqualsBruteForce<double>(scene, 5000, 12);
   ExpectTreeEqualsBruteForce<float>(scene, 5000, 13);
+}
+
+// CollideBatchRecorded (the traversal and the record in one parallel pass)
+// returns the outcomes CollideBatch returns and the record SactKernelRecord
+// builds from that batch, array for array, with every address kept and with
+// one SM of 8 sampled, at 1 and 2 threads.
+TEST(TreeTraversal, RecordedBatchEqualsTheBatchsRecordAtAnyThreadCount) {
+  const std::vector<Aabbd> scene = test::RandomScene(80, 21);
+  const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
+  std::vector<Obbd> obbs;
+  for (std::uint64_t q = 0; q < 3000; ++q) obbs.push_back(test::SceneQuery(scene, 22, q));  // 12 blocks
+  const CollisionOptions<double> options;
+  const CollisionBatch batch = CollideBatch(flat, obbs, options, 0x2000);
+  AddressSample sampled;
+  sampled.sampled_sms = 1;
+  const int threads = omp_get_max_threads();
+  for (const AddressSample& sample : {AddressSample{}, sampled}) {
+    const KernelRecord expected = SactKernelRecord(batch, nullptr, sample);
+    for (const int t : {1, 2}) {
+      omp_set_num_threads(t);
+      std::vector<TraversalOutcome> outcomes;
+      KernelRecord record;
+      CollideBatchRecorded(flat, obbs, options, sample, &outcomes, &record, 0x2000);
+      ASSERT_EQ(outcomes.size(), obbs.size());
+      for (std::size_t q = 0; q < obbs.size(); ++q) {
+        EXPECT_EQ(outcomes[q].collides, batch.outcomes[q].collides) << q;
+        EXPECT_EQ(outcomes[q].nodes_visited, batch.outcomes[q].nodes_visited) << q;
+        EXPECT_EQ(outcomes[q].colliding_box, batch.outcomes[q].colliding_box) << q;
+      }
+      EXPECT_EQ(record.fetch_offsets, expected.fetch_offsets) << t;
+      EXPECT_EQ(record.node_exits, expected.node_exits) << t;
+      EXPECT_EQ(record.fetch_addresses, expected.fetch_addresses) << t;
+      EXPECT_EQ(record.address_offsets, expected.address_offsets) << t;
+      EXPECT_EQ(record.touched_sectors, expected.touched_sectors) << t;
+      EXPECT_EQ(record.node_bytes, expected.node_bytes);
+      EXPECT_EQ(record.scalar_bytes, expected.scalar_bytes);
+      EXPECT_EQ(record.step_kind, expected.step_kind);
+      ASSERT_EQ(record.regions.size(), expected.regions.size());
+      EXPECT_EQ(record.regions.front().base, expected.regions.front().base);
+      EXPECT_EQ(record.regions.front().elements, expected.regions.front().elements);
+    }
+    EXPECT_EQ(sample.KeepsAll(), expected.address_offsets.empty());
+  }
+  omp_set_num_threads(threads);
 }
 
 TEST(TreeTraversal, BatchRecordsEveryFetch) {

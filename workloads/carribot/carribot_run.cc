@@ -18,15 +18,26 @@ using Clock = std::chrono::steady_clock;
 constexpr std::size_t kSerialPricingQueries = 1024;  // launches up to 32 warps are priced on one thread
 double SecondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Every launch of the kernel checker, recorded and priced on every backend
-// into the ledger's open iteration, and counted.
+// Every launch of the kernel checker, counted and, with a ledger, recorded
+// in the kernel's pass (its addresses kept for the ledger's sample of SMs,
+// --replay-sms) and priced on every backend into the ledger's open
+// iteration. Without a ledger nothing is recorded: the checker's own
+// counters give the work.
 class LaunchRecorder {
  public:
-  LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : ledger_(ledger) {
-    checker.set_batch_observer([this](const CollisionBatch& batch) { Record(batch); });
+  LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : checker_(checker), ledger_(ledger) {
+    if (ledger)
+      checker.set_record_observer([this](const KernelRecord& record) { Record(record); }, ledger->RecordSample());
   }
   // The work since the last call.
   KernelWork TakeWork() {
+    if (!ledger_) {
+      const KernelWork total{checker_.batches(), checker_.kernel_queries(), checker_.node_visits()};
+      const KernelWork w{total.launches - taken_.launches, total.queries - taken_.queries,
+                         total.node_visits - taken_.node_visits};
+      taken_ = total;
+      return w;
+    }
     KernelWork w = open_;
     open_ = {};
     return w;
@@ -34,26 +45,27 @@ class LaunchRecorder {
   double pricing_wall_s() const { return pricing_wall_s_; }
 
  private:
-  void Record(const CollisionBatch& batch) {
+  void Record(const KernelRecord& record) {
     ++open_.launches;
-    open_.queries += batch.query_count();
-    open_.node_visits += batch.visits.size();
-    if (!ledger_) return;
+    open_.queries += record.query_count();
+    open_.node_visits += record.total_nodes();
     const auto t0 = Clock::now();
     // A per-expansion launch is a handful of queries (one warp): the cost
     // models' OpenMP loops over SMs then have nothing to share, and their
     // fork/join costs far more than the pricing (measured 60x on a loaded
     // 2-core machine). Prices do not depend on the thread count.
-    const bool small = batch.query_count() <= kSerialPricingQueries;
+    const bool small = record.query_count() <= kSerialPricingQueries;
     const int threads = omp_get_max_threads();
     if (small) omp_set_num_threads(1);
-    ledger_->AddLaunch(SactKernelRecord(batch));
+    ledger_->AddLaunch(record);
     if (small) omp_set_num_threads(threads);
     pricing_wall_s_ += SecondsSince(t0);
   }
 
+  const KernelFootprintChecker& checker_;
   BackendLedger* ledger_;
   KernelWork open_;
+  KernelWork taken_;  // the checker's counters at the last TakeWork (no ledger)
   double pricing_wall_s_ = 0.0;
 };
 

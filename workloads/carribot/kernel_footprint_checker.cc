@@ -64,12 +64,21 @@ void KernelFootprintChecker::CheckPoses(const FootprintPose* poses, std::size_t 
     slot_.push_back(i);
   }
   if (obbs_.empty()) return;
-  const CollisionBatch batch = CollideBatch(tree_, obbs_, options_);
-  for (std::size_t k = 0; k < slot_.size(); ++k) collides[slot_[k]] = batch.outcomes[k].collides ? 1 : 0;
   ++batches_;
-  kernel_queries_ += batch.query_count();
-  node_visits_ += batch.visits.size();
-  if (observer_) observer_(batch);
+  kernel_queries_ += obbs_.size();
+  if (observer_) {
+    CollideBatchInto(tree_, obbs_, options_, &batch_);
+    for (std::size_t k = 0; k < slot_.size(); ++k) collides[slot_[k]] = batch_.outcomes[k].collides ? 1 : 0;
+    node_visits_ += batch_.visits.size();
+    observer_(batch_);
+    return;
+  }
+  CollideBatchRecorded(tree_, obbs_, options_, sample_, &outcomes_, record_observer_ ? &record_ : nullptr);
+  for (std::size_t k = 0; k < slot_.size(); ++k) {
+    collides[slot_[k]] = outcomes_[k].collides ? 1 : 0;
+    node_visits_ += outcomes_[k].nodes_visited;
+  }
+  if (record_observer_) record_observer_(record_);
 }
 
 }  // namespace rc

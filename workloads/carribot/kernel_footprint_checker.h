@@ -2,9 +2,16 @@
 // The FootprintChecker that runs on the collision kernel: every pose becomes
 // an OBB (the footprint rectangle, zero height) and is tested against the
 // map's quadtree of blocked cells by the staged SACT (robocore/collision/
-// tree_collision.h). One CheckPoses call is one kernel launch (one
-// CollisionBatch); an observer receives every batch, so the caller can
-// record it and price it on the modelled backends (carribot_pricing.h).
+// tree_collision.h). One CheckPoses call is one kernel launch. A caller that
+// prices the launches on the modelled backends gets each one as:
+//  - a KernelRecord (set_record_observer): recorded in the kernel's own pass
+//    (CollideBatchRecorded), parallel over the GPU's blocks of queries,
+//    keeping the addresses of the queries a sample names; what carribot_run
+//    uses;
+//  - or a CollisionBatch with every visit (set_batch_observer), for callers
+//    that want the visits themselves.
+// With neither, a launch computes the outcomes and node counts only (in
+// parallel) and keeps no visits.
 //
 // Exactness (it must equal RasterizedFootprintChecker on every lattice pose,
 // tests/carribot/kernel_footprint_checker_test.cc):
@@ -39,6 +46,7 @@
 #include <functional>
 
 #include "maps/occupancy_grid.h"
+#include "robocore/collision/sact_kernel_record.h"
 #include "robocore/collision/tree_collision.h"
 #include "workloads/carribot/footprint_checker.h"
 
@@ -47,6 +55,7 @@ namespace rc {
 class KernelFootprintChecker final : public FootprintChecker {
  public:
   using BatchObserver = std::function<void(const CollisionBatch&)>;
+  using RecordObserver = std::function<void(const KernelRecord&)>;
 
   explicit KernelFootprintChecker(const OccupancyGrid& grid);
 
@@ -54,8 +63,15 @@ class KernelFootprintChecker final : public FootprintChecker {
   void CheckPoses(const FootprintPose* poses, std::size_t count, std::uint8_t* collides) override;
   std::uint64_t poses_checked() const override { return poses_checked_; }
 
-  // Called with every launched batch (null: none).
+  // Called with every launched batch (null: none). Takes precedence over a
+  // record observer.
   void set_batch_observer(BatchObserver observer) { observer_ = std::move(observer); }
+  // Called with every launch's record, whose addresses are kept for the
+  // queries `sample` names (robocore/address_sample.h; null observer: none).
+  void set_record_observer(RecordObserver observer, const AddressSample& sample = AddressSample{}) {
+    record_observer_ = std::move(observer);
+    sample_ = sample;
+  }
 
   const FlatBoxTree<double>& tree() const { return tree_; }
   std::uint64_t batches() const { return batches_; }          // kernel launches
@@ -68,8 +84,13 @@ class KernelFootprintChecker final : public FootprintChecker {
   FlatBoxTree<double> tree_;
   CollisionOptions<double> options_;
   BatchObserver observer_;
+  RecordObserver record_observer_;
+  AddressSample sample_;
   std::vector<Obbd> obbs_;        // reused between launches
   std::vector<std::size_t> slot_;  // pose index of each OBB
+  CollisionBatch batch_;           // the last launch (batch observer); its buffers are reused
+  std::vector<TraversalOutcome> outcomes_;
+  KernelRecord record_;            // the last launch (record observer)
   std::uint64_t poses_checked_ = 0;
   std::uint64_t batches_ = 0;
   std::uint64_t kernel_queries_ = 0;

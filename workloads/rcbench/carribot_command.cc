@@ -46,6 +46,7 @@ struct CarribotCli {
   int map_scale = 1;
   long scenario = -1;
   std::vector<int> start, goal;
+  std::vector<int> offset;  // cells of the scaled map, added to start and goal after --map-scale
   int start_heading = kAnyHeading, goal_heading = kAnyHeading;
   double weight = 1.0;
   std::string footprint;  // "WxL" in metres
@@ -107,8 +108,16 @@ std::vector<Query> MakeQueries(const CarribotCli& cli, const OccupancyGrid& orig
         throw UsageError(std::string(name) + " " + std::to_string(p.x) + "," + std::to_string(p.y) +
                          " is outside the " + std::to_string(original.size_x()) + " x " +
                          std::to_string(original.size_y()) + " map");
-    queries.push_back({0, std::nullopt, {start.x * s, start.y * s, start.heading},
-                       {goal.x * s, goal.y * s, goal.heading}, std::nullopt, "query"});
+    const int dx = cli.offset.empty() ? 0 : cli.offset[0], dy = cli.offset.empty() ? 0 : cli.offset[1];
+    const GridPose scaled_start{start.x * s + dx, start.y * s + dy, start.heading};
+    const GridPose scaled_goal{goal.x * s + dx, goal.y * s + dy, goal.heading};
+    const long size_x = static_cast<long>(original.size_x()) * s, size_y = static_cast<long>(original.size_y()) * s;
+    for (const auto& [name, p] : {std::pair{"--start", scaled_start}, std::pair{"--goal", scaled_goal}})
+      if (p.x < 0 || p.y < 0 || p.x >= size_x || p.y >= size_y)
+        throw UsageError(std::string(name) + " with --offset " + std::to_string(dx) + "," + std::to_string(dy) +
+                         " is cell " + std::to_string(p.x) + "," + std::to_string(p.y) + ", outside the " +
+                         std::to_string(size_x) + " x " + std::to_string(size_y) + " scaled map");
+    queries.push_back({0, std::nullopt, scaled_start, scaled_goal, std::nullopt, "query"});
     return queries;
   }
   const MovingAiScenarioFile file = ReadMovingAiScenarios(cli.scen_path);
@@ -272,7 +281,9 @@ void AddCarribotCommand(CLI::App& app) {
   cmd->add_option("--scen", cli->scen_path, "MovingAI scenario file (.scen); plans every scenario unless --scenario");
   cmd->add_option("--scenario", cli->scenario, "Plan only scenario I of --scen (index, 0-based, in file order); default: every scenario")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--start", cli->start, "Start cell X,Y (cells: column, row of the map)")->expected(2)->delimiter(',');
+  auto* start = cmd->add_option("--start", cli->start, "Start cell X,Y (cells: column, row of the map)")
+                    ->expected(2)
+                    ->delimiter(',');
   cmd->add_option("--goal", cli->goal, "Goal cell X,Y (cells: column, row of the map)")->expected(2)->delimiter(',');
   cmd->add_option("--weight", cli->weight, "Heuristic weight (unitless, >= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
       ->capture_default_str();
@@ -310,6 +321,12 @@ void AddCarribotCommand(CLI::App& app) {
                   "Split every cell into NxN cells (count N; RoWild's --scale-map); start and goal cells are multiplied by N")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
+  cmd->add_option("--offset", cli->offset,
+                  "Cells DX,DY of the scaled map added to --start and --goal after the --map-scale multiplication "
+                  "(cells; e.g. 5,2 puts a 10x4-cell car's centre where RoWild puts its corner, at any scale)")
+      ->expected(2)
+      ->delimiter(',')
+      ->needs(start);
   cmd->add_option("--timeline", cli->timeline_path, "Write one CSV row per query here");
   cmd->add_option("--path", cli->path_path, "Write the path (cells and metres, CSV) of a single query here");
   cmd->add_option("--plot", cli->plot_path, "Write a PNG of a single query's path on the map here");
