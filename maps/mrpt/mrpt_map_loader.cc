@@ -12,24 +12,35 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include "common/input_error.h"
+#include "maps/grid_size_limits.h"
 #include "maps/value_convention.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
 namespace rc {
 namespace {
 
-MrptGridMap FromMrpt(const mrpt::maps::COccupancyGridMap2D& source, const std::string& path) {
-  const int size_x = static_cast<int>(source.getSizeX());
-  const int size_y = static_cast<int>(source.getSizeY());
+MrptGridMap FromMrpt(const mrpt::maps::COccupancyGridMap2D& source, const std::string& path,
+                     const ProbabilityThresholds& thresholds) {
+  const long size_x = static_cast<long>(source.getSizeX());
+  const long size_y = static_cast<long>(source.getSizeY());
   if (size_x <= 0 || size_y <= 0) throw InputError(path, 0, "size", "the MRPT grid has no cells");
+  CheckMapSize(path, 0, "size", size_x, size_y);
+  const double resolution_m = source.getResolution();
+  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m))
+    throw InputError(path, 0, "resolution", "must be a positive number of metres, got " + std::to_string(resolution_m));
+  if (!std::isfinite(source.getXMin()) || !std::isfinite(source.getYMin()))
+    throw InputError(path, 0, "x_min/y_min", "the grid's origin is not finite");
   MrptGridMap out;
-  out.grid = OccupancyGrid(size_x, size_y, source.getResolution(), CellState::kUnknown);
+  out.grid = OccupancyGrid(static_cast<int>(size_x), static_cast<int>(size_y), resolution_m, CellState::kUnknown);
   out.x_min_m = source.getXMin();
   out.y_min_m = source.getYMin();
-  const ProbabilityThresholds thresholds;
+  out.thresholds = thresholds;
   for (int cx = 0; cx < size_x; ++cx)
-    for (int cy = 0; cy < size_y; ++cy)
-      out.grid.Set(cx, cy, ClassifyProbability(source.getCell(cx, cy), ValueConvention::kProbabilityFree, thresholds));
+    for (int cy = 0; cy < size_y; ++cy) {
+      const CellClass c = ClassifyProbabilityValue(source.getCell(cx, cy), ValueConvention::kProbabilityFree, thresholds);
+      out.cell_classes.Add(c);
+      out.grid.Set(cx, cy, StateOf(c));
+    }
   return out;
 }
 
@@ -54,13 +65,15 @@ void ReadWholeArchive(const std::string& path, const std::string& what, T& objec
 
 }  // namespace
 
-MrptGridMap LoadMrptGridmap(const std::string& path) {
+MrptGridMap LoadMrptGridmap(const std::string& path, const ProbabilityThresholds& thresholds) {
+  CheckProbabilityThresholds(thresholds);
   mrpt::maps::COccupancyGridMap2D grid;
   ReadWholeArchive(path, "gridmap", grid);
-  return FromMrpt(grid, path);
+  return FromMrpt(grid, path, thresholds);
 }
 
-MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m) {
+MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m, const ProbabilityThresholds& thresholds) {
+  CheckProbabilityThresholds(thresholds);
   if (!(resolution_m > 0.0) || !std::isfinite(resolution_m))
     throw UsageError("simplemap grid resolution must be a positive number of metres");
   mrpt::maps::CSimpleMap simple;
@@ -77,7 +90,7 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m) {
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + MrptMessage(e.what()));
   }
-  return FromMrpt(grid, path);
+  return FromMrpt(grid, path, thresholds);
 }
 
 void ToMrptGrid(const OccupancyGrid& grid, double x_min_m, double y_min_m, mrpt::maps::COccupancyGridMap2D& out) {
@@ -116,7 +129,8 @@ void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double 
 
 std::string DescribeMrptGridMap(const MrptGridMap& map) {
   std::ostringstream text;
-  text << "MRPT cells are P(free): occupied if 1 - P(free) >= 0.65, free if <= 0.196, else unknown; "
+  text << "MRPT cells are P(free): occupied if 1 - P(free) >= " << map.thresholds.occupied_thresh << ", free if <= "
+       << map.thresholds.free_thresh << ", else unknown; "
        << "map (x, y) = MRPT world (X, Y) - (x_min, y_min) = (X, Y) - (" << map.x_min_m << ", " << map.y_min_m
        << ") m";
   return text.str();
