@@ -177,12 +177,15 @@ class LaserRecordChecker {
     if (!options_.laser_offset_forward_m) {
       const bool flaser = kind_ == "FLASER";
       CheckMountOffset(reader, mount, trace_.geometry.offset_forward_m, options_.mount_tolerance,
-                       flaser ? "x/y" : "laser_x/laser_y", flaser ? "theta" : "laser_theta");
+                       flaser ? "x/y" : "laser_x/laser_y", flaser ? "theta" : "laser_theta",
+                       "the mount of the first laser record, line " + std::to_string(first_line_));
     }
     time_order_.Check(reader, record.scan.time_s, "timestamp");
     record.scan.source_line = reader.line_number();
     trace_.scans.push_back(std::move(record.scan));
   }
+
+  const TimeGlitchStats& time_glitches() const { return time_order_.glitches(); }
 
  private:
   void Fix(const LineReader& reader, const LaserRecord& record) {
@@ -205,7 +208,7 @@ class LaserRecordChecker {
     }
     g.offset_forward_m = options_.laser_offset_forward_m
                              ? *options_.laser_offset_forward_m
-                             : MeasureMountOffset(record.scan.odometry, record.laser_pose).forward_m;
+                             : RoundMountOffset(MeasureMountOffset(record.scan.odometry, record.laser_pose).forward_m);
   }
 
   void CheckSameGeometry(const LineReader& reader, const LaserRecord& record) const {
@@ -272,6 +275,7 @@ SensorTrace ReadCarmenLog(const std::string& path, const CarmenLogOptions& optio
   }
   RequireLaserRecords(trace, "FLASER or ROBOTLASER1 records");
   local_stats.laser_records = static_cast<long>(trace.scans.size());
+  local_stats.time_glitches = checker.time_glitches();
   if (stats) *stats = local_stats;
   return trace;
 }

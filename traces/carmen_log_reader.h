@@ -59,7 +59,8 @@ struct CarmenLogOptions {
 
 // Throws InputError (file, 1-based line, field) on a malformed message, a
 // geometry or beam count that changes between laser records, mixed FLASER and
-// ROBOTLASER1 records, laser records out of time order, an inconsistent
+// ROBOTLASER1 records, a laser record more than a clock glitch earlier than
+// the one before (record_fields.h), an inconsistent
 // mount, or a log without laser records. Nothing is repaired.
 SensorTrace ReadCarmenLog(const std::string& path, const CarmenLogOptions& options = {},
                           TraceReadStats* stats = nullptr);

@@ -49,7 +49,8 @@ SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, Tr
   trace.source_path = path;
   trace.format = "cmu";
   trace.geometry = CmuLaserGeometry();
-  trace.geometry.offset_forward_m = options.laser_offset_forward_m;
+  if (options.laser_offset_forward_m) trace.geometry.offset_forward_m = *options.laser_offset_forward_m;
+  std::string mount_source;  // where the mount came from, once known
 
   TraceReadStats local_stats;
   LaserTimeOrder time_order;
@@ -73,8 +74,14 @@ SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, Tr
     scan.odometry = ParsePoseCm(reader, fields, 1, "x", "y", "theta");
     const Pose2 laser = ParsePoseCm(reader, fields, 4, "xl", "yl", "thetal");
     const LaserMountOffset mount = MeasureMountOffset(scan.odometry, laser);
-    CheckMountOffset(reader, mount, options.laser_offset_forward_m, options.mount_tolerance, "xl/yl",
-                     "thetal");
+    if (!options.laser_offset_forward_m) {
+      if (mount_source.empty()) {
+        trace.geometry.offset_forward_m = RoundMountOffset(mount.forward_m);
+        mount_source = "the mount of the first L record, line " + std::to_string(reader.line_number());
+      }
+      CheckMountOffset(reader, mount, trace.geometry.offset_forward_m, options.mount_tolerance, "xl/yl", "thetal",
+                       mount_source);
+    }
     local_stats.laser_mount.Add(mount);
     scan.ranges_m.resize(kBeams);
     for (std::size_t b = 0; b < kBeams; ++b)
@@ -85,6 +92,7 @@ SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, Tr
   }
   RequireLaserRecords(trace, "L records");
   local_stats.laser_records = static_cast<long>(trace.scans.size());
+  local_stats.time_glitches = time_order.glitches();
   if (stats) *stats = local_stats;
   return trace;
 }

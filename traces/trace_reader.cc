@@ -66,10 +66,16 @@ SensorTrace ReadTrace(const std::string& path, const TraceReadOptions& options, 
     throw UsageError("expected beam count must be >= 0 (0 = take it from the format)");
   const std::string format = requested == "auto" ? DetectTraceFormat(path) : requested;
 
+  if (options.laser_offset_forward_m && !(*options.laser_offset_forward_m >= 0.0 && *options.laser_offset_forward_m <= 10.0))
+    throw UsageError("--laser-offset must be in [0, 10] m");
+  CmuLogOptions cmu = options.cmu;
+  CarmenLogOptions carmen = options.carmen;
+  if (options.laser_offset_forward_m) cmu.laser_offset_forward_m = carmen.laser_offset_forward_m = options.laser_offset_forward_m;
   SensorTrace trace;
-  if (format == "cmu") trace = ReadCmuLog(path, options.cmu, stats);
+  if (format == "cmu") trace = ReadCmuLog(path, cmu, stats);
   else if (format == "rowild") trace = ReadRowildLog(path, stats);
-  else trace = ReadCarmenLog(path, options.carmen, stats);
+  else trace = ReadCarmenLog(path, carmen, stats);
+  if (options.laser_offset_forward_m) trace.geometry.offset_forward_m = *options.laser_offset_forward_m;
 
   if (options.expected_beam_count != 0 && trace.geometry.beam_count != options.expected_beam_count)
     throw InputError(path, trace.scans.front().source_line, "beam count",

@@ -1,6 +1,7 @@
 #pragma once
 // One entry point for every supported trace format, so the command line and
 // the workloads need not know which reader a file needs.
+#include <optional>
 #include <string>
 
 #include "traces/carmen_log_reader.h"
@@ -18,6 +19,11 @@ struct TraceReadOptions {
   // beam count is an InputError (e.g. a 361-beam CARMEN log given to a run
   // configured for the 180-beam CMU laser).
   int expected_beam_count = 0;
+  // Set: the laser's forward offset (m) for every format, instead of the
+  // mount the file's laser poses state (CMU, CARMEN) or the Wean robot's
+  // 0.25 m (RoWild, whose lines carry no laser pose). Overrides cmu and
+  // carmen's own setting.
+  std::optional<double> laser_offset_forward_m;
   CmuLogOptions cmu;
   CarmenLogOptions carmen;
 };

@@ -23,6 +23,11 @@ SensorTrace ReadTraceWithRawlog(const std::string& path, const TraceReadOptions&
     throw InputError(path, 0, "beam count",
                      "the rawlog has " + std::to_string(trace.geometry.beam_count) + " beams per scan, expected " +
                          std::to_string(options.expected_beam_count));
+  if (options.laser_offset_forward_m) {
+    if (!(*options.laser_offset_forward_m >= 0.0 && *options.laser_offset_forward_m <= 10.0))
+      throw UsageError("--laser-offset must be in [0, 10] m");
+    trace.geometry.offset_forward_m = *options.laser_offset_forward_m;
+  }
   return trace;
 }
 
