@@ -46,7 +46,7 @@ bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, con
 
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress) {
+                         const ProgressCallback& progress, const RowCallback& on_row) {
   std::string error;
   if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
   if (!settings.likelihood.IsValid(&error)) throw std::invalid_argument("likelihood model: " + error);
@@ -142,6 +142,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
+    if (on_row) on_row(row);
     if (progress) progress(k + 1, count);
   }
   const bool non_finite = result.summary.any_non_finite_weight;

@@ -1,5 +1,6 @@
 #include "workloads/delibot/mrpt/mrpt_localizer.h"
 
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
 
+#include "common/input_error.h"
 #include "maps/mrpt/mrpt_map_loader.h"
 #include "workloads/delibot/motion_model.h"
 #include "workloads/delibot/pose_estimate.h"
@@ -135,7 +137,7 @@ mrpt::poses::CPose2D Between(const Pose2& from, const Pose2& to) {
 
 DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                              const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress, const RowCallback& on_row) {
   std::string error;
   if (!settings.mcl.IsValid(&error)) throw std::invalid_argument(error);
   if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
@@ -150,7 +152,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
         std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
         std::pair{o.max_particle_count != 0, "--max-particles"},
         std::pair{o.injection_check_updates != 0, "--injection-check"}})
-    if (given) throw std::invalid_argument(std::string("the MRPT engine has no counterpart of ") + option);
+    if (given) throw UsageError(std::string("the MRPT engine has no counterpart of ") + option);
   if (ground_truth && ground_truth->size() != trace.scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +
                                 std::to_string(trace.scans.size()) + " laser records");
@@ -223,6 +225,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
                          ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
+    if (on_row) on_row(row);
     if (progress) progress(k + 1, count);
   }
   const bool non_finite = result.summary.any_non_finite_weight;
