@@ -9,10 +9,14 @@
 // O records are validated and counted but not returned: the L pose is
 // already the odometry interpolated at the scan time, which is all the
 // motion model needs.
+#include <fstream>
 #include <optional>
 #include <string>
 
+#include "common/text_fields.h"
 #include "traces/laser_mount.h"
+#include "traces/laser_record_stream.h"
+#include "traces/record_fields.h"
 #include "traces/sensor_trace.h"
 #include "traces/trace_read_stats.h"
 
@@ -38,5 +42,24 @@ struct CmuLogOptions {
 // records. Nothing is repaired.
 SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options = {},
                        TraceReadStats* stats = nullptr);
+
+// The same reader, one L record at a time.
+class CmuLogStream final : public LaserRecordStream {
+ public:
+  // Throws InputError if the file cannot be opened.
+  CmuLogStream(const std::string& path, const CmuLogOptions& options);
+  bool Next(LaserScan& scan) override;
+  const LaserGeometry& geometry() const override { return geometry_; }
+  const TraceReadStats& stats() const override { return stats_; }
+
+ private:
+  std::ifstream in_;
+  LineReader reader_;
+  CmuLogOptions options_;
+  LaserGeometry geometry_;
+  std::string mount_source_;  // where the mount came from, once known
+  LaserTimeOrder time_order_;
+  TraceReadStats stats_;
+};
 
 }  // namespace rc

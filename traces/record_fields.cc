@@ -53,10 +53,14 @@ void LaserTimeOrder::Check(const LineReader& reader, double time_s, const std::s
   previous_line_ = reader.line_number();
 }
 
-void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind) {
-  if (trace.scans.empty())
-    throw InputError(trace.source_path, 0, record_kind,
+void RequireLaserRecords(const std::string& path, std::size_t count, const std::string& record_kind) {
+  if (count == 0)
+    throw InputError(path, 0, record_kind,
                      "the trace has no laser records (" + record_kind + "), nothing to localize with");
+}
+
+void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind) {
+  RequireLaserRecords(trace.source_path, trace.scans.size(), record_kind);
 }
 
 }  // namespace rc

@@ -69,5 +69,6 @@ class LaserTimeOrder {
 // A trace without laser records cannot drive MCL: throws InputError for the
 // whole file (line 0) naming the record kind that was missing.
 void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind);
+void RequireLaserRecords(const std::string& path, std::size_t count, const std::string& record_kind);
 
 }  // namespace rc

@@ -23,12 +23,21 @@ SensorTrace ReadTraceWithRawlog(const std::string& path, const TraceReadOptions&
     throw InputError(path, 0, "beam count",
                      "the rawlog has " + std::to_string(trace.geometry.beam_count) + " beams per scan, expected " +
                          std::to_string(options.expected_beam_count));
-  if (options.laser_offset_forward_m) {
-    if (!(*options.laser_offset_forward_m >= 0.0 && *options.laser_offset_forward_m <= 10.0))
-      throw UsageError("--laser-offset must be in [0, 10] m");
-    trace.geometry.offset_forward_m = *options.laser_offset_forward_m;
-  }
+  ApplyLaserOffset(options, trace.geometry);
   return trace;
+}
+
+std::unique_ptr<ScanSource> OpenTraceStreamWithRawlog(const std::string& path, const TraceReadOptions& options,
+                                                      const RawlogReadOptions& rawlog, TraceReadStats* stats) {
+  const bool is_rawlog = options.format == "rawlog" || (options.format == "auto" && HasRawlogExtension(path));
+  if (!is_rawlog) {
+    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" &&
+        options.format != "carmen")
+      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() +
+                       ")");
+    return OpenTraceStream(path, options, stats);
+  }
+  return std::make_unique<OwningScanSource>(ReadTraceWithRawlog(path, options, rawlog, stats));
 }
 
 }  // namespace rc

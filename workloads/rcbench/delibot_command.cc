@@ -83,7 +83,9 @@ void Run(DelibotCli& cli) {
   DelibotProvenance provenance;
   provenance.threads = omp_get_max_threads();
   OccupancyGrid grid;
-  SensorTrace trace;
+  // The laser records: streamed from the trace file (read once first to
+  // validate it), so memory does not grow with the trace's length.
+  std::unique_ptr<ScanSource> scans;
   std::vector<Pose2> truth;
   bool have_truth = false;
   if (cli.map_path.empty()) {
@@ -91,7 +93,7 @@ void Run(DelibotCli& cli) {
     std::cout << "demo: generated office map and simulated trace written to out/demo/ ("
               << demo.trace.scans.size() << " laser records)\n";
     grid = demo.grid;
-    trace = demo.trace;
+    scans = std::make_unique<OwningScanSource>(demo.trace);
     for (const auto& p : demo.ground_truth) truth.push_back(p.pose);
     have_truth = true;
     provenance = {demo.map_path, "ros", "generated office map (occupied 0, free 254, unknown 205)",
@@ -112,16 +114,16 @@ void Run(DelibotCli& cli) {
     trace_options.format = cli.trace_format;
     if (cli.laser_offset_m >= 0.0) trace_options.laser_offset_forward_m = cli.laser_offset_m;
     TraceReadStats trace_stats;
-    trace = ReadTraceWithRawlog(cli.trace_path, trace_options, {}, &trace_stats);
-    PrintTraceLines(std::cout, std::cerr, cli.trace_path, trace, trace_stats, cli.laser_offset_m >= 0.0);
+    scans = OpenTraceStreamWithRawlog(cli.trace_path, trace_options, {}, &trace_stats);
+    PrintTraceLines(std::cout, std::cerr, *scans, trace_stats, cli.laser_offset_m >= 0.0);
     provenance.map_path = cli.map_path;
     provenance.map_format = loaded.format;
     provenance.map_convention = loaded.value_convention;
     provenance.trace_path = cli.trace_path;
-    provenance.trace_format = trace.format;
+    provenance.trace_format = scans->format();
     if (!cli.ground_truth_path.empty()) {
       const GroundTruth gt = ReadGroundTruth(cli.ground_truth_path);
-      CheckGroundTruthMatches(trace, gt);
+      CheckGroundTruthMatches(*scans, gt);
       for (const auto& p : gt.poses) truth.push_back(p.pose);
       have_truth = true;
       provenance.ground_truth_path = cli.ground_truth_path;
@@ -133,14 +135,15 @@ void Run(DelibotCli& cli) {
             << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
             << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
             << provenance.threads << " thread(s)\n";
-  const std::uint64_t need = DelibotMemoryLowerBound(s, trace.geometry.beam_count);
+  const LaserGeometry& geometry = scans->geometry();
+  const std::uint64_t need = DelibotMemoryLowerBound(s, geometry.beam_count);
   if (need > MemoryCapBytes())
     throw UsageError("--particles " + std::to_string(s.mcl.particle_count) + " with " +
-                     std::to_string(s.mcl.beams.Count(trace.geometry.beam_count)) + " beams: the filter " +
+                     std::to_string(s.mcl.beams.Count(geometry.beam_count)) + " beams: the filter " +
                      DescribeOverCap(need));
-  if (s.mcl.beams.beam_step > trace.geometry.beam_count)
+  if (s.mcl.beams.beam_step > geometry.beam_count)
     throw UsageError("--beam-step " + std::to_string(s.mcl.beams.beam_step) + " exceeds the trace's " +
-                     std::to_string(trace.geometry.beam_count) + " beams");
+                     std::to_string(geometry.beam_count) + " beams");
   // An output folder that cannot be made fails now, not after the run.
   if (!cli.summary_path.empty()) CreateParentFolders(cli.summary_path);
   // The timeline streams, one flushed row per record, under its incomplete
@@ -152,7 +155,7 @@ void Run(DelibotCli& cli) {
   {
     ProgressBar bar("delibot", !cli.quiet);
     result = RunDelibotEngine(
-        engine, grid, trace, have_truth ? &truth : nullptr, s,
+        engine, grid, *scans, have_truth ? &truth : nullptr, s,
         [&](std::size_t done, std::size_t total) { bar.Update(done, total); },
         [&](const DelibotRow& row) {
           if (timeline) timeline->Add(row);

@@ -5,13 +5,13 @@
 #include <ostream>
 #include <string>
 
-#include "traces/sensor_trace.h"
+#include "traces/scan_source.h"
 #include "traces/trace_read_stats.h"
 
 namespace rc {
 
 // `mount_given`: the mount came from --laser-offset.
-void PrintTraceLines(std::ostream& out, std::ostream& warnings, const std::string& path, const SensorTrace& trace,
+void PrintTraceLines(std::ostream& out, std::ostream& warnings, const ScanSource& trace,
                      const TraceReadStats& stats, bool mount_given);
 
 }  // namespace rc
