@@ -44,11 +44,48 @@ MrptGridMap FromMrpt(const mrpt::maps::COccupancyGridMap2D& source, const std::s
   return out;
 }
 
+// The counts and sizes MRPT would allocate from, checked against the bytes
+// that are there (tests/fuzz: a 79-byte simplemap claiming 10^9 keyframes
+// kept MRPT allocating for minutes). Each keyframe takes at least one byte;
+// a gridmap (versions 3 to 6 as MRPT writes them: bits per cell, size_x,
+// size_y, ...) stores size_x * size_y raw cells. Headers in another form
+// are left to MRPT, which reads formats we do not know.
+void CheckArchiveSizes(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
+  ArchiveObjectHead head;
+  if (!ReadArchiveObjectHead(bytes, &head)) return;
+  // MRPT matches a class by the name after its last "::" (so does this).
+  const std::size_t colons = head.class_name.rfind("::");
+  const std::string name = colons == std::string::npos ? head.class_name : head.class_name.substr(colons + 2);
+  if (what == "simplemap") {
+    if (name != "CSimpleMap" && name != "CSensFrameProbSequence") return;
+    const std::uint32_t keyframes = ArchiveUint32(bytes, head.data_offset, path, "keyframe count");
+    if (keyframes > bytes.size() - head.data_offset - 4)
+      throw InputError(path, 0, "keyframe count",
+                       std::to_string(keyframes) + " keyframes in " + std::to_string(bytes.size()) +
+                           " bytes: corrupt or truncated simplemap");
+    return;
+  }
+  if (name != "COccupancyGridMap2D") return;
+  if (head.version < 3 || head.version > 6 || head.data_offset + 9 > bytes.size()) return;
+  const unsigned bits_per_cell = bytes[head.data_offset];
+  if (bits_per_cell != 8 && bits_per_cell != 16) return;
+  const long size_x = ArchiveUint32(bytes, head.data_offset + 1, path, "size_x");
+  const long size_y = ArchiveUint32(bytes, head.data_offset + 5, path, "size_y");
+  CheckMapSize(path, 0, "size_x/size_y", size_x, size_y);
+  const std::uint64_t cell_bytes = static_cast<std::uint64_t>(size_x) * size_y * (bits_per_cell / 8);
+  if (cell_bytes > bytes.size())
+    throw InputError(path, 0, "size_x/size_y",
+                     std::to_string(size_x) + " x " + std::to_string(size_y) + " cells need " +
+                         std::to_string(cell_bytes) + " bytes; the archive holds " + std::to_string(bytes.size()) +
+                         ": corrupt or truncated gridmap");
+}
+
 // Deserializes one object of type T from the whole file, which must end
 // exactly where the object does.
 template <typename T>
 void ReadWholeArchive(const std::string& path, const std::string& what, T& object) {
   const std::vector<unsigned char> bytes = ReadArchiveBytes(path, what);
+  CheckArchiveSizes(bytes, path, what);
   mrpt::io::CMemoryStream memory;
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
