@@ -11,7 +11,9 @@
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include "common/allocation_budget.h"
 #include "common/input_error.h"
+#include "common/memory_cap.h"
 #include "maps/grid_size_limits.h"
 #include "maps/value_convention.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
@@ -89,11 +91,17 @@ void ReadWholeArchive(const std::string& path, const std::string& what, T& objec
   mrpt::io::CMemoryStream memory;
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
+  // MRPT sizes buffers from the counts the archive declares.
+  const AllocationBudget budget(ParseBudgetBytes(bytes.size()));
   try {
     archive >> object;
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
-                                      " bytes uncompressed): " + MrptMessage(e.what()));
+                                      " bytes uncompressed): " +
+                                      (budget.exceeded() ? "it declares sizes that would take more than " +
+                                                               DescribeBytes(ParseBudgetBytes(bytes.size())) +
+                                                               " of memory"
+                                                         : MrptMessage(e.what())));
   }
   if (memory.getPosition() != bytes.size())
     throw InputError(path, 0, "", std::to_string(bytes.size() - memory.getPosition()) +
@@ -123,7 +131,16 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m, cons
   grid.insertionOptions.maxOccupancyUpdateCertainty = 0.55f;
   grid.insertionOptions.considerInvalidRangesAsFreeSpace = true;
   try {
-    grid.loadFromSimpleMap(simple);
+    // The grid grows with the scans' extent: bounded by the memory cap.
+    const AllocationBudget budget(MemoryCapBytes());
+    try {
+      grid.loadFromSimpleMap(simple);
+    } catch (const std::exception& e) {
+      if (!budget.exceeded()) throw;
+      throw InputError(path, 0, "", "the grid built from the simplemap's scans " + DescribeOverCap(budget.requested_bytes()));
+    }
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + MrptMessage(e.what()));
   }

@@ -19,6 +19,8 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include "common/input_error.h"
+#include "common/allocation_budget.h"
+#include "common/memory_cap.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
 namespace rc {
@@ -231,6 +233,8 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
   auto archive = mrpt::serialization::archiveFrom(memory);
   RawlogParser parser(path, options, s);
   std::size_t entry = 0;
+  // MRPT sizes each object's buffers from the counts it declares.
+  const AllocationBudget budget(ParseBudgetBytes(bytes.size()));
   // Read object by object: MRPT's CRawlog helpers report a corrupt archive
   // as a silent end of file, which would turn a truncated log into a
   // shorter valid one. Here the only clean end is the last byte.
@@ -242,7 +246,10 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
     } catch (const std::exception& e) {
       throw InputError(path, 0, Entry(entry),
                        "corrupt or truncated rawlog at byte " + std::to_string(offset) + " of " +
-                           std::to_string(bytes.size()) + " (uncompressed): " + MrptMessage(e.what()));
+                           std::to_string(bytes.size()) + " (uncompressed): " +
+                           (budget.exceeded() ? "its objects declare sizes that would take more than " +
+                                                    DescribeBytes(ParseBudgetBytes(bytes.size())) + " of memory"
+                                              : MrptMessage(e.what())));
     }
     if (!object) parser.Fail("object", "a null object in the archive");
     parser.Handle(object, entry);
