@@ -10,6 +10,8 @@
 // which this file replaces (allocation_budget.cc); without a live budget it
 // is plain malloc.
 #include <cstdint>
+#include <exception>
+#include <stdexcept>
 
 namespace rc {
 
@@ -29,6 +31,40 @@ class AllocationBudget {
   std::uint64_t previous_requested_;
   bool previous_exceeded_;
 };
+
+// Thrown by ParseWithinBudget when a request was refused.
+class AllocationBudgetExceeded : public std::runtime_error {
+ public:
+  explicit AllocationBudgetExceeded(std::uint64_t budget_bytes)
+      : std::runtime_error("allocation budget exceeded"), budget_bytes_(budget_bytes) {}
+  std::uint64_t budget_bytes() const { return budget_bytes_; }
+
+ private:
+  std::uint64_t budget_bytes_;
+};
+
+// Runs parse() under a budget of `bytes` and lets any exception out only
+// after the budget has ended, so that the caller can build its message:
+// AllocationBudgetExceeded when a request was refused (whatever the parser
+// made of the std::bad_alloc), else the parser's own exception. (Handling
+// the exception while the exhausted budget is still alive fails every
+// allocation of the handler too: a tests/fuzz finding.)
+template <typename Parse>
+void ParseWithinBudget(std::uint64_t bytes, Parse&& parse) {
+  std::exception_ptr error;
+  bool exceeded = false;
+  {
+    const AllocationBudget budget(bytes);
+    try {
+      parse();
+    } catch (...) {
+      error = std::current_exception();
+      exceeded = budget.exceeded();
+    }
+  }
+  if (exceeded) throw AllocationBudgetExceeded(bytes);
+  if (error) std::rethrow_exception(error);
+}
 
 // The budget for parsing a file of `file_bytes` bytes: a parser needs about
 // as much memory as the data it reads, plus containers' growth and

@@ -92,16 +92,16 @@ void ReadWholeArchive(const std::string& path, const std::string& what, T& objec
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
   // MRPT sizes buffers from the counts the archive declares.
-  const AllocationBudget budget(ParseBudgetBytes(bytes.size()));
+  const std::uint64_t budget = ParseBudgetBytes(bytes.size());
   try {
-    archive >> object;
+    ParseWithinBudget(budget, [&] { archive >> object; });
+  } catch (const AllocationBudgetExceeded&) {
+    throw InputError(path, 0, "", "corrupt " + what + ": it declares sizes that would take more than " +
+                                      DescribeBytes(budget) + " of memory for " + std::to_string(bytes.size()) +
+                                      " bytes");
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
-                                      " bytes uncompressed): " +
-                                      (budget.exceeded() ? "it declares sizes that would take more than " +
-                                                               DescribeBytes(ParseBudgetBytes(bytes.size())) +
-                                                               " of memory"
-                                                         : MrptMessage(e.what())));
+                                      " bytes uncompressed): " + MrptMessage(e.what()));
   }
   if (memory.getPosition() != bytes.size())
     throw InputError(path, 0, "", std::to_string(bytes.size() - memory.getPosition()) +
@@ -132,15 +132,10 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m, cons
   grid.insertionOptions.considerInvalidRangesAsFreeSpace = true;
   try {
     // The grid grows with the scans' extent: bounded by the memory cap.
-    const AllocationBudget budget(MemoryCapBytes());
-    try {
-      grid.loadFromSimpleMap(simple);
-    } catch (const std::exception& e) {
-      if (!budget.exceeded()) throw;
-      throw InputError(path, 0, "", "the grid built from the simplemap's scans " + DescribeOverCap(budget.requested_bytes()));
-    }
-  } catch (const InputError&) {
-    throw;
+    ParseWithinBudget(MemoryCapBytes(), [&] { grid.loadFromSimpleMap(simple); });
+  } catch (const AllocationBudgetExceeded&) {
+    throw InputError(path, 0, "", "the grid built from the simplemap's scans needs more than the memory cap of " +
+                                      DescribeBytes(MemoryCapBytes()) + " (rcbench --max-memory)");
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + MrptMessage(e.what()));
   }

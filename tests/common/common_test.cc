@@ -76,6 +76,30 @@ TEST(AllocationBudget, RefusesTheRequestThatPassesItAndOnlyOnItsThread) {
   EXPECT_GE(ParseBudgetBytes(1000), kParseBaseBytes);
 }
 
+// A parser that turns the refusal into its own exception (as MRPT does)
+// still ends as AllocationBudgetExceeded, raised after the budget ended, so
+// the caller can allocate its message (a tests/fuzz finding: building it
+// inside the exhausted budget threw again and terminated the process).
+TEST(AllocationBudget, ParseWithinBudgetReportsTheRefusalAfterTheBudget) {
+  auto parser = [] {
+    try {
+      std::vector<double> huge(1u << 28);
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error("the parser's own message");
+    }
+  };
+  try {
+    ParseWithinBudget(1 << 20, parser);
+    ADD_FAILURE() << "no AllocationBudgetExceeded";
+  } catch (const AllocationBudgetExceeded& e) {
+    const std::string message = "corrupt archive: over " + std::to_string(e.budget_bytes()) + " bytes";
+    EXPECT_EQ(e.budget_bytes(), 1u << 20);
+    EXPECT_FALSE(message.empty());
+  }
+  EXPECT_THROW(ParseWithinBudget(1 << 20, [] { throw std::invalid_argument("own"); }), std::invalid_argument);
+  EXPECT_NO_THROW(ParseWithinBudget(1 << 20, [] { std::vector<char> small(100); }));
+}
+
 TEST(AtomicFile, CreatesFoldersAndLeavesNothingWithoutCommit) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "rc_atomic_file_test";
   std::filesystem::remove_all(dir);
