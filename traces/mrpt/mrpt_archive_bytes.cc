@@ -1,6 +1,7 @@
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
 #include <filesystem>
+#include <string_view>
 
 #include <mrpt/io/CFileGZInputStream.h>
 
@@ -71,6 +72,25 @@ std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t
   if (offset + 4 > bytes.size()) throw InputError(path, 0, field, "the archive ends before this field");
   return static_cast<std::uint32_t>(bytes[offset]) | static_cast<std::uint32_t>(bytes[offset + 1]) << 8 |
          static_cast<std::uint32_t>(bytes[offset + 2]) << 16 | static_cast<std::uint32_t>(bytes[offset + 3]) << 24;
+}
+
+void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
+  // Every object head of the class, in CArchive's format: length byte with
+  // the top bit set, the name, the version byte.
+  static const std::string kName = "mrpt::obs::CActionRobotMovement2D";
+  std::string head(1, static_cast<char>(0x80 | kName.size()));
+  head += kName;
+  const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  for (std::size_t at = all.find(head); at != std::string_view::npos; at = all.find(head, at + 1)) {
+    const std::size_t version_at = at + head.size();
+    if (version_at + 5 > bytes.size() || bytes[version_at] != 7) continue;
+    const std::uint32_t method = ArchiveUint32(bytes, version_at + 1, path, "estimationMethod");
+    if (method > 1)
+      throw InputError(path, 0, "estimationMethod",
+                       "the CActionRobotMovement2D at byte " + std::to_string(at) + " has estimation method " +
+                           std::to_string(method) + " (MRPT knows 0, odometry, and 1, scan matching): corrupt " +
+                           what);
+  }
 }
 
 std::string MrptMessage(const std::string& text) {

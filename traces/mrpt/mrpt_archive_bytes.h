@@ -37,6 +37,14 @@ bool ReadArchiveObjectHead(const std::vector<unsigned char>& bytes, ArchiveObjec
 std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t offset, const std::string& path,
                             const std::string& field);
 
+// Fields that crash MRPT's deserializer instead of raising its exception,
+// checked in the bytes before MRPT reads them (tests/fuzz findings):
+// - CActionRobotMovement2D (version 7): an estimation method other than
+//   0 (odometry) or 1 (scan matching) leaves its pose PDF null, and MRPT
+//   dereferences it.
+// Throws InputError naming the file, the byte offset and the field.
+void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what);
+
 // MRPT's exception texts nest exceptions and call traces over many lines;
 // returns the innermost "Message:" text, the one a user needs.
 std::string MrptMessage(const std::string& text);

@@ -228,6 +228,7 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
   TraceReadStats& s = stats ? *stats : local_stats;
   s = TraceReadStats{};
   const std::vector<unsigned char> bytes = ReadArchiveBytes(path, "rawlog");
+  CheckMrptCrashFields(bytes, path, "rawlog");
   mrpt::io::CMemoryStream memory;
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
