@@ -39,7 +39,7 @@ import statistics
 import subprocess
 import sys
 
-from rcbench_files import SHARED_DATA, InputError, read_poses, read_timeline_rows, split_extra_args
+from rcbench_files import SHARED_DATA, InputError, atomic_output, read_poses, read_timeline_rows, split_extra_args
 
 WEAN = os.path.join(SHARED_DATA, "wean", "wean.dat")
 
@@ -137,7 +137,7 @@ def main():
                   f"(record {result['global_convergence_iteration']}), tracking median "
                   f"{result['tracking_median_err_xy_m']:.3f} m", flush=True)
 
-    with open(os.path.join(args.out, "accuracy_study.csv"), "w", newline="") as f:
+    with atomic_output(os.path.join(args.out, "accuracy_study.csv"), newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         w.writerows(rows)
@@ -158,7 +158,7 @@ def main():
                      f"{sum(r['tracking_jumps'] for r in sel)} | "
                      f"{sum(r['global_own_claim_held'] for r in sel)}/{len(sel)} | "
                      f"{sum(r['global_standing_claim_held'] for r in sel)}/{len(sel)} |")
-    with open(os.path.join(args.out, "accuracy_study.md"), "w") as f:
+    with atomic_output(os.path.join(args.out, "accuracy_study.md")) as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
 

@@ -21,6 +21,8 @@ import statistics
 import subprocess
 import sys
 
+from rcbench_files import atomic_output
+
 
 def final_cost(path):
     with open(path, newline="") as f:
@@ -49,7 +51,7 @@ def main():
             cost = final_cost(anytime)
             results.append((nn, seed, run.returncode == 0, cost))
             print(f"{nn} seed {seed}: {'exact' if run.returncode == 0 else 'no exact path'}, cost {cost}", flush=True)
-    with open(os.path.join(args.out, "movebot_cost_study.csv"), "w", newline="") as f:
+    with atomic_output(os.path.join(args.out, "movebot_cost_study.csv"), newline="") as f:
         w = csv.writer(f)
         w.writerow(["nn", "seed", "exact", "final_cost_rad"])
         for nn, seed, exact, cost in results:

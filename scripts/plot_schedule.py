@@ -12,6 +12,8 @@ import argparse
 import csv
 import math
 
+from rcbench_files import save_figure
+
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -60,7 +62,7 @@ def main():
     bottom.legend(fontsize=8)
     bottom.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(args.png, dpi=110)
+    save_figure(fig, args.png, dpi=110)
     print(f"wrote {args.png}")
 
 
