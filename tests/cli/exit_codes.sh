@@ -48,7 +48,7 @@ code 1 "carribot missing scen" -- carribot --map wall.map --scen absent.scen
 code 1 "simulate missing map" -- simulate --map absent.yaml --output x.log
 code 1 "collide missing boxes" -- collide --obbs absent.csv --scene shelf
 code 1 "movebot missing obstacles" -- movebot --obstacles absent.txt
-code 1 "backends bad params" -- backends --params bad.json
+code 1 "backends bad params" -- backends --backend-params bad.json
 
 # No path: carribot's goal behind a wall; outputs are still written.
 code 3 "carribot unreachable" -- carribot --map wall.map --scen wall.map.scen --timeline t.csv --quiet
