@@ -186,7 +186,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
   AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--laser-offset", cli->laser_offset_m,
-                  "Laser mount: metres ahead of the robot centre on its heading axis (m, 0 to 10). Default: "
+                  "Laser mount: metres ahead of the robot centre on its heading axis (m, 0 to 10); without it: "
                   "measured from the trace's own laser poses (CMU, CARMEN, rawlog); 0.25 m, the Wean robot's, "
                   "for RoWild logs, which carry none");
   cmd->add_option("--ground-truth", cli->ground_truth_path,
