@@ -334,7 +334,9 @@ BackendParameters ParseBackendParameters(const std::string& json_text, const std
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
+    // Not only parse_error: a number too large for a double is out_of_range
+    // (a tests/fuzz finding that escaped as an uncaught exception).
     throw InputError(file_name, 0, "", std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw InputError(file_name, 0, "", "expected a JSON object at the top level");

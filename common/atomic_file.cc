@@ -1,15 +1,30 @@
 #include "common/atomic_file.h"
 
+#include <cerrno>
 #include <cstdio>
-#include <stdexcept>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
 #include <unistd.h>
+
+#include "common/input_error.h"
 
 namespace rc {
 
+void CreateParentFolders(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(parent, error);
+  if (error)
+    throw OutputError(path, "cannot create the output folder '" + parent.string() + "': " + error.message());
+}
+
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temp_path_(path_ + ".tmp" + std::to_string(::getpid())) {
+  CreateParentFolders(path_);
   out_.open(temp_path_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw std::runtime_error("cannot open '" + path_ + "' for writing");
+  if (!out_) throw OutputError(path_, std::string("cannot open for writing: ") + std::strerror(errno));
 }
 
 AtomicFile::~AtomicFile() {
@@ -21,10 +36,10 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::Commit() {
   out_.flush();
-  if (!out_) throw std::runtime_error("write error on '" + path_ + "'");
+  if (!out_) throw OutputError(path_, "write error (disk full?)");
   out_.close();
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0)
-    throw std::runtime_error("cannot move output into place at '" + path_ + "'");
+    throw OutputError(path_, std::string("cannot move the output into place: ") + std::strerror(errno));
   committed_ = true;
 }
 

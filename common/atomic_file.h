@@ -1,13 +1,26 @@
 #pragma once
 // Output files are written to a temporary sibling and renamed into place only
-// when complete, so a failed run never leaves a partial or corrupt file.
+// when complete, so a failed or killed run never leaves a partial or corrupt
+// file at the output path: it holds the previous file, or none, or the
+// complete new one. Missing parent folders are created here, the one place
+// every output passes through.
+//
+// Guarantee: survives the death of the process (any signal, including
+// SIGKILL); a temporary "<path>.tmp<pid>" may then remain beside the output.
+// It does not fsync, so it promises nothing about an operating-system crash.
 #include <fstream>
 #include <string>
 
 namespace rc {
 
+// Creates the folders above `path` (nothing for a bare file name). Throws
+// OutputError naming the folder when that fails.
+void CreateParentFolders(const std::string& path);
+
 class AtomicFile {
  public:
+  // Creates missing parent folders and opens the temporary file. Throws
+  // OutputError naming the path if either fails.
   explicit AtomicFile(std::string path);
   ~AtomicFile();  // Removes the temporary file if Commit() was not reached.
   AtomicFile(const AtomicFile&) = delete;
@@ -15,7 +28,7 @@ class AtomicFile {
 
   std::ostream& stream() { return out_; }
   // Flushes, checks for write errors and renames into place. Throws
-  // std::runtime_error naming the path on failure.
+  // OutputError naming the path on failure.
   void Commit();
 
  private:

@@ -41,4 +41,13 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An output file or folder that cannot be created or written (a missing
+// permission, a full disk). Like InputError it is the user's to fix, not a
+// bug; the message names the path.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError(const std::string& path, const std::string& problem)
+      : std::runtime_error(path + ": " + problem) {}
+};
+
 }  // namespace rc

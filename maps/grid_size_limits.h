@@ -4,7 +4,11 @@
 // OccupancyGrid constructor's std::invalid_argument.
 #include <string>
 
+#include <cstdint>
+
 #include "common/input_error.h"
+#include "common/memory_cap.h"
+#include "maps/occupancy_grid.h"
 
 namespace rc {
 
@@ -15,7 +19,9 @@ constexpr long kMaxMapCellsPerSide = 100000;
 constexpr long long kMaxMapCells = 1LL << 28;
 
 // Throws InputError(file, line, field, ...) unless 1 <= size_x, size_y <=
-// kMaxMapCellsPerSide and size_x * size_y <= kMaxMapCells.
+// kMaxMapCellsPerSide, size_x * size_y <= kMaxMapCells, and the grid's cells
+// fit the memory cap (common/memory_cap.h). Loaders call it before they
+// allocate the grid.
 inline void CheckMapSize(const std::string& file, long line, const std::string& field, long size_x,
                          long size_y) {
   if (size_x < 1 || size_y < 1 || size_x > kMaxMapCellsPerSide || size_y > kMaxMapCellsPerSide)
@@ -27,6 +33,12 @@ inline void CheckMapSize(const std::string& file, long line, const std::string& 
     throw InputError(file, line, field,
                      "map size " + std::to_string(size_x) + " x " + std::to_string(size_y) +
                          " cells exceeds the limit of " + std::to_string(kMaxMapCells) + " cells");
+  const std::uint64_t need = BytesFor(static_cast<std::uint64_t>(size_x) * static_cast<std::uint64_t>(size_y),
+                                      sizeof(CellState));
+  if (need > MemoryCapBytes())
+    throw InputError(file, line, field,
+                     "map size " + std::to_string(size_x) + " x " + std::to_string(size_y) + " cells " +
+                         DescribeOverCap(need));
 }
 
 }  // namespace rc

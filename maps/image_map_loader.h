@@ -21,6 +21,8 @@ struct ImageMapOptions {
 // Throws UsageError for a missing or non-positive resolution or invalid
 // thresholds (they come from the command line, not the file), and
 // InputError naming the image for a missing or undecodable image.
-OccupancyGrid LoadImageMap(const std::string& path, const ImageMapOptions& options);
+// Adds each cell's class to *counts when given.
+OccupancyGrid LoadImageMap(const std::string& path, const ImageMapOptions& options,
+                           CellClassCounts* counts = nullptr);
 
 }  // namespace rc

@@ -24,17 +24,26 @@ std::string PixelField(int row, int column) {
 }
 
 // Raw mode: the mean must be an exact occupancy percentage or 255.
-CellState ClassifyRawPixel(double v, const PixelThresholds& t, const std::string& image_path,
+CellClass ClassifyRawPixel(double v, const PixelThresholds& t, const std::string& image_path,
                            int row, int column) {
-  if (v == kRawUnknown) return CellState::kUnknown;
+  if (v == kRawUnknown) return CellClass::kUnobserved;
   if (v != std::floor(v) || v > 100.0)
     throw InputError(
         image_path, 0, PixelField(row, column),
         "raw-mode value " + Text(v) + " is not an occupancy percentage (0..100) or 255 (unknown)");
   const double p = v / 100.0;
-  if (p > t.occupied_thresh) return CellState::kOccupied;
-  if (p < t.free_thresh) return CellState::kFree;
-  return CellState::kUnknown;
+  if (p > t.occupied_thresh) return CellClass::kOccupied;
+  if (p < t.free_thresh) return CellClass::kFree;
+  return CellClass::kBetweenThresholds;
+}
+
+CellClass ClassifyPixelMeanClass(double v, const PixelThresholds& t) {
+  // Same order of operations as map_server, so results match bit for bit.
+  if (t.negate) v = 255.0 - v;
+  const double p = (255.0 - v) / 255.0;
+  if (p > t.occupied_thresh) return CellClass::kOccupied;
+  if (p < t.free_thresh) return CellClass::kFree;
+  return CellClass::kBetweenThresholds;
 }
 
 }  // namespace
@@ -64,17 +73,10 @@ bool CheckPixelThresholds(const PixelThresholds& t, std::string* field, std::str
   return true;
 }
 
-CellState ClassifyPixelMean(double v, const PixelThresholds& t) {
-  // Same order of operations as map_server, so results match bit for bit.
-  if (t.negate) v = 255.0 - v;
-  const double p = (255.0 - v) / 255.0;
-  if (p > t.occupied_thresh) return CellState::kOccupied;
-  if (p < t.free_thresh) return CellState::kFree;
-  return CellState::kUnknown;
-}
+CellState ClassifyPixelMean(double v, const PixelThresholds& t) { return StateOf(ClassifyPixelMeanClass(v, t)); }
 
 OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
-                            const PixelThresholds& thresholds, ImageMapMode mode) {
+                            const PixelThresholds& thresholds, ImageMapMode mode, CellClassCounts* counts) {
   // Checked first: OpenCV would also print its own warning for a missing file.
   if (!std::ifstream(image_path)) throw InputError(image_path, 0, "", "cannot open image file");
   const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
@@ -103,10 +105,11 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
       int sum = 0;
       for (int k = 0; k < averaged; ++k) sum += pixel[k];
       const double mean = sum / static_cast<double>(averaged);
-      const CellState state = mode == ImageMapMode::kRaw
-                                  ? ClassifyRawPixel(mean, thresholds, image_path, row, column)
-                                  : ClassifyPixelMean(mean, thresholds);
-      grid.Set(column, iy, state);
+      const CellClass c = mode == ImageMapMode::kRaw
+                              ? ClassifyRawPixel(mean, thresholds, image_path, row, column)
+                              : ClassifyPixelMeanClass(mean, thresholds);
+      if (counts) counts->Add(c);
+      grid.Set(column, iy, StateOf(c));
     }
   }
   return grid;

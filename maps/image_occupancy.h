@@ -35,6 +35,7 @@
 // colours; map_server (SDL) would read the palette index instead.
 #include <string>
 
+#include "maps/cell_classes.h"
 #include "maps/occupancy_grid.h"
 
 namespace rc {
@@ -61,7 +62,10 @@ CellState ClassifyPixelMean(double v, const PixelThresholds& t);
 // Throws InputError(image_path, 0, ...) when the image cannot be opened or
 // decoded or has an unsupported depth or channel count, and (raw mode)
 // naming the offending pixel's row and column. Thresholds must be valid.
+// Adds each cell's class to *counts when given (raw 255 is never observed;
+// every other unknown pixel lies between the thresholds).
 OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
-                            const PixelThresholds& thresholds, ImageMapMode mode);
+                            const PixelThresholds& thresholds, ImageMapMode mode,
+                            CellClassCounts* counts = nullptr);
 
 }  // namespace rc

@@ -88,44 +88,54 @@ std::string DescribePixels(const PixelThresholds& t, ImageMapMode mode) {
 
 }  // namespace
 
+ProbabilityThresholds ThresholdsFrom(const MapLoadOptions& options) {
+  ProbabilityThresholds t;
+  if (options.occupied_thresh) t.occupied_thresh = *options.occupied_thresh;
+  if (options.free_thresh) t.free_thresh = *options.free_thresh;
+  CheckProbabilityThresholds(t);
+  return t;
+}
+
 LoadedMap LoadMap(const std::string& path, const MapLoadOptions& options) {
   const std::string format = options.format == "auto" ? DetectFormat(path) : options.format;
+  const bool thresholds_set = options.occupied_thresh.has_value() || options.free_thresh.has_value();
   LoadedMap out;
   out.format = format;
   if (format == "cmu" || format == "rowild") {
     RejectOption(options.resolution_m.has_value(), "resolution",
                  format + " (the file declares it)");
-    RejectOption(options.image_thresholds.has_value(), "image thresholds", format);
     const ValueConvention convention =
         options.convention.value_or(ValueConvention::kProbabilityFree);
-    const ProbabilityThresholds thresholds;
+    const ProbabilityThresholds thresholds = ThresholdsFrom(options);
     if (format == "cmu") {
       CmuMapOptions o;
       o.convention = convention;
       o.thresholds = thresholds;
-      out.grid = LoadCmuMap(path, o);
+      out.grid = LoadCmuMap(path, o, &out.cell_classes);
     } else {
       RowildMapOptions o;
       o.convention = convention;
       o.thresholds = thresholds;
-      out.grid = LoadRowildMap(path, o);
+      out.grid = LoadRowildMap(path, o, &out.cell_classes);
     }
     out.value_convention = DescribeProbability(convention, thresholds);
   } else if (format == "ros") {
     RejectOption(options.convention.has_value(), "value convention", "ros");
     RejectOption(options.resolution_m.has_value(), "resolution", "ros (the YAML declares it)");
-    RejectOption(options.image_thresholds.has_value(), "image thresholds",
-                 "ros (the YAML declares them)");
+    RejectOption(thresholds_set, "occupied/free thresholds",
+                 "ros (the YAML declares occupied_thresh and free_thresh; edit them there)");
     RosMap ros = LoadRosMap(path);
     out.grid = std::move(ros.grid);
+    out.cell_classes = ros.cell_classes;
     out.value_convention = DescribePixels(ros.metadata.thresholds, ros.metadata.mode);
     out.ros = std::move(ros.metadata);
   } else if (format == "movingai") {
     RejectOption(options.convention.has_value(), "value convention", "movingai");
-    RejectOption(options.image_thresholds.has_value(), "image thresholds", "movingai");
+    RejectOption(thresholds_set, "occupied/free thresholds", "movingai (cells are terrain letters)");
     MovingAiMapOptions o;
     o.resolution_m = options.resolution_m.value_or(o.resolution_m);
     out.grid = LoadMovingAiMap(path, o);
+    out.cell_classes = CountStates(out.grid);
     out.value_convention = "MovingAI terrain: '.' 'G' free; '@' 'O' 'T' 'S' 'W' occupied; " +
                            Number(o.resolution_m) + " m per cell";
   } else if (format == "image") {
@@ -134,8 +144,10 @@ LoadedMap LoadMap(const std::string& path, const MapLoadOptions& options) {
       throw UsageError("an image map needs a resolution (m per cell); the image has no scale");
     ImageMapOptions o;
     o.resolution_m = *options.resolution_m;
-    o.thresholds = options.image_thresholds.value_or(PixelThresholds{});
-    out.grid = LoadImageMap(path, o);
+    const ProbabilityThresholds thresholds = ThresholdsFrom(options);
+    o.thresholds.occupied_thresh = thresholds.occupied_thresh;
+    o.thresholds.free_thresh = thresholds.free_thresh;
+    out.grid = LoadImageMap(path, o, &out.cell_classes);
     out.value_convention = DescribePixels(o.thresholds, ImageMapMode::kTrinary) + ", " +
                            Number(o.resolution_m) + " m per cell";
   } else {

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "maps/cell_classes.h"
 #include "maps/image_occupancy.h"
 #include "maps/occupancy_grid.h"
 #include "maps/ros_map_io.h"
@@ -29,9 +30,18 @@ struct MapLoadOptions {
   std::optional<ValueConvention> convention;
   // movingai (unset: 1.0 m per cell) and image (required) only.
   std::optional<double> resolution_m;
-  // image only; unset: map_server's defaults (0.65 / 0.196, no negate).
-  std::optional<PixelThresholds> image_thresholds;
+  // Thresholds on P(occupied) for the formats whose cells hold a
+  // probability: cmu, rowild, image (and MRPT's gridmap and simplemap,
+  // mrpt_map_dispatch.h). Unset: ROS map_server's 0.65 / 0.196. A ROS YAML
+  // declares its own, and MovingAI cells are terrain, so setting them for
+  // those formats is a UsageError.
+  std::optional<double> occupied_thresh;
+  std::optional<double> free_thresh;
 };
+
+// The thresholds the options ask for (ROS's defaults where unset); throws
+// UsageError unless 0 <= free < occupied <= 1.
+ProbabilityThresholds ThresholdsFrom(const MapLoadOptions& options);
 
 struct LoadedMap {
   OccupancyGrid grid;
@@ -41,6 +51,8 @@ struct LoadedMap {
   std::string value_convention;
   // Set for ROS maps: origin, image path, mode, thresholds.
   std::optional<RosMapMetadata> ros;
+  // How many cells fell in each class, for the CLI's map line.
+  CellClassCounts cell_classes;
 };
 
 // Throws UsageError for an unknown format name or an option that does not

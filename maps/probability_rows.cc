@@ -5,7 +5,8 @@
 namespace rc {
 
 void ReadProbabilityRows(LineReader& reader, ValueConvention convention,
-                         const ProbabilityThresholds& thresholds, OccupancyGrid* grid) {
+                         const ProbabilityThresholds& thresholds, OccupancyGrid* grid,
+                         CellClassCounts* counts) {
   const long size_x = grid->size_x();
   const long size_y = grid->size_y();
   std::string line;
@@ -27,8 +28,9 @@ void ReadProbabilityRows(LineReader& reader, ValueConvention convention,
       if (v > 1.0 || (v < 0.0 && v != -1.0))
         reader.Fail(column_field, "value " + std::string(fields[iy]) +
                                       " is neither a probability in [0, 1] nor -1");
-      grid->Set(static_cast<int>(ix), static_cast<int>(iy),
-                ClassifyProbability(v, convention, thresholds));
+      const CellClass c = ClassifyProbabilityValue(v, convention, thresholds);
+      if (counts) counts->Add(c);
+      grid->Set(static_cast<int>(ix), static_cast<int>(iy), StateOf(c));
     }
   }
 }

@@ -205,7 +205,9 @@ RosMap LoadRosMap(const std::string& yaml_path) {
     throw InputError(yaml_path, yaml.LineOf("image"), "image",
                      "image file '" + meta.image_path + "' does not exist or cannot be opened");
 
-  RosMap map{ReadImageGrid(meta.image_path, meta.resolution_m, meta.thresholds, meta.mode), meta};
+  RosMap map;
+  map.grid = ReadImageGrid(meta.image_path, meta.resolution_m, meta.thresholds, meta.mode, &map.cell_classes);
+  map.metadata = std::move(meta);
   return map;
 }
 

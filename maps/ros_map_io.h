@@ -21,6 +21,7 @@
 // origin and leaves the transform to callers that need world coordinates.
 #include <string>
 
+#include "maps/cell_classes.h"
 #include "maps/image_occupancy.h"
 #include "maps/occupancy_grid.h"
 
@@ -40,6 +41,7 @@ struct RosMapMetadata {
 struct RosMap {
   OccupancyGrid grid;
   RosMapMetadata metadata;
+  CellClassCounts cell_classes;
 };
 
 // Throws InputError naming the YAML file, the 1-based line (0 when the key is

@@ -47,7 +47,7 @@ long CellsAlong(const std::string& file, const HeaderValue& extent, const std::s
 
 }  // namespace
 
-OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& options) {
+OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& options, CellClassCounts* counts) {
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "", "cannot open map file");
   LineReader reader(in, path);
@@ -60,7 +60,7 @@ OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& opt
 
   OccupancyGrid grid(static_cast<int>(size_x), static_cast<int>(size_y),
                      static_cast<double>(resolution.value) / 100.0, CellState::kUnknown);
-  ReadProbabilityRows(reader, options.convention, options.thresholds, &grid);
+  ReadProbabilityRows(reader, options.convention, options.thresholds, &grid, counts);
   RequireNoTrailingData(reader);
   return grid;
 }

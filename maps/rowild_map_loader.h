@@ -26,6 +26,8 @@ struct RowildMapOptions {
 };
 
 // Throws InputError (file, line, field) on any malformed or truncated input.
-OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& options = {});
+// Adds each cell's class to *counts when given.
+OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& options = {},
+                            CellClassCounts* counts = nullptr);
 
 }  // namespace rc

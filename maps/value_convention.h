@@ -15,6 +15,7 @@
 // otherwise.
 #include <string>
 
+#include "maps/cell_classes.h"
 #include "maps/occupancy_grid.h"
 
 namespace rc {
@@ -32,15 +33,25 @@ struct ProbabilityThresholds {
 ValueConvention ParseValueConvention(const std::string& name);
 std::string ToString(ValueConvention c);
 
-// value is the stored number; returns the cell's state under the convention.
-inline CellState ClassifyProbability(double value, ValueConvention convention,
-                                     const ProbabilityThresholds& t) {
-  if (value < t.unknown_below) return CellState::kUnknown;
+// value is the stored number; returns why the cell gets its state under
+// the convention (cell_classes.h).
+inline CellClass ClassifyProbabilityValue(double value, ValueConvention convention,
+                                          const ProbabilityThresholds& t) {
+  if (value < t.unknown_below) return CellClass::kUnobserved;
   const double p_occupied =
       convention == ValueConvention::kProbabilityFree ? 1.0 - value : value;
-  if (p_occupied >= t.occupied_thresh) return CellState::kOccupied;
-  if (p_occupied <= t.free_thresh) return CellState::kFree;
-  return CellState::kUnknown;
+  if (p_occupied >= t.occupied_thresh) return CellClass::kOccupied;
+  if (p_occupied <= t.free_thresh) return CellClass::kFree;
+  return CellClass::kBetweenThresholds;
 }
+
+inline CellState ClassifyProbability(double value, ValueConvention convention,
+                                     const ProbabilityThresholds& t) {
+  return StateOf(ClassifyProbabilityValue(value, convention, t));
+}
+
+// Throws UsageError unless 0 <= free_thresh < occupied_thresh <= 1 (the
+// thresholds apply to P(occupied), as ROS map_server's do).
+void CheckProbabilityThresholds(const ProbabilityThresholds& t);
 
 }  // namespace rc

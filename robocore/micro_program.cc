@@ -1,6 +1,7 @@
 #include "robocore/micro_program.h"
 
 #include <cctype>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -140,10 +141,14 @@ class Parser {
       Fail("operand " + std::to_string(info.operand_count + 1), "unexpected operand; " + usage);
     if (info.max_axis >= 0) {
       const std::string& axis = op.operands.back();
-      if (!IsInteger(axis) || std::stol(axis) < 0 || std::stol(axis) > info.max_axis)
+      // from_chars, not stol: a number too long for a long is out of range
+      // here too, not an uncaught std::out_of_range (a tests/fuzz finding).
+      long value = -1;
+      const auto parsed = std::from_chars(axis.data(), axis.data() + axis.size(), value);
+      if (!IsInteger(axis) || parsed.ec != std::errc() || value < 0 || value > info.max_axis)
         Fail("axis", std::string(info.mnemonic) + " axis '" + axis + "' must be an integer 0.." +
                          std::to_string(info.max_axis));
-      op.axis = static_cast<int>(std::stol(axis));
+      op.axis = static_cast<int>(value);
     }
     if (op.opcode == Opcode::kLoad && current_ != static_cast<int>(ProgramSection::kLoop))
       Fail("opcode", "LOAD (a node fetch) belongs in the loop: section only");

@@ -44,7 +44,7 @@ import statistics
 import subprocess
 import sys
 
-from rcbench_files import SHARED_DATA, InputError, read_cumulative_evidence, read_poses, split_extra_args
+from rcbench_files import SHARED_DATA, InputError, atomic_output, read_cumulative_evidence, read_poses, split_extra_args
 
 
 def fail(message):
@@ -140,7 +140,7 @@ def main():
     evidence = {}  # (map, seed, particles) -> (log evidence (nats), sensor updates)
     for name, seed, n, _, timeline in jobs:
         evidence[(name, seed, n)] = log_evidence(timeline)
-    with open(os.path.join(args.out, "evidence_vs_particles.csv"), "w", newline="") as f:
+    with atomic_output(os.path.join(args.out, "evidence_vs_particles.csv"), newline="") as f:
         writer = csv.writer(f)
         writer.writerow(["map", "seed", "particles", "log_evidence_nats", "sensor_updates"])
         for (name, seed, n), (total, updates) in evidence.items():
@@ -163,7 +163,7 @@ def main():
                                    for seed, (total, updates) in zip(seeds_of[m], runs))
             cells.append(f"{statistics.mean(total for total, _ in runs):.0f} | {loss:.3f}")
         lines.append(f"| {n} | " + " | ".join(cells) + " |")
-    with open(os.path.join(args.out, "evidence_vs_particles.md"), "w") as f:
+    with atomic_output(os.path.join(args.out, "evidence_vs_particles.md")) as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
     print(f"wrote {args.out}/evidence_vs_particles.csv, evidence_vs_particles.md")

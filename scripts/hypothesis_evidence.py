@@ -41,7 +41,7 @@ import subprocess
 import sys
 import tempfile
 
-from rcbench_files import SHARED_DATA, InputError, read_cumulative_evidence, read_poses, split_extra_args
+from rcbench_files import SHARED_DATA, InputError, atomic_output, save_figure, read_cumulative_evidence, read_poses, split_extra_args
 
 
 
@@ -130,7 +130,7 @@ def main():
 
     csv_path = os.path.join(args.out, "hypothesis_evidence.csv")
     curves = {}
-    with open(csv_path, "w", newline="") as f:
+    with atomic_output(csv_path, newline="") as f:
         w = csv.writer(f)
         w.writerow(["log", "model", "record", "cum_a_nats", "cum_b_nats", "log_bayes_factor_nats", "separation_m"])
         for log in logs:
@@ -165,7 +165,7 @@ def main():
             ax.grid(True, alpha=0.3)
         fig.tight_layout()
         os.makedirs(os.path.dirname(os.path.abspath(args.figure)), exist_ok=True)
-        fig.savefig(args.figure, dpi=110)
+        save_figure(fig, args.figure, dpi=110)
         print(f"wrote {args.figure}")
 
 

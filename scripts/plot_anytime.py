@@ -18,6 +18,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from rcbench_files import save_figure  # noqa: E402
+
 
 def read_curve(path, x_column):
     xs, ys = [], []
@@ -68,7 +70,7 @@ def main():
     label_axes(ax, args.x)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(args.output, dpi=120)
+    save_figure(fig, args.output, dpi=120)
     print(f"wrote {args.output}")
 
 

@@ -17,6 +17,8 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt
 
+from rcbench_files import save_figure
+
 
 def read_rows(path):
     with open(path, newline="") as f:
@@ -57,7 +59,7 @@ def main():
         panel(ax, subset, unit, reference)
     axes[0, 0].set_title("RoboGPU paper vs rcbench (calibration.csv)")
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=120)
+    save_figure(fig, sys.argv[2], dpi=120)
 
 
 if __name__ == "__main__":

@@ -12,6 +12,8 @@ import argparse
 import csv
 import math
 
+from rcbench_files import save_figure
+
 
 CLOCK_HZ = 1.365e9  # the default modelled core clock (Hz), to show cycles as seconds
 
@@ -67,7 +69,7 @@ def main():
         rows = list(csv.DictReader(f))
     if not rows or "cum_cycles_policy" not in rows[0]:
         raise SystemExit(f"{args.timeline}: no backend pricing columns (run rcbench delibot without --no-pricing)")
-    draw(rows, args.title, args.clock_hz).savefig(args.png, dpi=110)
+    save_figure(draw(rows, args.title, args.clock_hz), args.png, dpi=110)
     print(f"wrote {args.png}")
 
 

@@ -1,11 +1,13 @@
 """Helpers shared by the study scripts: where ../shared/data is, how the
-arguments after `--` reach rcbench, and readers of ground-truth (or
-reference) pose files and rcbench timeline CSVs. A malformed file raises
-InputError with a message naming the file, and the line where there is
-one."""
+arguments after `--` reach rcbench, readers of ground-truth (or reference)
+pose files and rcbench timeline CSVs, and atomic writers for the merged
+results and figures they produce. A malformed file raises InputError with a
+message naming the file, and the line where there is one."""
+import contextlib
 import csv
 import math
 import os
+import tempfile
 
 # ../shared/data beside the project root, wherever the script is run from.
 SHARED_DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "shared", "data"))
@@ -47,10 +49,46 @@ def read_poses(path):
     return rows
 
 
+# The first line of a timeline whose run has not finished (traces/csv_table.h).
+INCOMPLETE_MARKER = "# rcbench: INCOMPLETE"
+
+
+@contextlib.contextmanager
+def atomic_output(path, mode="w", **open_args):
+    """Opens a temporary file beside `path` and renames it into place when the
+    block ends without an exception, so a killed or failed study never leaves
+    a partial result (as rcbench's own AtomicFile). Creates the folder."""
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=folder, prefix=os.path.basename(path) + ".tmp")
+    try:
+        with os.fdopen(fd, mode, **open_args) as f:
+            yield f
+        umask = os.umask(0)  # mkstemp makes the file private; give it the usual mode
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
+
+
+def save_figure(fig, path, **savefig_args):
+    """fig.savefig through atomic_output; the format comes from `path`."""
+    fmt = os.path.splitext(path)[1].lstrip(".") or None
+    with atomic_output(path, "wb") as f:
+        fig.savefig(f, format=fmt, **savefig_args)
+
+
 def read_timeline_rows(path, columns):
-    """The rows of an rcbench timeline CSV as dicts; every name in `columns` must be a column."""
+    """The rows of an rcbench timeline CSV as dicts; every name in `columns` must be a column.
+    A timeline still marked incomplete (its run was killed or has not finished) is an InputError."""
     try:
         with open(path) as f:
+            if f.readline().startswith(INCOMPLETE_MARKER):
+                raise InputError(f"{path}: the timeline is marked incomplete (its run was killed or has not finished)")
+            f.seek(0)
             rows = list(csv.DictReader(f))
     except OSError as e:
         raise InputError(f"{path}: {e.strerror}") from None

@@ -150,8 +150,7 @@ bool IsMessageName(std::string_view token) {
 // checks every later one against it.
 class LaserRecordChecker {
  public:
-  LaserRecordChecker(const CarmenLogOptions& options, SensorTrace& trace, TraceReadStats& stats)
-      : options_(options), trace_(trace), stats_(stats) {}
+  LaserRecordChecker(const CarmenLogOptions& options, TraceReadStats& stats) : options_(options), stats_(stats) {}
 
   // PARAM values that set FLASER geometry; they must come before it is fixed.
   void SetParam(const LineReader& reader, const std::string& name, std::string_view value) {
@@ -169,26 +168,32 @@ class LaserRecordChecker {
     params_[name] = v;
   }
 
-  void Accept(const LineReader& reader, LaserRecord record) {
+  // Checks the record against the first one and returns its scan.
+  LaserScan Accept(const LineReader& reader, LaserRecord record) {
     if (kind_.empty()) Fix(reader, record);
     else CheckSameGeometry(reader, record);
     const LaserMountOffset mount = MeasureMountOffset(record.scan.odometry, record.laser_pose);
     stats_.laser_mount.Add(mount);
     if (!options_.laser_offset_forward_m) {
       const bool flaser = kind_ == "FLASER";
-      CheckMountOffset(reader, mount, trace_.geometry.offset_forward_m, options_.mount_tolerance,
-                       flaser ? "x/y" : "laser_x/laser_y", flaser ? "theta" : "laser_theta");
+      CheckMountOffset(reader, mount, geometry_.offset_forward_m, options_.mount_tolerance,
+                       flaser ? "x/y" : "laser_x/laser_y", flaser ? "theta" : "laser_theta",
+                       "the mount of the first laser record, line " + std::to_string(first_line_));
     }
     time_order_.Check(reader, record.scan.time_s, "timestamp");
     record.scan.source_line = reader.line_number();
-    trace_.scans.push_back(std::move(record.scan));
+    return std::move(record.scan);
   }
+
+  const LaserGeometry& geometry() const { return geometry_; }
+
+  const TimeGlitchStats& time_glitches() const { return time_order_.glitches(); }
 
  private:
   void Fix(const LineReader& reader, const LaserRecord& record) {
     kind_ = record.kind;
     first_line_ = reader.line_number();
-    LaserGeometry& g = trace_.geometry;
+    LaserGeometry& g = geometry_;
     g = record.geometry;
     if (kind_ == "FLASER") {
       const int n = g.beam_count;
@@ -205,7 +210,7 @@ class LaserRecordChecker {
     }
     g.offset_forward_m = options_.laser_offset_forward_m
                              ? *options_.laser_offset_forward_m
-                             : MeasureMountOffset(record.scan.odometry, record.laser_pose).forward_m;
+                             : RoundMountOffset(MeasureMountOffset(record.scan.odometry, record.laser_pose).forward_m);
   }
 
   void CheckSameGeometry(const LineReader& reader, const LaserRecord& record) const {
@@ -213,7 +218,7 @@ class LaserRecordChecker {
     if (record.kind != kind_)
       reader.Fail("message", "a " + record.kind + " record after " + kind_ + " records" + since +
                                  ": both describe the front laser; a log must use one");
-    const LaserGeometry& g = trace_.geometry;
+    const LaserGeometry& g = geometry_;
     if (record.geometry.beam_count != g.beam_count)
       reader.Fail("num_readings", std::to_string(record.geometry.beam_count) +
                                       " beams, but the first laser record" + since + " has " +
@@ -228,8 +233,8 @@ class LaserRecordChecker {
   }
 
   const CarmenLogOptions& options_;
-  SensorTrace& trace_;
   TraceReadStats& stats_;
+  LaserGeometry geometry_;
   std::string kind_;  // empty until the first laser record
   long first_line_ = 0;
   std::map<std::string, double> params_;
@@ -238,41 +243,59 @@ class LaserRecordChecker {
 
 }  // namespace
 
-SensorTrace ReadCarmenLog(const std::string& path, const CarmenLogOptions& options,
-                          TraceReadStats* stats) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot open trace file");
-  LineReader reader(in, path);
+struct CarmenLogStream::State {
+  State(const CarmenLogOptions& o, TraceReadStats& stats) : options(o), checker(options, stats) {}
+  CarmenLogOptions options;
+  LaserRecordChecker checker;
+};
+
+CarmenLogStream::CarmenLogStream(const std::string& path, const CarmenLogOptions& options)
+    : in_(path), reader_(in_, path), state_(std::make_unique<State>(options, stats_)) {
+  if (!in_) throw InputError(path, 0, "", "cannot open trace file");
+}
+
+CarmenLogStream::~CarmenLogStream() = default;
+
+const LaserGeometry& CarmenLogStream::geometry() const { return state_->checker.geometry(); }
+
+bool CarmenLogStream::Next(LaserScan& scan) {
+  LaserRecordChecker& checker = state_->checker;
+  std::string line;
+  while (reader_.Next(line)) {
+    const Fields f = SplitFields(line);
+    if (f.empty() || f[0][0] == '#') continue;
+    if (f[0] == "FLASER" || f[0] == "ROBOTLASER1") {
+      scan = checker.Accept(reader_, f[0] == "FLASER" ? ParseFlaser(reader_, f) : ParseRobotLaser(reader_, f));
+      ++stats_.laser_records;
+      stats_.time_glitches = checker.time_glitches();
+      return true;
+    }
+    if (f[0] == "ODOM") {
+      ParseOdom(reader_, f);
+      ++stats_.odometry_records;
+    } else if (f[0] == "PARAM") {
+      if (f.size() < 3) reader_.Fail("value", "expected 'PARAM name value'");
+      checker.SetParam(reader_, std::string(f[1]), f[2]);
+      ++stats_.skipped_records;
+    } else if (IsMessageName(f[0])) {
+      ++stats_.skipped_records;  // another sensor's message
+    } else {
+      reader_.Fail("message", "'" + std::string(f[0]) + "' is not a CARMEN message name");
+    }
+  }
+  return false;
+}
+
+SensorTrace ReadCarmenLog(const std::string& path, const CarmenLogOptions& options, TraceReadStats* stats) {
+  CarmenLogStream stream(path, options);
   SensorTrace trace;
   trace.source_path = path;
   trace.format = "carmen";
-  TraceReadStats local_stats;
-  LaserRecordChecker checker(options, trace, local_stats);
-
-  std::string line;
-  while (reader.Next(line)) {
-    const Fields f = SplitFields(line);
-    if (f.empty() || f[0][0] == '#') continue;
-    if (f[0] == "FLASER") {
-      checker.Accept(reader, ParseFlaser(reader, f));
-    } else if (f[0] == "ROBOTLASER1") {
-      checker.Accept(reader, ParseRobotLaser(reader, f));
-    } else if (f[0] == "ODOM") {
-      ParseOdom(reader, f);
-      ++local_stats.odometry_records;
-    } else if (f[0] == "PARAM") {
-      if (f.size() < 3) reader.Fail("value", "expected 'PARAM name value'");
-      checker.SetParam(reader, std::string(f[1]), f[2]);
-      ++local_stats.skipped_records;
-    } else if (IsMessageName(f[0])) {
-      ++local_stats.skipped_records;  // another sensor's message
-    } else {
-      reader.Fail("message", "'" + std::string(f[0]) + "' is not a CARMEN message name");
-    }
-  }
+  LaserScan scan;
+  while (stream.Next(scan)) trace.scans.push_back(std::move(scan));
+  trace.geometry = stream.geometry();
   RequireLaserRecords(trace, "FLASER or ROBOTLASER1 records");
-  local_stats.laser_records = static_cast<long>(trace.scans.size());
-  if (stats) *stats = local_stats;
+  if (stats) *stats = stream.stats();
   return trace;
 }
 

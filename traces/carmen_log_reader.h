@@ -38,8 +38,13 @@
 // ROBOTLASER2) are skipped: MCL here uses one laser.
 // A log may hold FLASER or ROBOTLASER1 records, not both: they would be two
 // copies of the front laser, and picking one silently could hide a mismatch.
+#include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
+
+#include "common/text_fields.h"
+#include "traces/laser_record_stream.h"
 
 #include "traces/laser_mount.h"
 #include "traces/sensor_trace.h"
@@ -59,9 +64,28 @@ struct CarmenLogOptions {
 
 // Throws InputError (file, 1-based line, field) on a malformed message, a
 // geometry or beam count that changes between laser records, mixed FLASER and
-// ROBOTLASER1 records, laser records out of time order, an inconsistent
+// ROBOTLASER1 records, a laser record more than a clock glitch earlier than
+// the one before (record_fields.h), an inconsistent
 // mount, or a log without laser records. Nothing is repaired.
 SensorTrace ReadCarmenLog(const std::string& path, const CarmenLogOptions& options = {},
                           TraceReadStats* stats = nullptr);
+
+// The same reader, one laser record at a time.
+class CarmenLogStream final : public LaserRecordStream {
+ public:
+  // Throws InputError if the file cannot be opened.
+  CarmenLogStream(const std::string& path, const CarmenLogOptions& options);
+  ~CarmenLogStream() override;
+  bool Next(LaserScan& scan) override;
+  const LaserGeometry& geometry() const override;
+  const TraceReadStats& stats() const override { return stats_; }
+
+ private:
+  struct State;  // the checks that carry from record to record
+  std::ifstream in_;
+  LineReader reader_;
+  TraceReadStats stats_;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace rc

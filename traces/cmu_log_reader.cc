@@ -41,51 +41,63 @@ Pose2 ParsePoseCm(const LineReader& reader, const std::vector<std::string_view>&
 
 }  // namespace
 
-SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, TraceReadStats* stats) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot open trace file");
-  LineReader reader(in, path);
-  SensorTrace trace;
-  trace.source_path = path;
-  trace.format = "cmu";
-  trace.geometry = CmuLaserGeometry();
-  trace.geometry.offset_forward_m = options.laser_offset_forward_m;
+CmuLogStream::CmuLogStream(const std::string& path, const CmuLogOptions& options)
+    : in_(path), reader_(in_, path), options_(options), geometry_(CmuLaserGeometry()) {
+  if (!in_) throw InputError(path, 0, "", "cannot open trace file");
+  if (options_.laser_offset_forward_m) geometry_.offset_forward_m = *options_.laser_offset_forward_m;
+}
 
-  TraceReadStats local_stats;
-  LaserTimeOrder time_order;
+bool CmuLogStream::Next(LaserScan& scan) {
   std::string line;
-  while (reader.Next(line)) {
+  while (reader_.Next(line)) {
     const auto fields = SplitFields(line);
     if (fields.empty()) continue;  // a blank line carries no record
     if (fields[0] == "O") {
-      RequireFieldCount(reader, fields.size(), kOdometryFields, OdometryFieldName, kOdometryLayout);
-      ParsePoseCm(reader, fields, 1, "x", "y", "theta");
-      reader.ParseDouble(fields[4], "ts");
-      ++local_stats.odometry_records;
+      RequireFieldCount(reader_, fields.size(), kOdometryFields, OdometryFieldName, kOdometryLayout);
+      ParsePoseCm(reader_, fields, 1, "x", "y", "theta");
+      reader_.ParseDouble(fields[4], "ts");
+      ++stats_.odometry_records;
       continue;
     }
     if (fields[0] != "L")
-      reader.Fail("record type", "'" + std::string(fields[0]) + "' is neither O nor L");
+      reader_.Fail("record type", "'" + std::string(fields[0]) + "' is neither O nor L");
 
-    RequireFieldCount(reader, fields.size(), kLaserFields, LaserFieldName, kLaserLayout);
-    LaserScan scan;
-    scan.source_line = reader.line_number();
-    scan.odometry = ParsePoseCm(reader, fields, 1, "x", "y", "theta");
-    const Pose2 laser = ParsePoseCm(reader, fields, 4, "xl", "yl", "thetal");
+    RequireFieldCount(reader_, fields.size(), kLaserFields, LaserFieldName, kLaserLayout);
+    scan.source_line = reader_.line_number();
+    scan.odometry = ParsePoseCm(reader_, fields, 1, "x", "y", "theta");
+    const Pose2 laser = ParsePoseCm(reader_, fields, 4, "xl", "yl", "thetal");
     const LaserMountOffset mount = MeasureMountOffset(scan.odometry, laser);
-    CheckMountOffset(reader, mount, options.laser_offset_forward_m, options.mount_tolerance, "xl/yl",
-                     "thetal");
-    local_stats.laser_mount.Add(mount);
+    if (!options_.laser_offset_forward_m) {
+      if (mount_source_.empty()) {
+        geometry_.offset_forward_m = RoundMountOffset(mount.forward_m);
+        mount_source_ = "the mount of the first L record, line " + std::to_string(reader_.line_number());
+      }
+      CheckMountOffset(reader_, mount, geometry_.offset_forward_m, options_.mount_tolerance, "xl/yl", "thetal",
+                       mount_source_);
+    }
+    stats_.laser_mount.Add(mount);
     scan.ranges_m.resize(kBeams);
     for (std::size_t b = 0; b < kBeams; ++b)
-      scan.ranges_m[b] = ParseRange(reader, fields[kFirstRangeField + b], b, 100.0);
-    scan.time_s = reader.ParseDouble(fields[kLaserFields - 1], "ts");
-    time_order.Check(reader, scan.time_s, "ts");
-    trace.scans.push_back(std::move(scan));
+      scan.ranges_m[b] = ParseRange(reader_, fields[kFirstRangeField + b], b, 100.0);
+    scan.time_s = reader_.ParseDouble(fields[kLaserFields - 1], "ts");
+    time_order_.Check(reader_, scan.time_s, "ts");
+    stats_.time_glitches = time_order_.glitches();
+    ++stats_.laser_records;
+    return true;
   }
+  return false;
+}
+
+SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options, TraceReadStats* stats) {
+  CmuLogStream stream(path, options);
+  SensorTrace trace;
+  trace.source_path = path;
+  trace.format = "cmu";
+  LaserScan scan;
+  while (stream.Next(scan)) trace.scans.push_back(std::move(scan));
+  trace.geometry = stream.geometry();
   RequireLaserRecords(trace, "L records");
-  local_stats.laser_records = static_cast<long>(trace.scans.size());
-  if (stats) *stats = local_stats;
+  if (stats) *stats = stream.stats();
   return trace;
 }
 

@@ -1,6 +1,8 @@
 #include "traces/csv_table.h"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -56,23 +58,44 @@ CsvTable::Row& CsvTable::Row::Set(std::string_view column, CsvCell cell) {
 }
 
 CsvTable::CsvTable(std::string path, std::vector<std::string> columns, CsvTableOptions options)
-    : path_(std::move(path)), columns_(std::move(columns)), options_(options) {
+    : path_(std::move(path)), columns_(std::move(columns)), options_(std::move(options)) {
   if (columns_.empty()) throw std::invalid_argument("CSV table '" + path_ + "' has no columns");
   if (options_.significant_digits < 1 || options_.significant_digits > 17)
     throw std::invalid_argument("CSV significant digits must be in [1, 17]");
-  for (std::size_t i = 0; i < columns_.size(); ++i) {
-    const std::string& name = columns_[i];
+  if (!options_.timeline && !options_.hindsight_columns.empty())
+    throw std::invalid_argument("CSV table '" + path_ + "': hindsight columns need a timeline");
+  std::vector<std::string> all = columns_;
+  all.insert(all.end(), options_.hindsight_columns.begin(), options_.hindsight_columns.end());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const std::string& name = all[i];
     if (name.empty() || NeedsQuotes(name))
       throw std::invalid_argument("CSV table '" + path_ + "': column " + std::to_string(i + 1) +
                                   " name '" + name + "' is empty or holds a comma, quote or newline");
     for (std::size_t j = 0; j < i; ++j)
-      if (columns_[j] == name)
+      if (all[j] == name)
         throw std::invalid_argument("CSV table '" + path_ + "': duplicate column '" + name + "'");
   }
-  file_ = std::make_unique<AtomicFile>(path_);
-  std::ostream& out = file_->stream();
-  for (std::size_t i = 0; i < columns_.size(); ++i) out << (i ? "," : "") << columns_[i];
-  out << '\n';
+  std::string header;
+  for (std::size_t i = 0; i < columns_.size(); ++i) header += (i ? "," : "") + columns_[i];
+  if (!options_.timeline) {
+    file_ = std::make_unique<AtomicFile>(path_);
+    file_->stream() << header << '\n';
+    return;
+  }
+  CreateParentFolders(path_);
+  live_ = std::make_unique<std::ofstream>(path_, std::ios::binary | std::ios::trunc);
+  if (!*live_) throw OutputError(path_, std::string("cannot open for writing: ") + std::strerror(errno));
+  WriteLine(kIncompleteMarker);
+  WriteLine(header);
+  header_end_ = static_cast<std::uint64_t>(live_->tellp());
+}
+
+CsvTable::~CsvTable() = default;  // a timeline keeps its marked prefix
+
+void CsvTable::WriteLine(const std::string& line) {
+  *live_ << line << '\n';
+  live_->flush();  // one row at a time: a killed run leaves whole rows
+  if (!*live_) throw OutputError(path_, "write error (disk full?)");
 }
 
 std::size_t CsvTable::ColumnIndex(std::string_view name) const {
@@ -91,31 +114,75 @@ void CsvTable::AddRow(const Row& row) {
   AddRow(row.cells_);
 }
 
-void CsvTable::AddRow(const std::vector<CsvCell>& cells) {
-  if (!file_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
-  if (cells.size() != columns_.size())
-    throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
-                                " has " + std::to_string(cells.size()) + " cells for " +
-                                std::to_string(columns_.size()) + " columns");
+std::string CsvTable::FormatRow(const std::vector<CsvCell>& cells, const std::vector<std::string>& names,
+                                std::size_t row) const {
+  if (cells.size() != names.size())
+    throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row + 1) + " has " +
+                                std::to_string(cells.size()) + " cells for " + std::to_string(names.size()) +
+                                " columns");
   std::string line;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (i) line += ',';
     try {
       line += cells[i].Format(options_.significant_digits);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
-                                  " column '" + columns_[i] + "': " + e.what() +
-                                  " (write CsvCell::Empty() for a missing value)");
+      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row + 1) + " column '" +
+                                  names[i] + "': " + e.what() + " (write CsvCell::Empty() for a missing value)");
     }
   }
-  file_->stream() << line << '\n';
+  return line;
+}
+
+void CsvTable::AddRow(const std::vector<CsvCell>& cells) {
+  if (!file_ && !live_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
+  const std::string line = FormatRow(cells, columns_, row_count_);
+  if (file_) {
+    file_->stream() << line << '\n';
+  } else {
+    WriteLine(line);
+    row_ends_.push_back(static_cast<std::uint64_t>(live_->tellp()));
+  }
   ++row_count_;
 }
 
 void CsvTable::Commit() {
-  if (!file_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
-  file_->Commit();
-  file_.reset();
+  if (!options_.hindsight_columns.empty())
+    throw std::logic_error("CSV table '" + path_ + "' has hindsight columns: commit with their cells");
+  Commit({});
+}
+
+void CsvTable::Commit(const std::function<std::vector<CsvCell>(std::size_t row)>& cells_of_row) {
+  if (!file_ && !live_) throw std::logic_error("CSV table '" + path_ + "' is already committed");
+  if (file_) {
+    file_->Commit();
+    file_.reset();
+    return;
+  }
+  live_->close();
+  live_.reset();
+  // The complete table replaces the marked prefix in one rename.
+  std::ifstream prefix(path_, std::ios::binary);
+  if (!prefix) throw OutputError(path_, "cannot reopen the timeline to complete it");
+  AtomicFile complete(path_);
+  std::ostream& out = complete.stream();
+  for (std::size_t i = 0; i < columns_.size(); ++i) out << (i ? "," : "") << columns_[i];
+  for (const std::string& name : options_.hindsight_columns) out << ',' << name;
+  out << '\n';
+  prefix.seekg(static_cast<std::streamoff>(header_end_));
+  std::uint64_t at = header_end_;
+  std::string text;
+  for (std::size_t r = 0; r < row_ends_.size(); ++r) {
+    text.resize(row_ends_[r] - at - 1);  // without the newline
+    prefix.read(text.data(), static_cast<std::streamsize>(text.size()));
+    prefix.get();
+    if (!prefix) throw OutputError(path_, "the timeline changed while it was being written");
+    at = row_ends_[r];
+    out << text;
+    if (!options_.hindsight_columns.empty())
+      out << ',' << FormatRow(cells_of_row(r), options_.hindsight_columns, r);
+    out << '\n';
+  }
+  complete.Commit();
 }
 
 CsvContents ReadCsv(const std::string& path) {
@@ -123,13 +190,25 @@ CsvContents ReadCsv(const std::string& path) {
   if (!in) throw InputError(path, 0, "", "cannot open CSV file");
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  std::string text = buffer.str();
 
   CsvContents contents;
+  long line = 1;
+  const std::string marker = std::string(kIncompleteMarker) + "\n";
+  if (text.compare(0, marker.size(), marker) == 0) {
+    contents.complete = false;
+    text.erase(0, marker.size());
+    line = 2;
+    // A writer killed mid-row leaves a last line without its newline.
+    if (!text.empty() && text.back() != '\n') {
+      const std::size_t last = text.rfind('\n');
+      text.erase(last == std::string::npos ? 0 : last + 1);
+      contents.dropped_partial_rows = 1;
+    }
+  }
   std::vector<std::string> record;
   std::string field;
-  long line = 1;
-  long record_line = 1;
+  long record_line = line;
   auto field_name = [&] { return "column " + std::to_string(record.size() + 1); };
   auto end_record = [&] {
     record.push_back(field);

@@ -60,25 +60,30 @@ void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose
   file.Commit();
 }
 
-void CheckGroundTruthMatches(const SensorTrace& trace, const GroundTruth& truth) {
-  if (truth.poses.size() != trace.scans.size())
+void CheckGroundTruthMatches(ScanSource& scans, const GroundTruth& truth) {
+  if (truth.poses.size() != scans.size())
     throw InputError(truth.source_path, 0, "poses",
                      std::to_string(truth.poses.size()) + " ground-truth poses for " +
-                         std::to_string(trace.scans.size()) + " laser records in '" + trace.source_path +
+                         std::to_string(scans.size()) + " laser records in '" + scans.source_path() +
                          "'; the files pair line by line");
-  for (std::size_t k = 0; k < trace.scans.size(); ++k) {
+  scans.Rewind();
+  LaserScan scan;
+  for (std::size_t k = 0; k < truth.poses.size() && scans.Next(scan); ++k) {
     const double t_truth = truth.poses[k].time_s;
-    const double t_scan = trace.scans[k].time_s;
-    if (std::abs(t_truth - t_scan) > kTimeTolerance_s) {
+    if (std::abs(t_truth - scan.time_s) > kTimeTolerance_s) {
       char times[96];
-      std::snprintf(times, sizeof times, "%.6f s, but laser record %zu has %.6f s", t_truth, k + 1,
-                    t_scan);
+      std::snprintf(times, sizeof times, "%.6f s, but laser record %zu has %.6f s", t_truth, k + 1, scan.time_s);
       const std::string text = "pose " + std::to_string(k + 1) + " has time " + times + " ('" +
-                               trace.source_path + "' line " +
-                               std::to_string(trace.scans[k].source_line) + ")";
+                               scans.source_path() + "' line " + std::to_string(scan.source_line) + ")";
       throw InputError(truth.source_path, truth.poses[k].source_line, "t", text);
     }
   }
+  scans.Rewind();
+}
+
+void CheckGroundTruthMatches(const SensorTrace& trace, const GroundTruth& truth) {
+  InMemoryScanSource scans(trace);
+  CheckGroundTruthMatches(scans, truth);
 }
 
 }  // namespace rc

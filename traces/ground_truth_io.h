@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/angles.h"
+#include "traces/scan_source.h"
 #include "traces/sensor_trace.h"
 
 namespace rc {
@@ -39,5 +40,7 @@ void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose
 // 1 us; RoWild traces have time 0 everywhere, so their ground truth must too).
 // Throws InputError naming the ground-truth file otherwise.
 void CheckGroundTruthMatches(const SensorTrace& trace, const GroundTruth& truth);
+// The same check over a stream; leaves it rewound to its first record.
+void CheckGroundTruthMatches(ScanSource& scans, const GroundTruth& truth);
 
 }  // namespace rc

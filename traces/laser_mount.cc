@@ -32,14 +32,16 @@ void LaserMountStats::Add(const LaserMountOffset& offset) {
 
 void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured,
                       double expected_forward_m, const LaserMountTolerance& tolerance,
-                      const std::string& position_field, const std::string& heading_field) {
-  char text[256];
+                      const std::string& position_field, const std::string& heading_field,
+                      const std::string& expected_source) {
+  char text[320];
   if (std::abs(measured.forward_m - expected_forward_m) > tolerance.position_m ||
       std::abs(measured.lateral_m) > tolerance.position_m) {
     std::snprintf(text, sizeof text,
                   "laser pose puts the laser %.6f m ahead and %.6f m left of the robot; expected "
-                  "%.6f m ahead on the heading axis (tolerance %.6f m)",
-                  measured.forward_m, measured.lateral_m, expected_forward_m, tolerance.position_m);
+                  "%.6f m ahead on the heading axis (%s; tolerance %.6f m)",
+                  measured.forward_m, measured.lateral_m, expected_forward_m, expected_source.c_str(),
+                  tolerance.position_m);
     reader.Fail(position_field, text);
   }
   if (std::abs(measured.heading_rad) > tolerance.heading_rad) {
@@ -49,6 +51,13 @@ void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured
                   measured.heading_rad, tolerance.heading_rad);
     reader.Fail(heading_field, text);
   }
+}
+
+double RoundMountOffset(double forward_m) {
+  // Dividing by the step count per metre (exactly 10000) keeps values such
+  // as 0.25 exact; multiplying by 1e-4 would not.
+  const double steps_per_m = std::round(1.0 / kMountResolutionM);
+  return std::round(forward_m * steps_per_m) / steps_per_m;
 }
 
 }  // namespace rc

@@ -40,9 +40,24 @@ struct LaserMountStats {
 
 // Throws InputError at the reader's current line unless `measured` is within
 // `tolerance` of a laser `expected_forward_m` ahead on the heading axis.
-// position_field / heading_field name the record's laser pose fields.
+// position_field / heading_field name the record's laser pose fields;
+// expected_source says where the expectation came from, for the message.
 void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured,
                       double expected_forward_m, const LaserMountTolerance& tolerance,
-                      const std::string& position_field, const std::string& heading_field);
+                      const std::string& position_field, const std::string& heading_field,
+                      const std::string& expected_source);
+
+// A log that records both poses states its own mount: the readers take it
+// from the first laser record, rounded to kMountResolutionM, and require
+// every record (the first included) to agree with it within the tolerance.
+// So a log of any robot is read, and only a mount that is inconsistent
+// within the file, or not on the heading axis, is refused.
+//
+// kMountResolutionM: 0.1 mm, range (0, 1 mm]. Source: logged poses jitter by
+// about 1e-8 m between records (CMU logs print 1e-6 cm), and 0.1 mm is a
+// thousandth of the 10 cm cells the ray casters step through; rounding makes
+// the Wean logs' 25.0000 +- 0.0001 cm mount exactly 0.25 m.
+inline constexpr double kMountResolutionM = 1e-4;
+double RoundMountOffset(double forward_m);
 
 }  // namespace rc

@@ -1,5 +1,6 @@
 #include "traces/record_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -34,20 +35,32 @@ float ParseRange(const LineReader& reader, std::string_view token, std::size_t b
 
 void LaserTimeOrder::Check(const LineReader& reader, double time_s, const std::string& field) {
   if (has_previous_ && time_s < previous_s_) {
-    char text[160];
-    std::snprintf(text, sizeof text, "time %.6f s is earlier than %.6f s of the laser record on line %ld",
-                  time_s, previous_s_, previous_line_);
-    reader.Fail(field, text);
+    const double step_s = previous_s_ - time_s;
+    if (!(step_s < kMaxClockGlitchS)) {
+      char text[220];
+      std::snprintf(text, sizeof text,
+                    "time %.6f s is %.6f s earlier than %.6f s of the laser record on line %ld (a step back "
+                    "of %.1f s or more is not a clock glitch)",
+                    time_s, step_s, previous_s_, previous_line_, kMaxClockGlitchS);
+      reader.Fail(field, text);
+    }
+    if (glitches_.count == 0) glitches_.first_line = reader.line_number();
+    ++glitches_.count;
+    glitches_.largest_step_s = std::max(glitches_.largest_step_s, step_s);
   }
   has_previous_ = true;
   previous_s_ = time_s;
   previous_line_ = reader.line_number();
 }
 
-void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind) {
-  if (trace.scans.empty())
-    throw InputError(trace.source_path, 0, record_kind,
+void RequireLaserRecords(const std::string& path, std::size_t count, const std::string& record_kind) {
+  if (count == 0)
+    throw InputError(path, 0, record_kind,
                      "the trace has no laser records (" + record_kind + "), nothing to localize with");
+}
+
+void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind) {
+  RequireLaserRecords(trace.source_path, trace.scans.size(), record_kind);
 }
 
 }  // namespace rc

@@ -34,20 +34,41 @@ float ParseRange(const LineReader& reader, std::string_view token, std::size_t b
                  double units_per_metre);
 
 // Laser records must be in time order: the motion model differences
-// consecutive records, and a backwards step means a spliced or corrupt log.
+// consecutive records, and a step far back means a spliced or corrupt log.
 // Equal times are allowed (RoWild logs have no timestamps at all).
+//
+// A small step back is a clock glitch of a real log, not corruption: the
+// Intel Research Lab's corrected CARMEN log steps back by 0.1 s once. Such a
+// record is kept as logged (the motion model uses poses, not times) and
+// counted; the command line prints the count as a warning. Only a step back
+// of kMaxClockGlitchS or more is an InputError.
+//
+// kMaxClockGlitchS: 0.5 s, range (0, 1] s. Source: five times the Intel log's
+// 0.1 s glitch, and several scan periods of any 2D laser logged here (SICK
+// LMS at 5-75 Hz), so a larger step cannot be timestamp jitter of one scan.
+inline constexpr double kMaxClockGlitchS = 0.5;
+
+struct TimeGlitchStats {
+  long count = 0;              // laser records earlier than the one before
+  double largest_step_s = 0.0; // the largest such step back (s)
+  long first_line = 0;         // 1-based line of the first one (0: none)
+};
+
 class LaserTimeOrder {
  public:
   void Check(const LineReader& reader, double time_s, const std::string& field);
+  const TimeGlitchStats& glitches() const { return glitches_; }
 
  private:
   bool has_previous_ = false;
   double previous_s_ = 0.0;
   long previous_line_ = 0;
+  TimeGlitchStats glitches_;
 };
 
 // A trace without laser records cannot drive MCL: throws InputError for the
 // whole file (line 0) naming the record kind that was missing.
 void RequireLaserRecords(const SensorTrace& trace, const std::string& record_kind);
+void RequireLaserRecords(const std::string& path, std::size_t count, const std::string& record_kind);
 
 }  // namespace rc

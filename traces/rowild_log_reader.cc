@@ -21,35 +21,41 @@ std::string FieldName(std::size_t i) {
 
 }  // namespace
 
+RowildLogStream::RowildLogStream(const std::string& path)
+    : in_(path), reader_(in_, path), geometry_(CmuLaserGeometry()) {
+  if (!in_) throw InputError(path, 0, "", "cannot open trace file");
+}
+
+bool RowildLogStream::Next(LaserScan& scan) {
+  std::string line;
+  while (reader_.Next(line)) {
+    const auto fields = SplitFields(line);
+    if (fields.empty()) continue;
+    RequireFieldCount(reader_, fields.size(), kRecordFields, FieldName, kLayout);
+    scan.source_line = reader_.line_number();
+    scan.time_s = 0.0;  // the format has no timestamps (see header)
+    scan.odometry.x = CentimetresToMetres(reader_.ParseDouble(fields[0], "x"));
+    scan.odometry.y = CentimetresToMetres(reader_.ParseDouble(fields[1], "y"));
+    scan.odometry.theta = reader_.ParseDouble(fields[2], "theta");
+    scan.ranges_m.resize(kBeams);
+    for (std::size_t b = 0; b < kBeams; ++b)
+      scan.ranges_m[b] = ParseRange(reader_, fields[kPoseFields + b], b, 100.0);
+    ++stats_.laser_records;
+    return true;
+  }
+  return false;
+}
+
 SensorTrace ReadRowildLog(const std::string& path, TraceReadStats* stats) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "", "cannot open trace file");
-  LineReader reader(in, path);
+  RowildLogStream stream(path);
   SensorTrace trace;
   trace.source_path = path;
   trace.format = "rowild";
-  trace.geometry = CmuLaserGeometry();
-
-  std::string line;
-  while (reader.Next(line)) {
-    const auto fields = SplitFields(line);
-    if (fields.empty()) continue;
-    RequireFieldCount(reader, fields.size(), kRecordFields, FieldName, kLayout);
-    LaserScan scan;
-    scan.source_line = reader.line_number();
-    scan.time_s = 0.0;  // the format has no timestamps (see header)
-    scan.odometry.x = CentimetresToMetres(reader.ParseDouble(fields[0], "x"));
-    scan.odometry.y = CentimetresToMetres(reader.ParseDouble(fields[1], "y"));
-    scan.odometry.theta = reader.ParseDouble(fields[2], "theta");
-    scan.ranges_m.resize(kBeams);
-    for (std::size_t b = 0; b < kBeams; ++b)
-      scan.ranges_m[b] = ParseRange(reader, fields[kPoseFields + b], b, 100.0);
-    trace.scans.push_back(std::move(scan));
-  }
+  trace.geometry = stream.geometry();
+  LaserScan scan;
+  while (stream.Next(scan)) trace.scans.push_back(std::move(scan));
   RequireLaserRecords(trace, "laser records");
-  TraceReadStats local_stats;
-  local_stats.laser_records = static_cast<long>(trace.scans.size());
-  if (stats) *stats = local_stats;
+  if (stats) *stats = stream.stats();
   return trace;
 }
 

@@ -11,8 +11,11 @@
 // odometry motion model uses pose differences only, so MCL is unaffected;
 // anything that needs real time (timeline plots against seconds) must use the
 // CMU log instead, or plot against the record index.
+#include <fstream>
 #include <string>
 
+#include "common/text_fields.h"
+#include "traces/laser_record_stream.h"
 #include "traces/sensor_trace.h"
 #include "traces/trace_read_stats.h"
 
@@ -22,5 +25,21 @@ namespace rc {
 // fields, a non-numeric, NaN or inf value, a negative range, or a file with no
 // records. Blank lines are skipped; nothing is repaired.
 SensorTrace ReadRowildLog(const std::string& path, TraceReadStats* stats = nullptr);
+
+// The same reader, one record at a time.
+class RowildLogStream final : public LaserRecordStream {
+ public:
+  // Throws InputError if the file cannot be opened.
+  explicit RowildLogStream(const std::string& path);
+  bool Next(LaserScan& scan) override;
+  const LaserGeometry& geometry() const override { return geometry_; }
+  const TraceReadStats& stats() const override { return stats_; }
+
+ private:
+  std::ifstream in_;
+  LineReader reader_;
+  LaserGeometry geometry_;
+  TraceReadStats stats_;
+};
 
 }  // namespace rc

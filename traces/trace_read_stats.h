@@ -2,6 +2,7 @@
 // What a trace reader saw besides the laser scans it returns, so the command
 // line can report it and tests can check it.
 #include "traces/laser_mount.h"
+#include "traces/record_fields.h"
 
 namespace rc {
 
@@ -13,6 +14,9 @@ struct TraceReadStats {
   // Laser pose relative to the robot, measured on every record of a format
   // that logs both poses (CMU L, CARMEN FLASER/ROBOTLASER1); empty otherwise.
   LaserMountStats laser_mount;
+  // Laser records whose time steps back by less than kMaxClockGlitchS
+  // (record_fields.h): kept as logged, reported as a warning.
+  TimeGlitchStats time_glitches;
 };
 
 }  // namespace rc

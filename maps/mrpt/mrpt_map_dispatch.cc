@@ -41,15 +41,16 @@ LoadedMapWithOrigin LoadMapWithMrpt(const std::string& path, const MapLoadOption
     return out;
   }
   Reject(options.convention.has_value(), "value convention", format + " (MRPT cells are P(free) by definition)");
-  Reject(options.image_thresholds.has_value(), "image thresholds", format);
+  const ProbabilityThresholds thresholds = ThresholdsFrom(options);
   MrptGridMap mrpt;
   if (format == "gridmap") {
     Reject(options.resolution_m.has_value(), "resolution", "gridmap (the file declares it)");
-    mrpt = LoadMrptGridmap(path);
+    mrpt = LoadMrptGridmap(path, thresholds);
   } else {
-    mrpt = LoadMrptSimplemap(path, options.resolution_m.value_or(kSimplemapDefaultResolution_m));
+    mrpt = LoadMrptSimplemap(path, options.resolution_m.value_or(kSimplemapDefaultResolution_m), thresholds);
   }
   out.map.format = format;
+  out.map.cell_classes = mrpt.cell_classes;
   out.map.value_convention = DescribeMrptGridMap(mrpt);
   out.map.grid = std::move(mrpt.grid);
   out.origin_x_m = mrpt.x_min_m;

@@ -25,7 +25,9 @@
 // unchanged. x_min / y_min are returned so callers can convert poses.
 #include <string>
 
+#include "maps/cell_classes.h"
 #include "maps/occupancy_grid.h"
+#include "maps/value_convention.h"
 
 namespace mrpt::maps {
 class COccupancyGridMap2D;  // declared only: this header stays free of MRPT
@@ -37,6 +39,8 @@ struct MrptGridMap {
   OccupancyGrid grid;
   double x_min_m = 0.0;  // MRPT world x of our map frame's origin
   double y_min_m = 0.0;  // MRPT world y of our map frame's origin
+  ProbabilityThresholds thresholds;  // the ones applied to P(occupied)
+  CellClassCounts cell_classes;
 };
 
 // Default cell size for grids built from a .simplemap (MRPT's
@@ -45,8 +49,11 @@ inline constexpr double kSimplemapDefaultResolution_m = 0.06;
 
 // Throw InputError naming the file for a missing, empty, corrupt or
 // truncated archive, an archive of another class, or an empty grid.
-MrptGridMap LoadMrptGridmap(const std::string& path);
-MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m = kSimplemapDefaultResolution_m);
+// The grid's size is checked against grid_size_limits.h before our copy
+// is allocated.
+MrptGridMap LoadMrptGridmap(const std::string& path, const ProbabilityThresholds& thresholds = {});
+MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m = kSimplemapDefaultResolution_m,
+                              const ProbabilityThresholds& thresholds = {});
 
 // Writes the grid as a (gzip-compressed) .gridmap with its origin at
 // (x_min_m, y_min_m): free 1.0, occupied 0.0, unknown 0.5 as P(free). For

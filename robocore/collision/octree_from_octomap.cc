@@ -7,6 +7,7 @@
 #include <octomap/OcTree.h>
 
 #include "common/input_error.h"
+#include "robocore/collision/octomap_file_check.h"
 
 namespace rc {
 namespace {
@@ -94,6 +95,9 @@ BoxTree BuildOctreeFromOctoMap(const octomap::OcTree& tree) {
 BoxTree LoadOctoMapFile(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "", "file not found");
   const std::string ext = std::filesystem::path(path).extension().string();
+  // The checked node stream bounds OctoMap's nodes by the file's size (at
+  // most eight children of about 100 bytes per two bytes of stream).
+  if (ext == ".bt" || ext == ".ot") CheckOctoMapFile(path, ext == ".bt");
   if (ext == ".bt") {
     octomap::OcTree tree(0.1);  // the resolution is replaced by the file's
     if (!tree.readBinary(path)) throw InputError(path, 0, "", "not a readable OctoMap binary (.bt) file");

@@ -87,6 +87,7 @@ TEST(BackendParameters, InvalidValuesAndBadJson) {
   ParseError(R"({"robocore": {"sact_latency_scale": -1}})");
   ParseError(R"({"gpu": {"l1_bytes": 100}})");  // not a multiple of the line
   ParseError(R"({"gpu": )");
+  ParseError(R"({"gpu": {"sms": 888E888888}})");  // number overflow: out_of_range, not parse_error
   ParseError(R"([1, 2])");
   EXPECT_THROW(LoadBackendParameters("/nonexistent/params.json"), InputError);
 }

@@ -89,6 +89,9 @@ TEST(MicroProgramParser, WidthAxisAndLoadRules) {
   EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  CROSS.1 a, b, c\n").field(), "width");
   EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  BOX s, f, 6\n").field(), "axis");
   EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  EDGE s, f, x\n").field(), "axis");
+  // An axis too long for a long (a tests/fuzz finding: std::stol threw
+  // std::out_of_range past the parser).
+  EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  BOX s, f, 99999999999999999999\n").field(), "axis");
   EXPECT_EQ(ParseError("  ADD a, b, c\n").field(), "opcode");  // before any label
   EXPECT_EQ(ParseError("prologue:\n  LOAD c, p\nloop:\n  LOAD c, p\n").line(), 2);
   EXPECT_EQ(ParseError("loop:\n  ADD a, b, c\n").field(), "loop");  // no LOAD

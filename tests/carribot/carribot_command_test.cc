@@ -1,6 +1,6 @@
 // `rcbench carribot` end to end, in process: the command is registered on a
 // fresh CLI11 app and run like main() does, mapping exceptions to exit codes
-// 1 (InputError) and 2 (UsageError, CLI11 parse errors). Exit code 3 leaves
+// with common/exit_codes.h (1 InputError, 2 UsageError and CLI11 parse errors). Exit code 3 leaves
 // through std::exit, so those cases are death tests (the child process writes
 // its outputs before exiting; the parent then reads them).
 #include <gtest/gtest.h>
@@ -11,6 +11,8 @@
 
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
+
+#include "common/exit_codes.h"
 
 #include "common/input_error.h"
 #include "maps/map_test_util.h"
@@ -32,11 +34,9 @@ int RunCarribot(std::vector<std::string> args) {
   try {
     app.parse(static_cast<int>(argv.size()), argv.data());
   } catch (const CLI::ParseError&) {
-    return 2;
-  } catch (const UsageError&) {
-    return 2;
-  } catch (const InputError&) {
-    return 1;
+    return ToInt(ExitCode::kUsage);
+  } catch (...) {
+    return ToInt(ReportException(std::current_exception(), std::cerr));  // main()'s table
   }
   return 0;
 }

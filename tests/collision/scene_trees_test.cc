@@ -170,5 +170,27 @@ TEST(OctreeFromOctoMap, LoadsBtAndOtFiles) {
   std::filesystem::remove(wrong);
 }
 
+// Findings of tests/fuzz: OctoMap reads the node stream by unbounded
+// recursion, and a truncated stream leaves its child mask uninitialized.
+TEST(OctreeFromOctoMapBadInput, NodeStreamDeeperThanAnOcTreeOrTruncated) {
+  const std::string header =
+      "# Octomap OcTree binary file\n# (comment)\nid OcTree\nsize 3\nres 0.1\ndata\n";
+  const std::string deep = TempPath("deep.bt");
+  std::ofstream(deep, std::ios::binary) << header << std::string(200, '\xff');  // every child an inner node
+  try {
+    LoadOctoMapFile(deep);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "data");
+    EXPECT_NE(std::string(e.what()).find("deeper than an OcTree's 16 levels"), std::string::npos);
+  }
+  const std::string cut = TempPath("cut.bt");
+  std::ofstream(cut, std::ios::binary) << header << std::string(1, '\x03');
+  EXPECT_THROW(LoadOctoMapFile(cut), InputError);
+  const std::string other = TempPath("color.ot");
+  std::ofstream(other, std::ios::binary) << "# Octomap OcTree file\nid ColorOcTree\nres 0.1\ndata\n";
+  EXPECT_THROW(LoadOctoMapFile(other), InputError);
+}
+
 }  // namespace
 }  // namespace rc

@@ -123,7 +123,7 @@ TEST(MapLoader, OptionsThatDoNotApplyAreRejected) {
   o.convention = ValueConvention::kProbabilityFree;
   EXPECT_THROW(LoadMap(map, o), UsageError);
   o = {};
-  o.image_thresholds = PixelThresholds{};
+  o.occupied_thresh = 0.65;
   EXPECT_THROW(LoadMap(map, o), UsageError);
   o = {};
   o.format = "octomap";

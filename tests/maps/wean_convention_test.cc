@@ -70,5 +70,26 @@ TEST_F(WeanConvention, PoccupiedPutsWallsInTheCorridorAndNoOpenSpaceRemains) {
   EXPECT_GT(as_free_->CountCells(CellState::kFree), 2 * g.CountCells(CellState::kFree));
 }
 
+// The map line's cell classes: most of what wean.dat observed lies between
+// ROS's thresholds (the unexplored halo, ../shared/data/README.md), which a
+// user now sees, and can move with --occupied-thresh / --free-thresh.
+TEST(WeanCellClasses, MostObservedCellsLieBetweenTheThresholds) {
+  RC_REQUIRE_SHARED_DATA("wean/wean.dat");
+  CellClassCounts counts;
+  LoadCmuMap(test::SharedDataPath("wean/wean.dat"), {}, &counts);
+  EXPECT_EQ(counts.Total(), 640000u);
+  EXPECT_EQ(counts.Of(CellClass::kFree), 48332u);
+  EXPECT_EQ(counts.Of(CellClass::kOccupied), 20224u);
+  EXPECT_EQ(counts.Of(CellClass::kBetweenThresholds), 105301u);
+  EXPECT_EQ(counts.Of(CellClass::kUnobserved), 466143u);
+  EXPECT_NE(counts.Describe().find("60.6% of observed"), std::string::npos) << counts.Describe();
+  // A free threshold above the halo's P(occupied) 0.20-0.35 turns it free.
+  CmuMapOptions wide;
+  wide.thresholds.free_thresh = 0.36;
+  CellClassCounts widened;
+  LoadCmuMap(test::SharedDataPath("wean/wean.dat"), wide, &widened);
+  EXPECT_GT(widened.Of(CellClass::kFree), counts.Of(CellClass::kFree) + counts.Of(CellClass::kBetweenThresholds) / 2);
+}
+
 }  // namespace
 }  // namespace rc

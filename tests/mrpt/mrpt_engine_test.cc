@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/input_error.h"
 #include "delibot/synthetic_world.h"
 #include "maps/mrpt/mrpt_map_dispatch.h"
 #include "mrpt/mrpt_test_data.h"
@@ -80,7 +81,8 @@ TEST(MrptEngine, RefusesOptionsOnlyOurFilterHas) {
   ours[2].mcl.max_particle_count = 3000;
   ours[3].mcl.injection_check_updates = 10;
   for (std::size_t k = 0; k < ours.size(); ++k) {
-    EXPECT_THROW(RunDelibotEngine(DelibotEngine::kMrpt, g, run.trace, &run.truth, ours[k]), std::invalid_argument)
+    // A UsageError: the command line exits with 2 (common/exit_codes.h).
+    EXPECT_THROW(RunDelibotEngine(DelibotEngine::kMrpt, g, run.trace, &run.truth, ours[k]), UsageError)
         << "settings " << k;
     // Our engine runs them.
     DelibotSettings short_run = ours[k];

@@ -1,6 +1,7 @@
 // MRPT .gridmap / .simplemap input: the value convention and the frame
 // offset checked against MRPT's own API, MRPT's example maps, and the bad
 // archives that must become InputErrors.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -138,6 +139,58 @@ TEST(MrptMapLoader, CorruptAndTruncatedMapsAreInputErrors) {
   EXPECT_THROW(LoadMrptGridmap(TempPath("missing.gridmap")), InputError);
   std::filesystem::remove(whole);
   std::filesystem::remove(cut);
+}
+
+// ---- Findings of tests/fuzz (their inputs are in tests/fuzz/corpus). ----
+
+std::string WriteBytes(const std::string& name, const std::string& bytes) {
+  const std::string path = TempPath(name);
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+std::string Uint32(std::uint32_t v) {
+  return std::string{static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+                     static_cast<char>((v >> 16) & 0xFF), static_cast<char>((v >> 24) & 0xFF)};
+}
+
+std::string ObjectHead(const std::string& class_name, int version) {
+  return std::string(1, static_cast<char>(0x80 | class_name.size())) + class_name +
+         std::string(1, static_cast<char>(version));
+}
+
+template <typename Load>
+std::string InputErrorText(Load&& load) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+// zlib reports a corrupt stream as -1, which reached the reader as SIZE_MAX
+// bytes read (an out-of-bounds copy).
+TEST(MrptArchiveBadInput, CorruptGzipStream) {
+  const std::string path = WriteBytes("corrupt.gridmap.gz", std::string("\x1f\x8b\x08\x00", 4) + std::string(60, '\x7f'));
+  EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(path); }).find("corrupt gzip stream"), std::string::npos);
+}
+
+// MRPT allocated the keyframe count of the header before finding the file
+// too short: minutes of allocation for 79 bytes.
+TEST(MrptArchiveBadInput, SimplemapClaimingMoreKeyframesThanBytes) {
+  const std::string path =
+      WriteBytes("huge.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 1) + Uint32(1000000000) + std::string(40, '\0'));
+  EXPECT_NE(InputErrorText([&] { LoadMrptSimplemap(path); }).find("1000000000 keyframes"), std::string::npos);
+}
+
+TEST(MrptArchiveBadInput, GridmapDeclaringMoreCellsThanItHolds) {
+  const std::string head = ObjectHead("mrpt::maps::COccupancyGridMap2D", 6) + std::string(1, '\x08');
+  const std::string big = WriteBytes("big.gridmap", head + Uint32(100000) + Uint32(100000) + std::string(64, '\0'));
+  EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(big); }).find("100000 x 100000 cells"), std::string::npos);
+  const std::string cut = WriteBytes("cut.gridmap", head + Uint32(1000) + Uint32(1000) + std::string(64, '\0'));
+  EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(cut); }).find("corrupt or truncated gridmap"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // MRPT .rawlog input: MRPT's own example log, both rawlog forms, and the
 // corrupt and truncated archives that must become InputErrors.
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -145,6 +146,27 @@ TEST(MrptRawlogReader, TruncatedArchivesAreInputErrors) {
   }
   std::filesystem::remove(path);
   std::filesystem::remove(cut);
+}
+
+// A tests/fuzz finding: MRPT dereferences a null pose PDF when a
+// CActionRobotMovement2D names an estimation method it does not know.
+TEST(MrptRawlogReader, UnknownEstimationMethodIsAnInputErrorNotACrash) {
+  const std::string path = TempPath("method.rawlog");
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
+  std::vector<char> bytes = ReadBytes(path);
+  const std::string head = std::string(1, static_cast<char>(0xa1)) + "mrpt::obs::CActionRobotMovement2D";
+  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
+  ASSERT_NE(at, bytes.end());
+  ASSERT_EQ(at[static_cast<long>(head.size())], 7);  // the version this layout is known for
+  at[static_cast<long>(head.size()) + 1] = 5;       // estimationMethod = 5
+  WriteBytes(path, bytes);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "estimationMethod");
+  }
+  std::filesystem::remove(path);
 }
 
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {

@@ -11,6 +11,7 @@
 #include "test_data.h"
 #include "trace_test_util.h"
 #include "traces/cmu_laser_geometry.h"
+#include "traces/record_fields.h"
 
 namespace rc {
 namespace {
@@ -22,13 +23,15 @@ using test::ScratchDir;
 struct CmuLaserLine {
   double x_cm = 100.0, y_cm = 200.0, theta = 0.5, ts = 1.0;
   double laser_offset_cm = 25.0;
+  double laser_lateral_cm = 0.0;  // left of the heading axis
   double laser_theta_offset = 0.0;
   std::vector<std::string> ranges = std::vector<std::string>(180, "300");
 
   std::string Text() const {
     char head[256];
     std::snprintf(head, sizeof head, "L %.6f %.6f %.6f %.6f %.6f %.6f", x_cm, y_cm, theta,
-                  x_cm + laser_offset_cm * std::cos(theta), y_cm + laser_offset_cm * std::sin(theta),
+                  x_cm + laser_offset_cm * std::cos(theta) - laser_lateral_cm * std::sin(theta),
+                  y_cm + laser_offset_cm * std::sin(theta) + laser_lateral_cm * std::cos(theta),
                   theta + laser_theta_offset);
     std::string line = head;
     for (const std::string& r : ranges) line += " " + r;
@@ -197,15 +200,67 @@ TEST(CmuLogReaderBadInput, TimeGoesBackwards) {
   ExpectInputError([&] { ReadCmuLog(path); }, path, 2, "ts");
 }
 
-TEST(CmuLogReaderBadInput, LaserPoseContradictsMount) {
+// A clock glitch of a real log (the Intel corrected log steps back 0.1 s)
+// is read as logged and counted, not refused (record_fields.h).
+TEST(CmuLogReader, SmallStepBackInTimeIsACountedGlitch) {
+  ScratchDir dir;
+  CmuLaserLine a, b, c, d;
+  a.ts = 5.0;
+  b.ts = 5.2;
+  c.ts = 5.1;  // 0.1 s back
+  d.ts = 5.05; // 0.05 s back again
+  const std::string path = dir.Write("glitch.log", a.Text() + b.Text() + c.Text() + d.Text());
+  TraceReadStats stats;
+  const SensorTrace trace = ReadCmuLog(path, {}, &stats);
+  ASSERT_EQ(trace.scans.size(), 4u);
+  EXPECT_DOUBLE_EQ(trace.scans[2].time_s, 5.1);  // kept as logged
+  EXPECT_EQ(stats.time_glitches.count, 2);
+  EXPECT_NEAR(stats.time_glitches.largest_step_s, 0.1, 1e-9);
+  EXPECT_EQ(stats.time_glitches.first_line, 3);
+  // Just under the limit is still a glitch; the limit itself is an error.
+  CmuLaserLine e;
+  e.ts = 5.2 - kMaxClockGlitchS;
+  ExpectInputError([&] { ReadCmuLog(dir.Write("limit.log", a.Text() + b.Text() + e.Text())); },
+                   dir.Path("limit.log"), 3, "ts");
+}
+
+// A log of another robot states its own mount in every record: it is
+// measured from the laser poses, as CARMEN's reader does, and read.
+TEST(CmuLogReader, AnotherRobotsMountIsMeasuredFromTheLaserPoses) {
+  ScratchDir dir;
+  CmuLaserLine l, m;
+  l.laser_offset_cm = m.laser_offset_cm = 20.0;
+  m.x_cm = 110.0;
+  m.theta = 0.7;
+  m.ts = 1.1;
+  const std::string path = dir.Write("mount20.log", l.Text() + m.Text());
+  TraceReadStats stats;
+  const SensorTrace trace = ReadCmuLog(path, {}, &stats);
+  EXPECT_DOUBLE_EQ(trace.geometry.offset_forward_m, 0.20);  // rounded to kMountResolutionM
+  EXPECT_EQ(stats.laser_mount.samples, 2);
+  CmuLogOptions other_robot;
+  other_robot.laser_offset_forward_m = 0.30;  // --laser-offset overrides the file
+  EXPECT_DOUBLE_EQ(ReadCmuLog(path, other_robot).geometry.offset_forward_m, 0.30);
+}
+
+TEST(CmuLogReaderBadInput, MountInconsistentWithinTheFile) {
+  ScratchDir dir;
+  CmuLaserLine l, m;
+  m.laser_offset_cm = 30.0;  // 5 cm more than the first record's
+  m.ts = 1.1;
+  const std::string path = dir.Write("mount.log", l.Text() + m.Text());
+  ExpectInputError([&] { ReadCmuLog(path); }, path, 2, "xl/yl");
+  CmuLogOptions given;
+  given.laser_offset_forward_m = 0.25;  // an override does not use the logged poses
+  EXPECT_DOUBLE_EQ(ReadCmuLog(path, given).geometry.offset_forward_m, 0.25);
+}
+
+TEST(CmuLogReaderBadInput, LaserOffTheHeadingAxis) {
   ScratchDir dir;
   CmuLaserLine l;
-  l.laser_offset_cm = 30.0;
-  const std::string path = dir.Write("mount.log", l.Text());
+  l.laser_lateral_cm = 3.0;  // LaserGeometry models a forward offset only
+  const std::string path = dir.Write("sideways.log", l.Text());
   ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "xl/yl");
-  CmuLogOptions other_robot;
-  other_robot.laser_offset_forward_m = 0.30;
-  EXPECT_DOUBLE_EQ(ReadCmuLog(path, other_robot).geometry.offset_forward_m, 0.30);
 }
 
 TEST(CmuLogReaderBadInput, RotatedLaser) {

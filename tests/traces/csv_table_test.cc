@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -135,6 +137,71 @@ TEST(ReadCsvBadInput, EmptyFile) {
   ScratchDir dir;
   const std::string path = dir.Write("t.csv", "");
   ExpectInputError([&] { ReadCsv(path); }, path, 0, "header");
+}
+
+// ---- Timeline mode: a marked prefix while the run goes. ----
+
+std::string FileText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(CsvTimeline, RowsAreInTheFileAsTheyComeUnderTheMarker) {
+  ScratchDir dir;
+  const std::string path = dir.Path("out/sub/t.csv");  // folders made on demand
+  CsvTableOptions options;
+  options.timeline = true;
+  CsvTable table(path, {"i", "x_m"}, options);
+  table.AddRow({0, 1.5});
+  table.AddRow({1, 2.5});
+  // Not committed: what a killed run leaves.
+  EXPECT_EQ(FileText(path), std::string(kIncompleteMarker) + "\ni,x_m\n0,1.5\n1,2.5\n");
+  const CsvContents prefix = ReadCsv(path);
+  EXPECT_FALSE(prefix.complete);
+  EXPECT_EQ(prefix.header, (std::vector<std::string>{"i", "x_m"}));
+  EXPECT_EQ(prefix.rows.size(), 2u);
+  table.Commit();
+  EXPECT_EQ(FileText(path), "i,x_m\n0,1.5\n1,2.5\n");
+  EXPECT_TRUE(ReadCsv(path).complete);
+}
+
+TEST(CsvTimeline, HindsightColumnsAreAddedAtCommit) {
+  ScratchDir dir;
+  CsvTableOptions options;
+  options.timeline = true;
+  options.hindsight_columns = {"oracle"};
+  CsvTable table(dir.Path("t.csv"), {"i", "note"}, options);
+  table.AddRow({0, "a,b"});  // a quoted cell
+  table.AddRow({1, "line\nbreak"});  // a quoted newline: rows are found by offset, not by line
+  EXPECT_THROW(table.Commit(), std::logic_error);
+  table.Commit([](std::size_t row) { return std::vector<CsvCell>{static_cast<int>(10 * row)}; });
+  const CsvContents t = ReadCsv(dir.Path("t.csv"));
+  EXPECT_EQ(t.header, (std::vector<std::string>{"i", "note", "oracle"}));
+  ASSERT_EQ(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows[0], (std::vector<std::string>{"0", "a,b", "0"}));
+  EXPECT_EQ(t.rows[1], (std::vector<std::string>{"1", "line\nbreak", "10"}));
+}
+
+TEST(CsvTimeline, AFailedRunLeavesTheMarkedPrefix) {
+  ScratchDir dir;
+  CsvTableOptions options;
+  options.timeline = true;
+  {
+    CsvTable table(dir.Path("t.csv"), {"i"}, options);
+    table.AddRow({0});
+  }
+  EXPECT_FALSE(ReadCsv(dir.Path("t.csv")).complete);
+  EXPECT_EQ(ReadCsv(dir.Path("t.csv")).rows.size(), 1u);
+}
+
+TEST(ReadCsv, APrefixCutMidRowDropsTheCutRow) {
+  ScratchDir dir;
+  const CsvContents t = ReadCsv(dir.Write("t.csv", std::string(kIncompleteMarker) + "\na,b\n1,2\n3,"));
+  EXPECT_FALSE(t.complete);
+  EXPECT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(t.dropped_partial_rows, 1);
+  // Without the marker the same cut is an error: a complete table is never cut.
+  EXPECT_THROW(ReadCsv(dir.Write("u.csv", "a,b\n1,2\n3\n")), InputError);
 }
 
 }  // namespace

@@ -96,5 +96,73 @@ TEST(ReadTrace, RealLogsByAutoDetection) {
   EXPECT_EQ(ReadTrace(test::SharedDataPath("wean/rowild_log1.txt"), options).format, "rowild");
 }
 
+// ---- Streaming: the same records as ReadTrace, one at a time. ----
+
+std::string CmuLaser(double ts, double x_cm) {
+  return "L " + std::to_string(x_cm) + " 200 0 " + std::to_string(x_cm + 25) + " 200 0" + Repeat("300", 180) +
+         " " + std::to_string(ts) + "\n";
+}
+
+TEST(OpenTraceStream, ServesTheRecordsReadTraceReturns) {
+  ScratchDir dir;
+  std::string text;
+  for (int k = 0; k < 5; ++k) text += "O 1 2 0 " + std::to_string(k) + "\n" + CmuLaser(k + 0.5, 100 + k);
+  const std::string path = dir.Write("five.log", text);
+  const SensorTrace whole = ReadTrace(path, {});
+  TraceReadStats stats;
+  std::unique_ptr<ScanSource> stream = OpenTraceStream(path, {}, &stats);
+  EXPECT_EQ(stream->size(), 5u);
+  EXPECT_EQ(stream->format(), "cmu");
+  EXPECT_EQ(stream->geometry().offset_forward_m, whole.geometry.offset_forward_m);
+  EXPECT_EQ(stats.laser_records, 5);
+  EXPECT_EQ(stats.odometry_records, 5);
+  for (int pass = 0; pass < 2; ++pass) {
+    LaserScan scan;
+    for (const LaserScan& expected : whole.scans) {
+      ASSERT_TRUE(stream->Next(scan));
+      EXPECT_EQ(scan.time_s, expected.time_s);
+      EXPECT_EQ(scan.source_line, expected.source_line);
+      EXPECT_EQ(scan.odometry.x, expected.odometry.x);
+      EXPECT_EQ(scan.ranges_m, expected.ranges_m);
+    }
+    EXPECT_FALSE(stream->Next(scan));
+    stream->Rewind();
+  }
+}
+
+// Every bad-input error comes when the stream is opened, before a run has
+// taken (or written) anything.
+TEST(OpenTraceStream, ValidatesTheWholeFileWhenOpened) {
+  ScratchDir dir;
+  const std::string path =
+      dir.Write("bad.log", CmuLaser(1, 100) + CmuLaser(2, 101) + "L 102 200 nan 127 200 0" + Repeat("300", 180) + " 3\n");
+  ExpectInputError([&] { OpenTraceStream(path, {}); }, path, 3, "theta");
+  const std::string empty = dir.Write("empty.log", "O 1 2 0 1\n");
+  ExpectInputError([&] { OpenTraceStream(empty, {}); }, empty, 0, "L records");
+}
+
+TEST(OpenTraceStream, AFileThatChangesWhileReadIsAnInputError) {
+  ScratchDir dir;
+  const std::string path = dir.Write("grow.log", CmuLaser(1, 100) + CmuLaser(2, 101));
+  std::unique_ptr<ScanSource> stream = OpenTraceStream(path, {});
+  dir.Write("grow.log", CmuLaser(1, 100) + CmuLaser(2, 101) + CmuLaser(3, 102));
+  stream->Rewind();
+  LaserScan scan;
+  ASSERT_TRUE(stream->Next(scan));
+  ASSERT_TRUE(stream->Next(scan));
+  EXPECT_THROW(stream->Next(scan), InputError);
+}
+
+TEST(OpenTraceStream, LaserOffsetOverridesEveryFormat) {
+  ScratchDir dir;
+  TraceReadOptions options;
+  options.laser_offset_forward_m = 0.4;
+  EXPECT_EQ(OpenTraceStream(dir.Write("a.log", kCmuLaser), options)->geometry().offset_forward_m, 0.4);
+  EXPECT_EQ(OpenTraceStream(dir.Write("b.txt", kRowild), options)->geometry().offset_forward_m, 0.4);
+  EXPECT_EQ(ReadTrace(dir.Write("c.clf", kFlaser361), options).geometry.offset_forward_m, 0.4);
+  options.laser_offset_forward_m = -1.0;
+  EXPECT_THROW(OpenTraceStream(dir.Path("a.log"), options), UsageError);
+}
+
 }  // namespace
 }  // namespace rc

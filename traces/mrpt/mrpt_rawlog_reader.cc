@@ -19,6 +19,8 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include "common/input_error.h"
+#include "common/allocation_budget.h"
+#include "common/memory_cap.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
 namespace rc {
@@ -226,11 +228,14 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
   TraceReadStats& s = stats ? *stats : local_stats;
   s = TraceReadStats{};
   const std::vector<unsigned char> bytes = ReadArchiveBytes(path, "rawlog");
+  CheckMrptCrashFields(bytes, path, "rawlog");
   mrpt::io::CMemoryStream memory;
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
   RawlogParser parser(path, options, s);
   std::size_t entry = 0;
+  // MRPT sizes each object's buffers from the counts it declares.
+  const std::uint64_t budget = ParseBudgetBytes(bytes.size());
   // Read object by object: MRPT's CRawlog helpers report a corrupt archive
   // as a silent end of file, which would turn a truncated log into a
   // shorter valid one. Here the only clean end is the last byte.
@@ -238,11 +243,15 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
     const std::uint64_t offset = memory.getPosition();
     mrpt::serialization::CSerializable::Ptr object;
     try {
-      object = archive.ReadObject();
+      ParseWithinBudget(budget, [&] { object = archive.ReadObject(); });
     } catch (const std::exception& e) {
+      const bool over = dynamic_cast<const AllocationBudgetExceeded*>(&e) != nullptr;
       throw InputError(path, 0, Entry(entry),
                        "corrupt or truncated rawlog at byte " + std::to_string(offset) + " of " +
-                           std::to_string(bytes.size()) + " (uncompressed): " + MrptMessage(e.what()));
+                           std::to_string(bytes.size()) + " (uncompressed): " +
+                           (over ? "its objects declare sizes that would take more than " + DescribeBytes(budget) +
+                                       " of memory"
+                                 : MrptMessage(e.what())));
     }
     if (!object) parser.Fail("object", "a null object in the archive");
     parser.Handle(object, entry);

@@ -23,7 +23,21 @@ SensorTrace ReadTraceWithRawlog(const std::string& path, const TraceReadOptions&
     throw InputError(path, 0, "beam count",
                      "the rawlog has " + std::to_string(trace.geometry.beam_count) + " beams per scan, expected " +
                          std::to_string(options.expected_beam_count));
+  ApplyLaserOffset(options, trace.geometry);
   return trace;
+}
+
+std::unique_ptr<ScanSource> OpenTraceStreamWithRawlog(const std::string& path, const TraceReadOptions& options,
+                                                      const RawlogReadOptions& rawlog, TraceReadStats* stats) {
+  const bool is_rawlog = options.format == "rawlog" || (options.format == "auto" && HasRawlogExtension(path));
+  if (!is_rawlog) {
+    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" &&
+        options.format != "carmen")
+      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() +
+                       ")");
+    return OpenTraceStream(path, options, stats);
+  }
+  return std::make_unique<OwningScanSource>(ReadTraceWithRawlog(path, options, rawlog, stats));
 }
 
 }  // namespace rc

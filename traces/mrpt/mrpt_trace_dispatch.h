@@ -7,6 +7,7 @@
 // archive (mrpt_rawlog_reader.h); every other format goes to ReadTrace.
 // ("auto" decides rawlogs by extension: the archive is binary, and the
 // content-based detection of the text formats would reject it.)
+#include <memory>
 #include <string>
 
 #include "traces/mrpt/mrpt_rawlog_reader.h"
@@ -19,5 +20,11 @@ std::string TraceFormatNamesWithRawlog();  // "auto, cmu, rowild, carmen or rawl
 
 SensorTrace ReadTraceWithRawlog(const std::string& path, const TraceReadOptions& options,
                                 const RawlogReadOptions& rawlog = {}, TraceReadStats* stats = nullptr);
+
+// OpenTraceStream plus rawlogs. MRPT deserializes a rawlog whole, so a
+// rawlog is read into memory and served from there; the text formats stream.
+std::unique_ptr<ScanSource> OpenTraceStreamWithRawlog(const std::string& path, const TraceReadOptions& options,
+                                                      const RawlogReadOptions& rawlog = {},
+                                                      TraceReadStats* stats = nullptr);
 
 }  // namespace rc

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
+#include "backends/backend.h"
 #include "traces/csv_table.h"
 
 namespace rc {
@@ -21,85 +23,117 @@ std::string ColumnSafe(std::string name) {
 
 }  // namespace
 
-void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) {
-  const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
+DelibotTimeline::DelibotTimeline(std::string path, bool work_counted)
+    : path_(std::move(path)), work_counted_(work_counted) {}
+
+DelibotTimeline::~DelibotTimeline() = default;
+
+void DelibotTimeline::Open(const DelibotRow& first) {
+  ground_truth_ = first.has_ground_truth;
+  priced_ = first.priced;
   std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
                                       "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
                                       "sensor_updated", "log_mean_likelihood_nats", "resampled", "injected",
                                       "injection_rejected", "hypotheses_alive", "particles",
                                       "spread_m", "mode_weight", "consistency"};
-  if (gt) {
+  if (ground_truth_) {
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
   }
-  const LedgerSummary& ledger = result.pricing;
-  if (result.priced) {
+  CsvTableOptions options;
+  options.timeline = true;
+  if (priced_) {
+    // The ledger prices every modelled backend, in this order.
+    backends_ = Backend::ModelledNames();
+    if (first.pricing.costs.size() != backends_.size())
+      throw std::logic_error("a priced row holds " + std::to_string(first.pricing.costs.size()) +
+                             " backend costs for " + std::to_string(backends_.size()) + " backends");
     for (const char* c : {"backend", "nodes_per_ray_prev", "threshold", "switched"}) columns.push_back(c);
-    for (const auto& b : ledger.backends) columns.push_back("cycles_" + ColumnSafe(b));
+    for (const auto& b : backends_) columns.push_back("cycles_" + ColumnSafe(b));
     for (const char* c : {"simt_efficiency", "energy_j", "cum_cycles_policy"}) columns.push_back(c);
-    for (const auto& b : ledger.backends) columns.push_back("cum_cycles_" + ColumnSafe(b));
-    columns.push_back("cum_cycles_oracle");
-    columns.push_back("oracle_backend");
+    for (const auto& b : backends_) columns.push_back("cum_cycles_" + ColumnSafe(b));
+    // The hindsight oracle is known only when the run is over.
+    options.hindsight_columns = {"cum_cycles_oracle", "oracle_backend"};
+    cumulative_.assign(backends_.size(), 0.0);
   }
-  CsvTable table(path, columns);
-  std::vector<double> cumulative(ledger.backends.size(), 0.0);
-  double cumulative_policy = 0.0;
-  std::size_t row_index = 0;
-  for (const DelibotRow& r : result.rows) {
-    std::vector<CsvCell> cells = {r.iteration,
-                                  r.time_s,
-                                  r.estimate.x,
-                                  r.estimate.y,
-                                  r.estimate.theta,
-                                  r.ess,
-                                  result.work_counted ? CsvCell(r.rays) : CsvCell::Empty(),
-                                  result.work_counted ? CsvCell(r.nodes) : CsvCell::Empty(),
-                                  MaybeNumber(result.work_counted && r.rays > 0, r.NodesPerRay()),
-                                  r.wall_s * 1e3,
-                                  static_cast<int>(r.sensor_updated),
-                                  MaybeNumber(std::isfinite(r.log_mean_likelihood), r.log_mean_likelihood),
-                                  static_cast<int>(r.resampled),
-                                  r.injected,
-                                  r.injection_rejected,
-                                  r.hypotheses_alive,
-                                  r.particles,
-                                  r.spread_m,
-                                  r.mode_weight,
-                                  r.consistency};
-    if (gt) {
-      cells.emplace_back(r.err_xy_m);
-      cells.emplace_back(r.err_theta_rad);
-    }
-    if (result.priced) {
-      const LedgerIteration& p = r.pricing;
-      cells.emplace_back(p.backend);
-      cells.push_back(MaybeNumber(p.nodes_per_query_prev >= 0, p.nodes_per_query_prev));
-      cells.push_back(MaybeNumber(std::isfinite(p.threshold), p.threshold));
-      cells.emplace_back(static_cast<int>(p.switched));
-      for (std::size_t b = 0; b < ledger.backends.size(); ++b)
-        cells.emplace_back(p.priced ? static_cast<double>(p.costs[b].cycles) : 0.0);
-      double efficiency = 0.0;
-      bool has_efficiency = false;
-      for (const BatchCost& c : p.costs)
-        if (std::isfinite(c.simt_efficiency)) {
-          efficiency = c.simt_efficiency;
-          has_efficiency = true;
-        }
-      cells.push_back(MaybeNumber(has_efficiency, efficiency));
-      cells.emplace_back(p.chosen_energy_j);
-      cumulative_policy += p.chosen_cycles;
-      cells.emplace_back(cumulative_policy);
-      for (std::size_t b = 0; b < ledger.backends.size(); ++b) {
-        if (p.priced) cumulative[b] += static_cast<double>(p.costs[b].cycles);
-        cells.emplace_back(cumulative[b]);
+  table_ = std::make_unique<CsvTable>(path_, columns, options);
+}
+
+void DelibotTimeline::Add(const DelibotRow& r) {
+  if (!table_) Open(r);
+  std::vector<CsvCell> cells = {r.iteration,
+                                r.time_s,
+                                r.estimate.x,
+                                r.estimate.y,
+                                r.estimate.theta,
+                                r.ess,
+                                work_counted_ ? CsvCell(r.rays) : CsvCell::Empty(),
+                                work_counted_ ? CsvCell(r.nodes) : CsvCell::Empty(),
+                                MaybeNumber(work_counted_ && r.rays > 0, r.NodesPerRay()),
+                                r.wall_s * 1e3,
+                                static_cast<int>(r.sensor_updated),
+                                MaybeNumber(std::isfinite(r.log_mean_likelihood), r.log_mean_likelihood),
+                                static_cast<int>(r.resampled),
+                                r.injected,
+                                r.injection_rejected,
+                                r.hypotheses_alive,
+                                r.particles,
+                                r.spread_m,
+                                r.mode_weight,
+                                r.consistency};
+  if (ground_truth_) {
+    cells.emplace_back(r.err_xy_m);
+    cells.emplace_back(r.err_theta_rad);
+  }
+  if (priced_) {
+    const LedgerIteration& p = r.pricing;
+    cells.emplace_back(p.backend);
+    cells.push_back(MaybeNumber(p.nodes_per_query_prev >= 0, p.nodes_per_query_prev));
+    cells.push_back(MaybeNumber(std::isfinite(p.threshold), p.threshold));
+    cells.emplace_back(static_cast<int>(p.switched));
+    for (std::size_t b = 0; b < backends_.size(); ++b)
+      cells.emplace_back(p.priced ? static_cast<double>(p.costs[b].cycles) : 0.0);
+    double efficiency = 0.0;
+    bool has_efficiency = false;
+    for (const BatchCost& c : p.costs)
+      if (std::isfinite(c.simt_efficiency)) {
+        efficiency = c.simt_efficiency;
+        has_efficiency = true;
       }
-      cells.emplace_back(ledger.oracle_cumulative_cycles.at(row_index));
-      cells.emplace_back(ledger.oracle_choice.at(row_index));
+    cells.push_back(MaybeNumber(has_efficiency, efficiency));
+    cells.emplace_back(p.chosen_energy_j);
+    cumulative_policy_ += p.chosen_cycles;
+    cells.emplace_back(cumulative_policy_);
+    for (std::size_t b = 0; b < backends_.size(); ++b) {
+      if (p.priced) cumulative_[b] += static_cast<double>(p.costs[b].cycles);
+      cells.emplace_back(cumulative_[b]);
     }
-    ++row_index;
-    table.AddRow(cells);
   }
-  table.Commit();
+  table_->AddRow(cells);
+}
+
+void DelibotTimeline::Finish(const DelibotResult& result) {
+  if (!table_) {
+    if (result.rows.empty()) throw std::logic_error("a DeliBot run without rows has no timeline");
+    Open(result.rows.front());
+  }
+  if (table_->row_count() != result.rows.size())
+    throw std::logic_error("the timeline holds " + std::to_string(table_->row_count()) + " rows for a run of " +
+                           std::to_string(result.rows.size()) + " records");
+  if (!priced_) {
+    table_->Commit();
+    return;
+  }
+  const LedgerSummary& ledger = result.pricing;
+  table_->Commit([&](std::size_t row) {
+    return std::vector<CsvCell>{ledger.oracle_cumulative_cycles.at(row), ledger.oracle_choice.at(row)};
+  });
+}
+
+void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) {
+  DelibotTimeline timeline(path, result.work_counted);
+  for (const DelibotRow& row : result.rows) timeline.Add(row);
+  timeline.Finish(result);
 }
 
 nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& s,

@@ -46,15 +46,23 @@ bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, con
 
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress) {
+                         const ProgressCallback& progress, const RowCallback& on_row) {
+  InMemoryScanSource scans(trace);
+  return RunDelibot(grid, scans, ground_truth, settings, progress, on_row);
+}
+
+DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
+                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                         const ProgressCallback& progress, const RowCallback& on_row) {
+  const LaserGeometry& geometry = scans.geometry();
   std::string error;
   if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
   if (!settings.likelihood.IsValid(&error)) throw std::invalid_argument("likelihood model: " + error);
-  if (settings.mcl.beams.beam_step > trace.geometry.beam_count)
+  if (settings.mcl.beams.beam_step > geometry.beam_count)
     throw std::invalid_argument("beam step exceeds the trace's beam count");
-  if (ground_truth && ground_truth->size() != trace.scans.size())
+  if (ground_truth && ground_truth->size() != scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) +
-                                " poses for " + std::to_string(trace.scans.size()) + " laser records");
+                                " poses for " + std::to_string(scans.size()) + " laser records");
 
   const bool price = settings.price_backends && settings.sensor_model == SensorModelKind::kBeam;
   MclOptions mcl_options = settings.mcl;
@@ -83,7 +91,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
           std::ceil(std::sqrt(2.0) * settings.beam.max_range_m / grid.resolution_m()) + 2);
       ledger->Prepare(layout,
                       static_cast<std::size_t>(settings.mcl.particle_count) *
-                          settings.mcl.beams.Count(trace.geometry.beam_count),
+                          settings.mcl.beams.Count(geometry.beam_count),
                       max_nodes);
     }
   }
@@ -94,15 +102,16 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     mcl.InitializeUniform();
   const RayCastScene exact_scene(grid, RayCastMethod::kDda);
 
-  std::size_t count = trace.scans.size();
+  std::size_t count = scans.size();
   if (settings.max_records > 0) count = std::min<std::size_t>(count, settings.max_records);
   DelibotResult result;
   result.rows.reserve(count);
+  LaserScan scan;  // one record at a time: memory does not grow with the trace
   for (std::size_t k = 0; k < count; ++k) {
-    const LaserScan& scan = trace.scans[k];
+    if (!scans.Next(scan)) throw std::logic_error("the trace ended before its " + std::to_string(count) + " records");
     if (ledger) ledger->BeginIteration();
     const auto start = std::chrono::steady_clock::now();
-    const MclStepResult step = mcl.Update(scan, trace.geometry, k);
+    const MclStepResult step = mcl.Update(scan, geometry, k);
     const PoseEstimate estimate = mcl.Estimate();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -138,10 +147,11 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     }
     row.spread_m = estimate.spread_m;
     row.mode_weight = estimate.mode_weight;
-    if (!JudgeDelibotRow(exact_scene, scan, trace.geometry, settings,
+    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings,
                          ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
+    if (on_row) on_row(row);
     if (progress) progress(k + 1, count);
   }
   const bool non_finite = result.summary.any_non_finite_weight;

@@ -12,6 +12,7 @@
 #include "backends/scheduler/backend_ledger.h"
 #include "maps/occupancy_grid.h"
 #include "robocore/ray_cast.h"
+#include "traces/scan_source.h"
 #include "traces/sensor_trace.h"
 #include "workloads/delibot/beam_sensor_model.h"
 #include "workloads/delibot/likelihood_field_model.h"
@@ -154,6 +155,8 @@ struct DelibotResult {
 };
 
 using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
+// Called with each row as soon as it is complete (the timeline streams them).
+using RowCallback = std::function<void(const DelibotRow& row)>;
 
 // Convergence, error and consistency statistics of a run's rows; shared with
 // other engines (workloads/delibot/mrpt) so every engine is judged alike.
@@ -170,6 +173,11 @@ bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, con
 // ground_truth: one pose per laser record of the trace (map frame), or null.
 DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                          const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress = {});
+                         const ProgressCallback& progress = {}, const RowCallback& on_row = {});
+// The same run pulling one record at a time from `scans` (a trace streamed
+// from its file, traces/scan_source.h), so memory does not grow with it.
+DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
+                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                         const ProgressCallback& progress = {}, const RowCallback& on_row = {});
 
 }  // namespace rc

@@ -24,6 +24,7 @@
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "robocore/shipped_programs.h"
+#include "common/exit_codes.h"
 #include "workloads/rcbench/commands.h"
 
 namespace rc {
@@ -94,7 +95,6 @@ void Run(const CalibrateCli& cli) {
   std::cout << "pricing...\n";
   const CalibrationReport report = Calibrate(workloads, params);
 
-  std::filesystem::create_directories(cli.out_dir);
   const std::string md = cli.out_dir + "/calibration.md";
   const std::string csv = cli.out_dir + "/calibration.csv";
   WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
@@ -128,6 +128,7 @@ void AddCalibrateCommand(CLI::App& app) {
   cmd->add_option("--particles", cli->options.particles, "DeliBot particles (count)")->capture_default_str();
   cmd->add_option("--beams", cli->options.beams, "DeliBot beams per particle (count)")->capture_default_str();
   cmd->add_option("--plot-script", cli->plot_script, "Plot script (default: the source tree's scripts/plot_calibration.py)");
+  cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] { Run(*cli); });
 }
 

@@ -21,6 +21,7 @@
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "traces/csv_table.h"
@@ -32,17 +33,19 @@
 #include "workloads/carribot/path_output.h"
 #include "workloads/carribot/path_plot.h"
 #include "workloads/rcbench/commands.h"
+#include "workloads/rcbench/map_options.h"
 #include "workloads/rcbench/progress_bar.h"
 
 namespace rc {
 namespace {
 
-constexpr int kExitNoPath = 3;
+constexpr int kExitNoPath = ToInt(ExitCode::kNoPath);
 constexpr double kOptimalTolerance = 1e-4;  // cells; the .scen files print 8 decimals
 
 struct CarribotCli {
   std::string map_path, scen_path;
   double resolution_m = 0.0;  // 0: the map format's own (1 m per cell for MovingAI)
+  MapLoadOptions map_options;  // thresholds
   int map_scale = 1;
   long scenario = -1;
   std::vector<int> start, goal;
@@ -80,14 +83,12 @@ RectangleFootprint ParseFootprint(const std::string& text, const CarribotCli& cl
 }
 
 OccupancyGrid LoadGrid(const CarribotCli& cli, OccupancyGrid* original) {
-  MapLoadOptions options;
+  MapLoadOptions options = cli.map_options;
   if (cli.resolution_m > 0) options.resolution_m = cli.resolution_m;
   LoadedMap loaded = LoadMap(cli.map_path, options);
   if (loaded.grid.CountCells(CellState::kFree) == 0)
     throw InputError(cli.map_path, 0, "", "the map has no free cell; there is nothing to plan on");
-  std::cout << "map: " << cli.map_path << " (" << loaded.format << ", " << loaded.grid.size_x() << " x "
-            << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
-            << loaded.value_convention << ")\n";
+  PrintMapLines(std::cout, cli.map_path, loaded);
   *original = loaded.grid;
   if (cli.map_scale == 1) return std::move(loaded.grid);
   OccupancyGrid scaled = UpscaleGrid(loaded.grid, cli.map_scale);
@@ -169,11 +170,6 @@ std::string Describe(const PlannerOptions& o, const CarribotResult& run, Footpri
   return out.str();
 }
 
-void CreateParent(const std::string& file) {
-  const auto parent = std::filesystem::path(file).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-}
-
 // Returns the process exit code: 0, or kExitNoPath.
 int Run(const CarribotCli& cli) {
   CheckUsage(cli);
@@ -214,17 +210,14 @@ int Run(const CarribotCli& cli) {
 
   // Outputs only after every query ran, so a failure leaves no partial file.
   if (!cli.timeline_path.empty()) {
-    CreateParent(cli.timeline_path);
     WriteCarribotTimeline(cli.timeline_path, queries, run);
   }
   const PlanResult& first = results.front();
   if (queries.size() == 1 && first.found()) {
     if (!cli.path_path.empty()) {
-      CreateParent(cli.path_path);
       WritePathCsv(cli.path_path, first, grid.resolution_m(), run.heading_count);
     }
     if (!cli.plot_path.empty()) {
-      CreateParent(cli.plot_path);
       WritePathPlot(cli.plot_path, grid, first, PathPlotOptions{options.footprint, 24});
     }
   }
@@ -327,15 +320,15 @@ void AddCarribotCommand(CLI::App& app) {
       ->expected(2)
       ->delimiter(',')
       ->needs(start);
+  AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--timeline", cli->timeline_path, "Write one CSV row per query here");
   cmd->add_option("--path", cli->path_path, "Write the path (cells and metres, CSV) of a single query here");
   cmd->add_option("--plot", cli->plot_path, "Write a PNG of a single query's path on the map here");
   cmd->add_flag("--quiet", cli->quiet, "No progress bar");
-  cmd->footer(
-      "Exit codes: 0 every query found a path; 1 bad input (a file, or a map with no free cell); 2 bad usage; "
-      "3 at least one query found no path (goal unreachable, start or goal on a blocked cell or with the "
-      "footprint in collision, or --max-expansions reached). With exit code 3 every output is still written; the timeline's "
-      "status column says why each query failed.");
+  cmd->footer(ExitCodeFooter(
+      "at least one query found no path (goal unreachable, start or goal on a blocked cell or with the footprint "
+      "in collision, or --max-expansions reached); every output is still written, and the timeline's status "
+      "column says why each query failed"));
   cmd->callback([cli] {
     const int code = Run(*cli);
     if (code != 0) {

@@ -33,6 +33,7 @@
 #include "robocore/collision/sphere_robot.h"
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
+#include "common/exit_codes.h"
 #include "workloads/rcbench/commands.h"
 
 namespace rc {
@@ -55,13 +56,7 @@ std::string ExitName(int exit) {
   return exit == kNoNodeTested ? "none" : SactAxisName(exit);
 }
 
-void CreateParent(const std::string& path) {
-  const auto parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-}
-
 void WriteOutput(const std::string& path, const std::vector<CollisionResult>& results) {
-  CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "index,collides,nodes_visited,exit_axis\n";
@@ -110,7 +105,6 @@ std::vector<BatchCost> PriceOnEveryBackend(const KernelRecord& record, const Bac
 void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch,
                    const std::vector<BatchCost>& costs, const SphereRobotReport& spheres,
                    const std::vector<BatchCost>& sphere_costs, const std::string& backend) {
-  CreateParent(path);
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "section,key,value\n" << std::setprecision(10);
@@ -260,7 +254,6 @@ void Run(const CollideCli& cli) {
     if (!cli.shelf.IsValid(&error)) throw UsageError("shelf scene: " + error);
     std::vector<Aabbd> boxes = MakeShelfScene(cli.shelf);
     if (!cli.scene_output_path.empty()) {
-      CreateParent(cli.scene_output_path);
       AtomicFile file(cli.scene_output_path);
       WriteBoxCsv(file.stream(), boxes);
       file.Commit();
@@ -320,6 +313,7 @@ void AddCollideCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--sphere-pretest", cli->sphere_pretest,
                 "Bounding-sphere reject and inscribed-sphere accept before the SACT axes");
+  cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] { Run(*cli); });
 }
 

@@ -8,7 +8,10 @@
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "common/atomic_file.h"
+#include "common/exit_codes.h"
 #include "common/input_error.h"
+#include "common/memory_cap.h"
 #include "maps/map_loader.h"
 #include "maps/mrpt/mrpt_map_dispatch.h"
 #include "maps/office_map_generator.h"
@@ -17,12 +20,15 @@
 #include "traces/ground_truth_io.h"
 #include "traces/mrpt/mrpt_trace_dispatch.h"
 #include "traces/trace_reader.h"
+#include "workloads/delibot/delibot_memory.h"
 #include "workloads/delibot/delibot_report.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/mrpt/delibot_engine.h"
 #include "workloads/delibot/trace_simulator.h"
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/demo_inputs.h"
+#include "workloads/rcbench/map_options.h"
+#include "workloads/rcbench/trace_lines.h"
 #include "workloads/rcbench/progress_bar.h"
 
 namespace rc {
@@ -31,6 +37,8 @@ namespace {
 struct DelibotCli {
   std::string map_path, map_format = "auto", map_convention;
   double map_resolution_m = 0.0;
+  MapLoadOptions map_options;  // thresholds
+  double laser_offset_m = -1.0;  // negative: measured from the trace
   std::string trace_path, trace_format = "auto", ground_truth_path;
   std::string sensor_model = "beam", ray_caster = "rm";
   std::string lf_distance = "unsigned";
@@ -75,7 +83,9 @@ void Run(DelibotCli& cli) {
   DelibotProvenance provenance;
   provenance.threads = omp_get_max_threads();
   OccupancyGrid grid;
-  SensorTrace trace;
+  // The laser records: streamed from the trace file (read once first to
+  // validate it), so memory does not grow with the trace's length.
+  std::unique_ptr<ScanSource> scans;
   std::vector<Pose2> truth;
   bool have_truth = false;
   if (cli.map_path.empty()) {
@@ -83,7 +93,7 @@ void Run(DelibotCli& cli) {
     std::cout << "demo: generated office map and simulated trace written to out/demo/ ("
               << demo.trace.scans.size() << " laser records)\n";
     grid = demo.grid;
-    trace = demo.trace;
+    scans = std::make_unique<OwningScanSource>(demo.trace);
     for (const auto& p : demo.ground_truth) truth.push_back(p.pose);
     have_truth = true;
     provenance = {demo.map_path, "ros", "generated office map (occupied 0, free 254, unknown 205)",
@@ -91,30 +101,29 @@ void Run(DelibotCli& cli) {
     if (cli.timeline_path.empty()) cli.timeline_path = "out/demo/delibot_timeline.csv";
     if (cli.summary_path.empty()) cli.summary_path = "out/demo/delibot_summary.json";
   } else {
-    MapLoadOptions map_options;
+    MapLoadOptions map_options = cli.map_options;
     map_options.format = cli.map_format;
     if (!cli.map_convention.empty()) map_options.convention = ParseValueConvention(cli.map_convention);
     if (cli.map_resolution_m > 0) map_options.resolution_m = cli.map_resolution_m;
     LoadedMap loaded = LoadMapWithMrpt(cli.map_path, map_options).map;
-    std::cout << "map: " << cli.map_path << " (" << loaded.format << ", " << loaded.grid.size_x() << " x "
-              << loaded.grid.size_y() << " cells of " << loaded.grid.resolution_m() << " m; "
-              << loaded.value_convention << ")\n";
+    PrintMapLines(std::cout, cli.map_path, loaded);
     grid = std::move(loaded.grid);
     if (grid.CountCells(CellState::kFree) == 0)
       throw InputError(cli.map_path, 0, "", "the map has no free cell: there is nowhere to localize");
     TraceReadOptions trace_options;
     trace_options.format = cli.trace_format;
-    trace = ReadTraceWithRawlog(cli.trace_path, trace_options);
-    std::cout << "trace: " << cli.trace_path << " (" << trace.format << ", " << trace.scans.size()
-              << " laser records, " << trace.geometry.beam_count << " beams)\n";
+    if (cli.laser_offset_m >= 0.0) trace_options.laser_offset_forward_m = cli.laser_offset_m;
+    TraceReadStats trace_stats;
+    scans = OpenTraceStreamWithRawlog(cli.trace_path, trace_options, {}, &trace_stats);
+    PrintTraceLines(std::cout, std::cerr, *scans, trace_stats, cli.laser_offset_m >= 0.0);
     provenance.map_path = cli.map_path;
     provenance.map_format = loaded.format;
     provenance.map_convention = loaded.value_convention;
     provenance.trace_path = cli.trace_path;
-    provenance.trace_format = trace.format;
+    provenance.trace_format = scans->format();
     if (!cli.ground_truth_path.empty()) {
       const GroundTruth gt = ReadGroundTruth(cli.ground_truth_path);
-      CheckGroundTruthMatches(trace, gt);
+      CheckGroundTruthMatches(*scans, gt);
       for (const auto& p : gt.poses) truth.push_back(p.pose);
       have_truth = true;
       provenance.ground_truth_path = cli.ground_truth_path;
@@ -126,14 +135,33 @@ void Run(DelibotCli& cli) {
             << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
             << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
             << provenance.threads << " thread(s)\n";
+  const LaserGeometry& geometry = scans->geometry();
+  const std::uint64_t need = DelibotMemoryLowerBound(s, geometry.beam_count);
+  if (need > MemoryCapBytes())
+    throw UsageError("--particles " + std::to_string(s.mcl.particle_count) + " with " +
+                     std::to_string(s.mcl.beams.Count(geometry.beam_count)) + " beams: the filter " +
+                     DescribeOverCap(need));
+  if (s.mcl.beams.beam_step > geometry.beam_count)
+    throw UsageError("--beam-step " + std::to_string(s.mcl.beams.beam_step) + " exceeds the trace's " +
+                     std::to_string(geometry.beam_count) + " beams");
+  // An output folder that cannot be made fails now, not after the run.
+  if (!cli.summary_path.empty()) CreateParentFolders(cli.summary_path);
+  // The timeline streams, one flushed row per record, under its incomplete
+  // marker until the run completes; the summary is written only after.
+  std::unique_ptr<DelibotTimeline> timeline;
+  if (!cli.timeline_path.empty())
+    timeline = std::make_unique<DelibotTimeline>(cli.timeline_path, engine == DelibotEngine::kOurs);
   DelibotResult result;
   {
     ProgressBar bar("delibot", !cli.quiet);
-    result = RunDelibotEngine(engine, grid, trace, have_truth ? &truth : nullptr, s,
-                        [&](std::size_t done, std::size_t total) { bar.Update(done, total); });
+    result = RunDelibotEngine(
+        engine, grid, *scans, have_truth ? &truth : nullptr, s,
+        [&](std::size_t done, std::size_t total) { bar.Update(done, total); },
+        [&](const DelibotRow& row) {
+          if (timeline) timeline->Add(row);
+        });
   }
-  // Outputs are written only after the whole run succeeded.
-  if (!cli.timeline_path.empty()) WriteDelibotTimeline(cli.timeline_path, result);
+  if (timeline) timeline->Finish(result);
   if (!cli.summary_path.empty()) WriteJsonFile(cli.summary_path, DelibotEngineSummaryJson(engine, result, s, provenance));
   PrintDelibotSummary(std::cout, result, s);
   if (!cli.timeline_path.empty()) std::cout << "timeline                " << cli.timeline_path << "\n";
@@ -156,6 +184,11 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap");
   cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
+  AddMapThresholdOptions(*cmd, cli->map_options);
+  cmd->add_option("--laser-offset", cli->laser_offset_m,
+                  "Laser mount: metres ahead of the robot centre on its heading axis (m, 0 to 10); without it: "
+                  "measured from the trace's own laser poses (CMU, CARMEN, rawlog); 0.25 m, the Wean robot's, "
+                  "for RoWild logs, which carry none");
   cmd->add_option("--ground-truth", cli->ground_truth_path,
                   "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
   cmd->add_option("--particles", s.mcl.particle_count, "Number of particles (count, 1 to 1e7)")->capture_default_str();
@@ -261,6 +294,7 @@ void AddDelibotCommand(CLI::App& app) {
                   "ours | mrpt: MRPT's CMonteCarloLocalization2D with our settings mapped onto its own "
                   "(workloads/delibot/mrpt/mrpt_localizer.h); no backend pricing")
       ->capture_default_str();
+  cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] { Run(*cli); });
 }
 

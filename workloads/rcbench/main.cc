@@ -1,22 +1,34 @@
 // rcbench: robotics kernels on modelled GPU backends.
 //
-// Exit codes: 0 success; 1 bad input (a file, a value, or a run that cannot
-// proceed, e.g. a map with no free cell), with one message naming the file,
-// line and field; 2 bad command-line usage; 3 `carribot` found no path for
-// at least one query, or `movebot` found no exact path (after writing all
-// their outputs).
+// Exit codes: one table for every subcommand, common/exit_codes.h.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
+#include "common/exit_codes.h"
 #include "common/input_error.h"
+#include "common/memory_cap.h"
 #include "workloads/rcbench/commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"rcbench: robotics kernels (MCL ray casting, A*, RRT*) on modelled GPU backends"};
   app.require_subcommand(1);
+  // Options of the top level (--max-memory) may follow the subcommand.
+  app.fallthrough();
+  app.footer(rc::ExitCodeFooter("carribot: a query found no path; movebot: no exact path (outputs are still written)"));
+  app.add_option_function<double>(
+      "--max-memory",
+      [](double gib) {
+        if (!(gib > 0.0) || !std::isfinite(gib) || gib > 1e9)
+          throw rc::UsageError("--max-memory must be a positive number of GiB");
+        rc::SetMemoryCapBytes(static_cast<std::uint64_t>(gib * 1073741824.0));
+      },
+      "Memory cap (GiB) that maps, particle sets and batches are checked against before they are allocated; "
+      "default: the machine's memory")
+      ->trigger_on_parse();
   rc::AddDelibotCommand(app);
   rc::AddCarribotCommand(app);
   rc::AddSimulateCommand(app);
@@ -35,16 +47,9 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
-    return 2;
-  } catch (const rc::UsageError& e) {
-    std::cerr << "rcbench: usage: " << e.what() << "\n";
-    return 2;
-  } catch (const rc::InputError& e) {
-    std::cerr << "rcbench: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "rcbench: error: " << e.what() << "\n";
-    return 1;
+    return rc::ToInt(rc::ExitCode::kUsage);
+  } catch (...) {
+    return rc::ToInt(rc::ReportException(std::current_exception(), std::cerr));
   }
-  return 0;
+  return rc::ToInt(rc::ExitCode::kSuccess);
 }

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/hall_map_generator.h"
 #include "maps/office_map_generator.h"
@@ -33,6 +34,7 @@ void AddMakeMapCommand(CLI::App& app) {
                   "Cell size (m): office in [0.02, 0.1], default 0.05; hall in [0.05, 0.2], default 0.1");
   cmd->add_option("--seed", cli->seed, "Furniture (office) or pallet (hall) placement seed (unitless)")
       ->capture_default_str();
+  cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] {
     if (cli->output.empty()) cli->output = "out/" + cli->kind + ".yaml";
     OccupancyGrid grid;

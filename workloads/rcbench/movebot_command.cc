@@ -25,6 +25,7 @@
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "robocore/collision/octree_from_octomap.h"
 #include "workloads/movebot/movebot_report.h"
@@ -34,7 +35,7 @@
 namespace rc {
 namespace {
 
-constexpr int kExitNoExactPath = 3;
+constexpr int kExitNoExactPath = ToInt(ExitCode::kNoPath);
 constexpr const char* kDefaultObstacles = "../shared/data/movebot/locobot_obs.txt";
 // RoWild MoveBot's harness (cpu/src/locobot/harness.cpp): start and goal, rad.
 constexpr ArmConfiguration kRowildStart = {-1.3962634, 0, 0, 0, 0};
@@ -58,11 +59,6 @@ ArmConfiguration ToConfiguration(const std::vector<double>& v, const ArmConfigur
   ArmConfiguration q;
   for (int j = 0; j < kArmJoints; ++j) q[j] = v[j];
   return q;
-}
-
-void CreateParent(const std::string& file) {
-  const auto parent = std::filesystem::path(file).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
 }
 
 // Seeds OMPL's process-wide generator. It takes effect only before the
@@ -143,8 +139,6 @@ int Run(MovebotCli& cli) {
   }
 
   // Outputs only after the run and its check succeeded.
-  for (const std::string* p : {&cli.timeline_path, &cli.anytime_path, &cli.ompl_log_path, &cli.path_path})
-    if (!p->empty()) CreateParent(*p);
   if (!cli.timeline_path.empty()) WriteMoveBotTimeline(cli.timeline_path, result);
   if (!cli.anytime_path.empty()) WriteAnytimeCurve(cli.anytime_path, result);
   if (!cli.path_path.empty()) WriteArmPath(cli.path_path, result);
@@ -208,10 +202,10 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--ompl-log", cli->ompl_log_path, "OMPL benchmark log (ompl_benchmark_statistics.py, Planner Arena)");
   cmd->add_option("--path", cli->path_path, "Path CSV: one configuration per line, q1_rad..q5_rad");
   cmd->add_flag("--ompl-verbose", cli->ompl_verbose, "Show OMPL's own info messages");
-  cmd->footer(
-      "Exit codes: 0 exact path, verified collision-free; 1 bad input (a file; start or goal outside [-pi/2, pi/2] "
-      "or in collision) or a path that failed the independent check (nothing written); 2 bad usage; 3 no exact "
-      "path within the budget (approximate or none; outputs are still written).");
+  cmd->footer(ExitCodeFooter(
+      "no exact path within the budget (approximate or none; outputs are still written). A start or goal outside "
+      "[-pi/2, pi/2] or in collision is bad input (1); a returned path that fails the independent collision check "
+      "is an internal error (4), with nothing written"));
   cmd->callback([cli] {
     const int code = Run(*cli);
     if (code != 0) {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "maps/office_map_generator.h"
@@ -10,6 +11,7 @@
 #include "traces/ground_truth_io.h"
 #include "workloads/delibot/trace_simulator.h"
 #include "workloads/rcbench/commands.h"
+#include "workloads/rcbench/map_options.h"
 
 namespace rc {
 
@@ -17,6 +19,7 @@ void AddSimulateCommand(CLI::App& app) {
   struct Cli {
     std::string map_path, map_format = "auto", map_convention, output = "out/sim_run.log", ground_truth;
     double map_resolution_m = 0.0;
+    MapLoadOptions map_options;  // thresholds
     bool no_noise = false;
     SimulationOptions options;
   };
@@ -28,6 +31,7 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'");
   cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1) and images (required)");
+  AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--output", cli->output, "Trace path (CMU robotdata format)")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth, "Ground-truth path (default: the trace path with .gt)");
   cmd->add_option("--seed", o.seed, "Random seed for route, noise, people and kidnap (unitless)")->capture_default_str();
@@ -37,6 +41,10 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--speed", o.speed_mps, "Driving speed (m/s)")->capture_default_str();
   cmd->add_option("--turn-rate", o.turn_rate_radps, "In-place turn rate (rad/s)")->capture_default_str();
   cmd->add_option("--laser-rate", o.laser_rate_hz, "Laser records per second (Hz)")->capture_default_str();
+  cmd->add_option("--laser-offset", o.geometry.offset_forward_m,
+                  "Laser mount ahead of the robot centre on its heading axis (m); written into every record's laser "
+                  "pose")
+      ->capture_default_str();
   cmd->add_option("--range-sigma", o.range_sigma_m, "Gaussian range noise (m)")->capture_default_str();
   cmd->add_option("--short-probability", o.short_reading_probability, "Per-beam unmodelled short reading (probability)")
       ->capture_default_str();
@@ -58,6 +66,7 @@ void AddSimulateCommand(CLI::App& app) {
   cmd->add_option("--kidnap-record", o.kidnap_record, "Teleport the robot at this record (record index; -1 = never)")
       ->capture_default_str();
   cmd->add_flag("--no-noise", cli->no_noise, "Turn every noise source off (a kidnap stays)");
+  cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] {
     SimulationOptions options = cli->options;
     if (cli->no_noise) options.DisableNoise();
@@ -67,17 +76,17 @@ void AddSimulateCommand(CLI::App& app) {
     if (cli->map_path.empty()) {
       grid = GenerateOfficeMap(OfficeMapOptions{});
     } else {
-      MapLoadOptions map_options;
+      MapLoadOptions map_options = cli->map_options;
       map_options.format = cli->map_format;
       if (!cli->map_convention.empty()) map_options.convention = ParseValueConvention(cli->map_convention);
       if (cli->map_resolution_m > 0) map_options.resolution_m = cli->map_resolution_m;
-      grid = LoadMap(cli->map_path, map_options).grid;
+      LoadedMap loaded = LoadMap(cli->map_path, map_options);
+      PrintMapLines(std::cout, cli->map_path, loaded);
+      grid = std::move(loaded.grid);
     }
     const SimulatedTrace sim = SimulateTrace(grid, options);
     std::string gt_path = cli->ground_truth;
     if (gt_path.empty()) gt_path = std::filesystem::path(cli->output).replace_extension(".gt").string();
-    const auto parent = std::filesystem::path(cli->output).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
     WriteCmuLog(sim.trace, cli->output);
     WriteGroundTruth(gt_path, sim.ground_truth);
     std::cout << "wrote " << cli->output << " (" << sim.trace.scans.size() << " laser records) and " << gt_path

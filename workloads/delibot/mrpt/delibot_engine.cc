@@ -15,9 +15,16 @@ std::string ToString(DelibotEngine engine) { return engine == DelibotEngine::kOu
 
 DelibotResult RunDelibotEngine(DelibotEngine engine, const OccupancyGrid& grid, const SensorTrace& trace,
                                const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                               const ProgressCallback& progress) {
-  if (engine == DelibotEngine::kOurs) return RunDelibot(grid, trace, ground_truth, settings, progress);
-  return RunMrptDelibot(grid, trace, ground_truth, settings, progress);
+                               const ProgressCallback& progress, const RowCallback& on_row) {
+  InMemoryScanSource scans(trace);
+  return RunDelibotEngine(engine, grid, scans, ground_truth, settings, progress, on_row);
+}
+
+DelibotResult RunDelibotEngine(DelibotEngine engine, const OccupancyGrid& grid, ScanSource& scans,
+                               const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                               const ProgressCallback& progress, const RowCallback& on_row) {
+  if (engine == DelibotEngine::kOurs) return RunDelibot(grid, scans, ground_truth, settings, progress, on_row);
+  return RunMrptDelibot(grid, scans, ground_truth, settings, progress, on_row);
 }
 
 nlohmann::json DelibotEngineSummaryJson(DelibotEngine engine, const DelibotResult& result,

@@ -19,7 +19,10 @@ std::string ToString(DelibotEngine engine);
 
 DelibotResult RunDelibotEngine(DelibotEngine engine, const OccupancyGrid& grid, const SensorTrace& trace,
                                const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                               const ProgressCallback& progress = {});
+                               const ProgressCallback& progress = {}, const RowCallback& on_row = {});
+DelibotResult RunDelibotEngine(DelibotEngine engine, const OccupancyGrid& grid, ScanSource& scans,
+                               const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                               const ProgressCallback& progress = {}, const RowCallback& on_row = {});
 
 // DelibotSummaryJson plus "engine" and, for MRPT, the MRPT settings used and
 // the ones of ours it has no counterpart for.

@@ -1,5 +1,6 @@
 #include "workloads/delibot/mrpt/mrpt_localizer.h"
 
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include <mrpt/random/RandomGenerators.h>
 #include <mrpt/slam/CMonteCarloLocalization2D.h>
 
+#include "common/input_error.h"
 #include "maps/mrpt/mrpt_map_loader.h"
 #include "workloads/delibot/motion_model.h"
 #include "workloads/delibot/pose_estimate.h"
@@ -135,12 +137,20 @@ mrpt::poses::CPose2D Between(const Pose2& from, const Pose2& to) {
 
 DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                              const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                             const ProgressCallback& progress) {
+                             const ProgressCallback& progress, const RowCallback& on_row) {
+  InMemoryScanSource scans(trace);
+  return RunMrptDelibot(grid, scans, ground_truth, settings, progress, on_row);
+}
+
+DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans,
+                             const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
+                             const ProgressCallback& progress, const RowCallback& on_row) {
+  const LaserGeometry& geometry = scans.geometry();
   std::string error;
   if (!settings.mcl.IsValid(&error)) throw std::invalid_argument(error);
   if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
   if (!settings.likelihood.IsValid(&error)) throw std::invalid_argument("likelihood model: " + error);
-  if (settings.mcl.beams.beam_step > trace.geometry.beam_count)
+  if (settings.mcl.beams.beam_step > geometry.beam_count)
     throw std::invalid_argument("beam step exceeds the trace's beam count");
   // Options only our filter has are refused, not silently dropped: a run
   // meant to compare like with like would otherwise compare unlike.
@@ -150,10 +160,10 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
         std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
         std::pair{o.max_particle_count != 0, "--max-particles"},
         std::pair{o.injection_check_updates != 0, "--injection-check"}})
-    if (given) throw std::invalid_argument(std::string("the MRPT engine has no counterpart of ") + option);
-  if (ground_truth && ground_truth->size() != trace.scans.size())
+    if (given) throw UsageError(std::string("the MRPT engine has no counterpart of ") + option);
+  if (ground_truth && ground_truth->size() != scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +
-                                std::to_string(trace.scans.size()) + " laser records");
+                                std::to_string(scans.size()) + " laser records");
 
   mrpt::random::getRandomGenerator().randomize(static_cast<uint32_t>(settings.mcl.seed));
   // Our map frame, unshifted: MRPT's estimates come out in our frame.
@@ -169,7 +179,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
   const auto motion_options = MotionOptions(settings);
   const RayCastScene exact_scene(grid, RayCastMethod::kDda);
 
-  std::size_t count = trace.scans.size();
+  std::size_t count = scans.size();
   if (settings.max_records > 0) count = std::min<std::size_t>(count, settings.max_records);
   DelibotResult result;
   result.work_counted = false;
@@ -178,13 +188,15 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
   Pose2 odometry_at_run;  // odometry of the last record the filter ran on
   double last_ess = static_cast<double>(settings.mcl.particle_count);
   double moved_d_m = 0.0, moved_a_rad = 0.0;
+  LaserScan scan;  // one record at a time
+  Pose2 previous_odometry;
   for (std::size_t k = 0; k < count; ++k) {
-    const LaserScan& scan = trace.scans[k];
+    if (!scans.Next(scan)) throw std::logic_error("the trace ended before its " + std::to_string(count) + " records");
     const auto start = std::chrono::steady_clock::now();
     // The same rule as ours (monte_carlo_localizer.cc) decides which records
     // update; MRPT's filter runs only on those.
     if (k > 0) {
-      const OdometryDelta delta = ComputeOdometryDelta(trace.scans[k - 1].odometry, scan.odometry);
+      const OdometryDelta delta = ComputeOdometryDelta(previous_odometry, scan.odometry);
       moved_d_m += delta.trans;
       moved_a_rad += std::abs(delta.rot1) + std::abs(delta.rot2);
     }
@@ -199,7 +211,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
         actions.insert(movement);
       }
       mrpt::obs::CSensoryFrame frame;
-      frame.insert(ToObservation(scan, trace.geometry, settings.beam.max_range_m));
+      frame.insert(ToObservation(scan, geometry, settings.beam.max_range_m));
       mrpt::bayes::CParticleFilter::TParticleFilterStats stats;
       filter.executeOn(mcl, k > 0 ? &actions : nullptr, &frame, &stats);
       last_estimate = EstimateFromMrpt(mcl, settings);
@@ -219,10 +231,12 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
     row.particles = mcl.m_particles.size();
     row.spread_m = last_estimate.spread_m;
     row.mode_weight = last_estimate.mode_weight;
-    if (!JudgeDelibotRow(exact_scene, scan, trace.geometry, settings,
+    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings,
                          ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
+    if (on_row) on_row(row);
+    previous_odometry = scan.odometry;
     if (progress) progress(k + 1, count);
   }
   const bool non_finite = result.summary.any_non_finite_weight;

@@ -1,0 +1,20 @@
+#pragma once
+// OctoMap's readers trust the file: the node stream of a .bt or .ot file is
+// read by recursion with no depth limit, and a truncated stream leaves the
+// child mask uninitialized, so a corrupt file overflows the stack or reads
+// garbage (tests/fuzz found both). This check walks the same header and
+// node stream first, bounded, and refuses what OctoMap would choke on.
+#include <string>
+
+namespace rc {
+
+// OctoMap's OcTree depth: the root is depth 0, leaves are at most 16 deep.
+inline constexpr int kOctoMapTreeDepth = 16;
+
+// Throws InputError naming the file and the problem unless `path` (.bt when
+// `binary`, else .ot) has an OctoMap header with "id OcTree" (for .ot) and a
+// positive resolution, then a node stream that is complete and no deeper
+// than kOctoMapTreeDepth.
+void CheckOctoMapFile(const std::string& path, bool binary);
+
+}  // namespace rc

@@ -1,0 +1,9 @@
+// libFuzzer target: CMU .dat maps (wean.dat's format).
+#include "fuzz/fuzz_properties.h"
+#include "maps/cmu_map_loader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = rc::fuzz::WriteInputFile("map.dat", rc::fuzz::AsText(data, size));
+  rc::fuzz::ExpectParsedOrInputError([&] { rc::fuzz::RequireValidGrid(rc::LoadCmuMap(path)); });
+  return 0;
+}
