@@ -19,8 +19,13 @@
 
 namespace rc {
 
-enum class SensorModelKind { kBeam, kLikelihoodField };
-SensorModelKind ParseSensorModelKind(const std::string& name);  // "beam" | "likelihood"
+// kLikelihoodThenBeam: the likelihood field while the belief has rivals,
+// the beam model once one hypothesis is left (staged_sensor_model.h).
+enum class SensorModelKind { kBeam, kLikelihoodField, kLikelihoodThenBeam };
+// "beam" | "likelihood" | "likelihood-then-beam"
+SensorModelKind ParseSensorModelKind(const std::string& name);
+// Whether the model casts rays that the backends can price.
+bool CastsRays(SensorModelKind k);
 std::string ToString(SensorModelKind k);
 
 struct DelibotSettings {
