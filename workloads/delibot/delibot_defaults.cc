@@ -19,7 +19,7 @@ DelibotSettings DefaultDelibotSettings() {
   s.sensor_model = SensorModelKind::kLikelihoodThenBeam;
   s.likelihood.combination = BeamCombination::kAmclCubeSum;
   s.likelihood.unknown_is_edge = true;
-  s.beam.combination = BeamCombination::kProduct;
+  s.beam.combination = BeamCombination::kAmclCubeSum;
   s.mcl.initial_particle_count = kAutoInitialParticles;
   s.mcl.hypothesis_floor = {kDefaultFloorParticles, kDefaultWindowNats};
   s.mcl.max_particle_count = kDefaultMaxParticles;

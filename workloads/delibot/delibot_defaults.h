@@ -12,7 +12,7 @@
 namespace rc {
 
 // The likelihood field (nav2's cube sum, unknown space as an edge) while the
-// belief has rivals, the beam model (product) once one hypothesis is left;
+// belief has rivals, the beam model (also the cube sum) once one hypothesis is left;
 // the dense first set sized by the map (kAutoInitialParticles); a
 // 500-particle floor per hypothesis in a 6-nat window, the set growing to
 // 20000 while rivals are alive; no random injection.
