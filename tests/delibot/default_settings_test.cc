@@ -116,12 +116,12 @@ TEST(StagedHandOverTest, TrackingBeginsAfterTenUpdatesWithOneHypothesisAndCutsTh
     if (k == 3) global_model->live_places.resize(1);  // from update 3 one place is left
     const MclStepResult step = mcl.Update(still, run.trace.geometry, k);
     if (k >= 1 && k <= 2) EXPECT_EQ(step.hypotheses_alive, 2) << "update " << k;
+    EXPECT_EQ(step.tracking, began_at >= 0) << "update " << k;
     if (step.began_tracking) {
       EXPECT_EQ(began_at, -1) << "tracking begins once";
       began_at = k;
       EXPECT_EQ(mcl.particles().size(), 1000u) << "the set is cut to --particles at the hand-over";
     }
-    EXPECT_EQ(step.tracking, began_at >= 0) << "update " << k;
   }
   // From update 3 the second place's particles trail by 1000 nats: one
   // hypothesis alive in updates 3-12, and the tenth of them hands over.

@@ -135,6 +135,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
     row.injection_rejected = step.injection_rejected;
     row.hypotheses_alive = step.hypotheses_alive;
     row.particles = mcl.particles().size();
+    row.tracking_stage = step.tracking;
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

@@ -72,6 +72,7 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
                                           std::uint64_t iteration) {
   if (particles_.empty()) throw std::logic_error("MonteCarloLocalizer::Update before initialization");
   MclStepResult result;
+  result.tracking = sensor_model_->Tracking();
   check_records_.clear();
   result.check_records = &check_records_;
   if (have_odometry_) {
@@ -168,7 +169,6 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
              result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size())) {
     Resample(iteration, clusters ? &*clusters : nullptr, cluster_log_masses, result);
   }
-  result.tracking = sensor_model_->Tracking();
   return result;
 }
 

@@ -28,7 +28,8 @@ struct MclStepResult {
   int hypotheses_alive = 0;
   double ess = 0.0;              // effective sample size after the update, before resampling
   // A staged sensor model (staged_sensor_model.h): whether its tracking
-  // model scores the next update, and whether this update handed over.
+  // model scored this record (held, when no update ran), and whether this
+  // update handed over to it for the records that follow.
   bool tracking = false;
   bool began_tracking = false;
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
