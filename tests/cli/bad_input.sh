@@ -55,6 +55,9 @@ expect unknown-lf-combine 2 "--lf-combine" -- delibot --map map.yaml --trace goo
 expect injection-check-out-of-range 2 "injection check" -- delibot --map map.yaml --trace good.log --injection-check 5000
 expect hypothesis-floor-out-of-range 2 "hypothesis floor" -- delibot --map map.yaml --trace good.log --hypothesis-floor 5000
 expect hypothesis-window-negative 2 "hypothesis window" -- delibot --map map.yaml --trace good.log --hypothesis-floor 20 --hypothesis-window -1
+expect initial-particles-not-a-count 2 "--initial-particles: 'lots' is neither auto nor a count" -- delibot --map map.yaml --trace good.log --initial-particles lots
+expect initial-particles-below-the-set 2 "initial particles" -- delibot --map map.yaml --trace good.log --initial-particles 10
+expect unknown-sensor-model 2 "likelihood-then-beam" -- delibot --map map.yaml --trace good.log --sensor-model staged
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -206,6 +206,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--sensor-model", cli->sensor_model,
                   "beam (ray casting) | likelihood (likelihood field) | likelihood-then-beam (the likelihood field "
                   "while rival hypotheses are alive, the beam model once one is left; docs/defaults.md)")
+      ->check(CLI::IsMember({"beam", "likelihood", "likelihood-then-beam"}))
       ->each([cli](const std::string&) { cli->given.sensor_model = true; })
       ->capture_default_str();
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
