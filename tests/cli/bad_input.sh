@@ -105,6 +105,9 @@ expect occupied-thresh-range 2 "--occupied-thresh" "1.5" -- delibot --map trunca
 expect thresholds-crossed 2 "--free-thresh" "below --occupied-thresh" -- delibot --map truncated.dat --trace good.log --free-thresh 0.7 --occupied-thresh 0.6
 expect thresholds-on-ros-yaml 2 "occupied/free thresholds" "ros" -- delibot --map map.yaml --trace good.log --free-thresh 0.1
 expect laser-offset-range 2 "--laser-offset" "[0, 10] m" -- delibot --map map.yaml --trace good.log --laser-offset 11
+expect initial-particles-not-a-count 2 "--initial-particles" "'lots' is neither auto nor a count" -- delibot --map map.yaml --trace good.log --initial-particles lots
+expect initial-particles-below-the-set 2 "initial particles" "initial particles" -- delibot --map map.yaml --trace good.log --initial-particles 10
+expect unknown-sensor-model 2 "--sensor-model" "likelihood-then-beam" -- delibot --map map.yaml --trace good.log --sensor-model staged
 
 # An output that cannot be written: exit 1, the path named, nothing left.
 rm -f timeline.csv

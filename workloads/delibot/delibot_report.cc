@@ -245,7 +245,28 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   else
     emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
          m.sensor_updates, m.resamples, m.injected);
-  if (result.work_counted) {
+  if (s.sensor_model == SensorModelKind::kLikelihoodThenBeam && result.work_counted) {
+    // Which model scored which records: only the beam model casts rays.
+    long from = -1;
+    unsigned long long lookups = 0, rays = 0, nodes = 0;
+    for (const DelibotRow& r : result.rows) {
+      if (r.tracking_stage && from < 0) from = r.iteration;
+      (r.tracking_stage ? rays : lookups) += r.rays;
+      if (r.tracking_stage) nodes += r.nodes;
+    }
+    if (from >= 0)
+      emit("sensor model            likelihood field up to record %ld (%llu end-point look-ups), beam model from "
+           "record %ld on (one hypothesis alive for %d updates)",
+           from - 1, lookups, from, s.mcl.tracking_after_single_updates);
+    else
+      emit("sensor model            likelihood field throughout (%llu end-point look-ups): never one hypothesis "
+           "alive for %d updates, so no ray was cast",
+           lookups, s.mcl.tracking_after_single_updates);
+    emit("rays                    %llu cast by the beam model, %.1f nodes per ray", rays,
+         rays ? static_cast<double>(nodes) / rays : 0.0);
+    emit("host time               %.3f s total, %.2f ms per update", m.wall_s,
+         m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0);
+  } else if (result.work_counted) {
     emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
          m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);
     emit("host time               %.3f s total, %.2f ms per update, %.2f M rays/s", m.wall_s,

@@ -8,17 +8,23 @@
 #include "robocore/ray_batch_recorded.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
 #include "workloads/delibot/scan_consistency.h"
+#include "workloads/delibot/staged_sensor_model.h"
 
 namespace rc {
 namespace {
 
 std::unique_ptr<SensorModel> MakeSensorModel(const OccupancyGrid& grid, const DelibotSettings& s) {
-  if (s.sensor_model == SensorModelKind::kBeam) {
+  auto beam = [&] {
     return std::make_unique<BeamSensorModel>(std::make_shared<RayCastScene>(grid, s.ray_caster), s.beam);
-  }
-  LikelihoodFieldParams lf = s.likelihood;
-  lf.max_range_m = s.beam.max_range_m;
-  return std::make_unique<LikelihoodFieldModel>(grid, lf);
+  };
+  auto field = [&] {
+    LikelihoodFieldParams lf = s.likelihood;
+    lf.max_range_m = s.beam.max_range_m;
+    return std::make_unique<LikelihoodFieldModel>(grid, lf);
+  };
+  if (s.sensor_model == SensorModelKind::kBeam) return beam();
+  if (s.sensor_model == SensorModelKind::kLikelihoodField) return field();
+  return std::make_unique<StagedSensorModel>(field(), beam());
 }
 
 }  // namespace
@@ -26,10 +32,21 @@ std::unique_ptr<SensorModel> MakeSensorModel(const OccupancyGrid& grid, const De
 SensorModelKind ParseSensorModelKind(const std::string& name) {
   if (name == "beam") return SensorModelKind::kBeam;
   if (name == "likelihood") return SensorModelKind::kLikelihoodField;
-  throw std::invalid_argument("unknown sensor model '" + name + "' (expected beam or likelihood)");
+  if (name == "likelihood-then-beam") return SensorModelKind::kLikelihoodThenBeam;
+  throw std::invalid_argument("unknown sensor model '" + name +
+                              "' (expected beam, likelihood or likelihood-then-beam)");
 }
 
-std::string ToString(SensorModelKind k) { return k == SensorModelKind::kBeam ? "beam" : "likelihood"; }
+std::string ToString(SensorModelKind k) {
+  switch (k) {
+    case SensorModelKind::kBeam: return "beam";
+    case SensorModelKind::kLikelihoodField: return "likelihood";
+    case SensorModelKind::kLikelihoodThenBeam: return "likelihood-then-beam";
+  }
+  return "?";
+}
+
+bool CastsRays(SensorModelKind k) { return k != SensorModelKind::kLikelihoodField; }
 
 bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, const LaserGeometry& geometry,
                      const DelibotSettings& settings, const Pose2* truth, DelibotRow& row) {
@@ -64,7 +81,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) +
                                 " poses for " + std::to_string(scans.size()) + " laser records");
 
-  const bool price = settings.price_backends && settings.sensor_model == SensorModelKind::kBeam;
+  const bool price = settings.price_backends && CastsRays(settings.sensor_model);
   MclOptions mcl_options = settings.mcl;
   mcl_options.record_kernel = price;
   std::unique_ptr<BackendLedger> ledger;
@@ -127,6 +144,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
     row.injection_rejected = step.injection_rejected;
     row.hypotheses_alive = step.hypotheses_alive;
     row.particles = mcl.particles().size();
+    row.tracking_stage = step.tracking;
     if (step.work) {
       row.rays = step.work->rays;
       row.nodes = step.work->nodes;

@@ -20,8 +20,13 @@
 
 namespace rc {
 
-enum class SensorModelKind { kBeam, kLikelihoodField };
-SensorModelKind ParseSensorModelKind(const std::string& name);  // "beam" | "likelihood"
+// kLikelihoodThenBeam: the likelihood field while the belief has rivals,
+// the beam model once one hypothesis is left (staged_sensor_model.h).
+enum class SensorModelKind { kBeam, kLikelihoodField, kLikelihoodThenBeam };
+// "beam" | "likelihood" | "likelihood-then-beam"
+SensorModelKind ParseSensorModelKind(const std::string& name);
+// Whether the model casts rays that the backends can price.
+bool CastsRays(SensorModelKind k);
 std::string ToString(SensorModelKind k);
 
 struct DelibotSettings {
@@ -85,6 +90,9 @@ struct DelibotRow {
   // Particles after the update: particle_count, more for the dense first
   // set of global localization or while rivals grow the set.
   std::size_t particles = 0;
+  // A staged sensor model's tracking model scored this record
+  // (staged_sensor_model.h); false for one-stage models.
+  bool tracking_stage = false;
   double spread_m = 0.0;
   double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
   double consistency = 0.0;      // fraction of beams within k sigma at the estimate

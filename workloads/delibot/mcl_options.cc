@@ -1,5 +1,8 @@
 #include "workloads/delibot/mcl_options.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace rc {
 
 bool MclOptions::IsValid(std::string* error) const {
@@ -8,9 +11,11 @@ bool MclOptions::IsValid(std::string* error) const {
     return false;
   };
   if (particle_count < 1 || particle_count > 10000000) return fail("particles must be in [1, 10^7]");
-  if (initial_particle_count != 0 &&
+  if (initial_particle_count != 0 && initial_particle_count != kAutoInitialParticles &&
       (initial_particle_count < particle_count || initial_particle_count > 10000000))
-    return fail("initial particles must be 0 or in [particles, 10^7]");
+    return fail("initial particles must be auto, 0 or in [particles, 10^7]");
+  if (tracking_after_single_updates < 1 || tracking_after_single_updates > 1000)
+    return fail("tracking stage delay must be in [1, 1000] sensor updates");
   if (beams.beam_step < 1) return fail("beam step must be >= 1");
   if (!(resample_ess_fraction > 0.0 && resample_ess_fraction <= 1.0))
     return fail("resample ESS fraction must be in (0, 1]");
@@ -37,6 +42,19 @@ bool MclOptions::IsValid(std::string* error) const {
   if (!(m.alpha1 >= 0 && m.alpha2 >= 0 && m.alpha3 >= 0 && m.alpha4 >= 0))
     return fail("motion noise alphas must be >= 0");
   return true;
+}
+
+std::size_t InitialParticleCount(const MclOptions& options, double free_area_m2) {
+  const auto base = static_cast<std::size_t>(options.particle_count);
+  if (options.initial_particle_count != kAutoInitialParticles)
+    return std::max(base, static_cast<std::size_t>(std::max(0, options.initial_particle_count)));
+  // Uniform over free area x 2 pi of heading; the neighbourhood of a pose is
+  // a disc of radius kAutoInitialNearXyM times 2 kAutoInitialNearThetaRad.
+  constexpr double kPi = 3.14159265358979323846;
+  const double neighbourhood = kPi * kAutoInitialNearXyM * kAutoInitialNearXyM * 2.0 * kAutoInitialNearThetaRad;
+  const double wanted = std::ceil(kAutoInitialNearPose * free_area_m2 * 2.0 * kPi / neighbourhood);
+  return std::clamp(static_cast<std::size_t>(std::min(wanted, 1e9)), base,
+                    std::max(base, static_cast<std::size_t>(kAutoInitialParticlesCap)));
 }
 
 }  // namespace rc

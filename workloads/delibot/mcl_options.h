@@ -1,6 +1,7 @@
 #pragma once
 // Tunables of the Monte Carlo localizer, with units and ranges. Defaults are
 // nav2 AMCL's where it has one (REFERENCE.md section 4), otherwise stated.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -17,8 +18,9 @@ struct MclOptions {
   // particle_count. Why: some particle must start within the sensor model's
   // reach of the true pose (~0.2 m, ~5 deg), or the filter locks onto
   // whichever look-alike the first scans favour (docs/real_logs.md, "A dense
-  // first set").
-  int initial_particle_count = 0;     // 0 or [particle_count, 10^7]
+  // first set"). kAutoInitialParticles sizes the set by the map
+  // (InitialParticleCount).
+  int initial_particle_count = 0;     // kAutoInitialParticles, 0, or [particle_count, 10^7]
   std::uint64_t seed = 1;
   OdometryMotionNoise motion;
   BeamSelection beams{6};             // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
@@ -78,6 +80,14 @@ struct MclOptions {
   double update_min_d_m = 0.05;
   double update_min_a_rad = 0.05;
   double estimate_kernel_radius_m = 1.0;  // mean-shift radius of the point estimate
+  // With a sensor model that has a tracking stage (staged_sensor_model.h)
+  // and a hypothesis floor: the tracking model takes over after this many
+  // consecutive sensor updates with one hypothesis alive, the count after
+  // which the summary lets the filter claim convergence (delibot_summary.cc,
+  // kSustainRecords), and the set is cut to particle_count then. Tracking
+  // from a known pose (InitializeAround) starts in the tracking stage.
+  // [1, 1000] sensor updates.
+  int tracking_after_single_updates = 10;
   // Record every ray's node fetches (robocore/kernel_record.h) so that the
   // backends can price the update; off, the kernel runs without the hook.
   bool record_kernel = false;
@@ -85,5 +95,26 @@ struct MclOptions {
 
   bool IsValid(std::string* error) const;
 };
+
+// initial_particle_count that sizes the dense first set of global
+// localization by the map's free space: enough uniform particles that, on
+// average, kAutoInitialNearPose of them start within kAutoInitialNearXyM
+// and kAutoInitialNearThetaRad of any pose (Poisson: none with probability
+// e^-4, 2 %). The first update can only keep a place some particle
+// starts near; 500,000 particles on Wean Hall's 483 m^2 of free space
+// leave about one there, and lost the true place in one of ten seeds
+// (docs/defaults.md). 0.15 m and 3 deg is the reach measured there.
+constexpr int kAutoInitialParticles = -1;
+constexpr double kAutoInitialNearPose = 4.0;                          // expected particles [count]
+constexpr double kAutoInitialNearXyM = 0.15;                          // radius [m]
+constexpr double kAutoInitialNearThetaRad = 3.0 * 3.14159265358979323846 / 180.0;  // half-width [rad]
+// The auto size is capped (memory: about 100 bytes per particle while the
+// dense set is scored and resampled, so 4e6 take 0.4 GB).
+constexpr int kAutoInitialParticlesCap = 4000000;                     // [count]
+
+// The particles InitializeUniform draws: particle_count, the explicit
+// initial_particle_count, or the auto size for free_area_m2 of free space
+// (at least particle_count, at most kAutoInitialParticlesCap).
+std::size_t InitialParticleCount(const MclOptions& options, double free_area_m2);
 
 }  // namespace rc

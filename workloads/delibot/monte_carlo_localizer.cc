@@ -37,7 +37,8 @@ Pose2 MonteCarloLocalizer::RandomFreePose(RandomStream& stream) const {
 }
 
 void MonteCarloLocalizer::InitializeUniform() {
-  const auto n = static_cast<std::size_t>(std::max(options_.particle_count, options_.initial_particle_count));
+  const double cell_area_m2 = grid_.resolution_m() * grid_.resolution_m();
+  const std::size_t n = InitialParticleCount(options_, static_cast<double>(free_cells_.size()) * cell_area_m2);
   particles_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     RandomStream stream(options_.seed, StreamPurpose::kInitialization, 0, i);
@@ -63,12 +64,15 @@ void MonteCarloLocalizer::InitializeAround(const Pose2& pose, double sigma_xy_m,
   }
   log_weights_.assign(n, -std::log(static_cast<double>(n)));
   dense_initial_set_ = false;
+  // One hypothesis by construction: a staged model tracks from the start.
+  sensor_model_->BeginTracking();
 }
 
 MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeometry& geometry,
                                           std::uint64_t iteration) {
   if (particles_.empty()) throw std::logic_error("MonteCarloLocalizer::Update before initialization");
   MclStepResult result;
+  result.tracking = sensor_model_->Tracking();
   check_records_.clear();
   result.check_records = &check_records_;
   if (have_odometry_) {
@@ -141,13 +145,30 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   // places worth keeping, which plain systematic resampling does.
   std::optional<HypothesisClusters> clusters;
   std::vector<double> cluster_log_masses;
-  if (options_.hypothesis_floor.min_particles > 0 && !dense_initial_set_) {
+  // A staged model needs the count of hypotheses alive to hand over, floor
+  // or not (without a floor the resampling below stays plain).
+  if ((options_.hypothesis_floor.min_particles > 0 || sensor_model_->HasTrackingStage()) && !dense_initial_set_) {
     clusters = ClusterHypotheses(particles_, options_.estimate_kernel_radius_m, options_.hypothesis_heading_bins);
     cluster_log_masses = ClusterLogMasses(log_weights_, *clusters);
     result.hypotheses_alive = HypothesesAlive(cluster_log_masses, options_.hypothesis_floor.window_nats);
   }
-  if (dense_initial_set_ || result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size()))
+  // A staged model hands over to its tracking model once one hypothesis has
+  // been alive for tracking_after_single_updates updates in a row; the set,
+  // grown for rivals, is cut to particle_count by a plain resampling then
+  // (one hypothesis: the floor would change nothing).
+  bool begin_tracking = false;
+  if (sensor_model_->HasTrackingStage() && !sensor_model_->Tracking() && clusters) {
+    single_hypothesis_updates_ = result.hypotheses_alive == 1 ? single_hypothesis_updates_ + 1 : 0;
+    begin_tracking = single_hypothesis_updates_ >= options_.tracking_after_single_updates;
+  }
+  if (begin_tracking) {
+    Resample(iteration, nullptr, cluster_log_masses, result);
+    sensor_model_->BeginTracking();
+    result.began_tracking = true;
+  } else if (dense_initial_set_ ||
+             result.ess < options_.resample_ess_fraction * static_cast<double>(particles_.size())) {
     Resample(iteration, clusters ? &*clusters : nullptr, cluster_log_masses, result);
+  }
   return result;
 }
 

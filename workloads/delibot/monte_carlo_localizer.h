@@ -27,6 +27,11 @@ struct MclStepResult {
   // off, no sensor update, or the dense first update).
   int hypotheses_alive = 0;
   double ess = 0.0;              // effective sample size after the update, before resampling
+  // A staged sensor model (staged_sensor_model.h): whether its tracking
+  // model scored this record (held, when no update ran), and whether this
+  // update handed over to it for the records that follow.
+  bool tracking = false;
+  bool began_tracking = false;
   double log_mean_likelihood = 0.0;  // log of the weighted mean scan likelihood
   double injection_probability = 0.0;
   const SensorUpdateWork* work = nullptr;  // valid until the next Update()
@@ -92,6 +97,7 @@ class MonteCarloLocalizer {
   // before its first resampling (it is scored and resampled differently).
   bool dense_initial_set_ = false;
   bool have_recovery_averages_ = false;
+  int single_hypothesis_updates_ = 0;  // consecutive sensor updates with one hypothesis alive
   double log_w_slow_ = 0.0, log_w_fast_ = 0.0;
   // The last injection_check_updates sensor updates, oldest first.
   struct RememberedScan {

@@ -54,6 +54,12 @@ class SensorModel {
                                        std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
     LogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
   }
+  // A model with a global-localization stage and a tracking stage
+  // (staged_sensor_model.h) switches when the localizer calls BeginTracking,
+  // once one hypothesis is left. A one-stage model ignores the call.
+  virtual bool HasTrackingStage() const { return false; }
+  virtual bool Tracking() const { return false; }
+  virtual void BeginTracking() {}
 };
 
 // Sensor origin (m) and beam angle (rad) in the map frame for a robot pose.

@@ -20,6 +20,7 @@
 #include "traces/ground_truth_io.h"
 #include "traces/mrpt/mrpt_trace_dispatch.h"
 #include "traces/trace_reader.h"
+#include "workloads/delibot/delibot_defaults.h"
 #include "workloads/delibot/delibot_memory.h"
 #include "workloads/delibot/delibot_report.h"
 #include "workloads/delibot/delibot_run.h"
@@ -51,8 +52,22 @@ struct DelibotCli {
   bool quiet = false;
   SchedulerCli scheduler;
   std::string engine = "ours";
-  DelibotSettings settings;
+  std::string initial_particles = "auto";
+  DelibotSettings settings = DefaultDelibotSettings();
+  GivenDelibotOptions given;
 };
+
+// --initial-particles: "auto" (kAutoInitialParticles) or a count.
+int ParseInitialParticles(const std::string& value) {
+  if (value == "auto") return kAutoInitialParticles;
+  try {
+    std::size_t used = 0;
+    const long n = std::stol(value, &used);
+    if (used == value.size() && n >= 0 && n <= 10000000) return static_cast<int>(n);
+  } catch (const std::exception&) {
+  }
+  throw UsageError("--initial-particles: '" + value + "' is neither auto nor a count in [0, 10^7]");
+}
 
 void Run(DelibotCli& cli) {
   DelibotSettings& s = cli.settings;
@@ -65,11 +80,13 @@ void Run(DelibotCli& cli) {
   if (!cli.initial_pose.empty()) s.initial_pose = Pose2{cli.initial_pose[0], cli.initial_pose[1], cli.initial_pose[2]};
   if (cli.threads > 0) omp_set_num_threads(cli.threads);
   const DelibotEngine engine = ParseDelibotEngine(cli.engine);
+  s.mcl.initial_particle_count = ParseInitialParticles(cli.initial_particles);
+  std::cout << FitDefaultsToGivenOptions(s, cli.given, engine == DelibotEngine::kMrpt);
   // MRPT casts its own rays: there is no kernel record to price.
   s.price_backends = !cli.scheduler.no_pricing && engine == DelibotEngine::kOurs;
   s.ledger = ToLedgerOptions(cli.scheduler);
   s.backend_params = BackendParametersOf(cli.scheduler);
-  if (s.price_backends && s.sensor_model != SensorModelKind::kBeam)
+  if (s.price_backends && !CastsRays(s.sensor_model))
     std::cout << "note: the likelihood-field model casts no rays; backend pricing is off for this run\n";
   std::string error;
   if (!s.mcl.IsValid(&error)) throw UsageError(error);
@@ -130,8 +147,16 @@ void Run(DelibotCli& cli) {
     }
   }
 
+  // "auto" resolved here, so that the summary records the count drawn.
+  const double free_area_m2 = static_cast<double>(grid.CountCells(CellState::kFree)) * grid.resolution_m() *
+                              grid.resolution_m();
+  if (!s.initial_pose && s.mcl.initial_particle_count == kAutoInitialParticles)
+    s.mcl.initial_particle_count = static_cast<int>(InitialParticleCount(s.mcl, free_area_m2));
+  const bool dense_start = !s.initial_pose && s.mcl.initial_particle_count > s.mcl.particle_count;
   std::cout << "filter: " << (engine == DelibotEngine::kMrpt ? "MRPT CMonteCarloLocalization2D, " : "")
-            << s.mcl.particle_count << " particles, " << ToString(s.sensor_model) << " model, "
+            << s.mcl.particle_count << " particles"
+            << (dense_start ? " (" + std::to_string(s.mcl.initial_particle_count) + " for the first update)" : "")
+            << ", " << ToString(s.sensor_model) << " model, "
             << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
             << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
             << provenance.threads << " thread(s)\n";
@@ -173,6 +198,11 @@ void Run(DelibotCli& cli) {
 void AddDelibotCommand(CLI::App& app) {
   auto cli = std::make_shared<DelibotCli>();
   DelibotSettings& s = cli->settings;
+  // The string options show the defaults of DefaultDelibotSettings().
+  cli->sensor_model = ToString(s.sensor_model);
+  cli->lf_unknown = s.likelihood.unknown_is_edge ? "edge" : "miss";
+  cli->lf_combine = ToString(s.likelihood.combination);
+  cli->beam_combine = ToString(s.beam.combination);
   CLI::App* cmd = app.add_subcommand(
       "delibot", "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
                  "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
@@ -192,15 +222,25 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--ground-truth", cli->ground_truth_path,
                   "Ground truth, one 't x_m y_m theta_rad' line per laser record (s, m, m, rad)");
   cmd->add_option("--particles", s.mcl.particle_count, "Number of particles (count, 1 to 1e7)")->capture_default_str();
-  cmd->add_option("--initial-particles", s.mcl.initial_particle_count,
-                  "Global localization: uniform particles before the first sensor update, which resamples "
-                  "them down to --particles (count; 0 = --particles)")
-      ->capture_default_str();
+  cmd->add_option_function<std::string>(
+         "--initial-particles",
+         [cli](const std::string& v) {
+           cli->initial_particles = v;
+           cli->given.initial_particles = true;
+         },
+         "Global localization: uniform particles before the first sensor update, which resamples them down "
+         "to --particles (count; 0 = --particles; auto = 4 expected within 0.15 m and 3 deg of any pose, "
+         "3395 per m^2 of free space, at most 4e6)")
+      ->default_str(cli->initial_particles);
   cmd->add_option("--beam-step", s.mcl.beams.beam_step, "Use every K-th beam (count, K >= 1; 6 of 180 gives 30 beams)")
       ->capture_default_str();
   cmd->add_option("--raycaster", cli->ray_caster, "march (fixed 1-cell step) | dda (exact) | rm (distance field)")
       ->capture_default_str();
-  cmd->add_option("--sensor-model", cli->sensor_model, "beam (ray casting) | likelihood (likelihood field)")
+  cmd->add_option("--sensor-model", cli->sensor_model,
+                  "beam (ray casting) | likelihood (likelihood field) | likelihood-then-beam (the likelihood field "
+                  "while rival hypotheses are alive, the beam model once one is left; docs/defaults.md)")
+      ->check(CLI::IsMember({"beam", "likelihood", "likelihood-then-beam"}))
+      ->each([cli](const std::string&) { cli->given.sensor_model = true; })
       ->capture_default_str();
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
   cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")->capture_default_str();
@@ -257,12 +297,15 @@ void AddDelibotCommand(CLI::App& app) {
                   "Hypothesis-preserving resampling: a cluster of particles (1 m x 1 m x 30 deg bins, joined "
                   "when they touch) whose posterior mass is within --hypothesis-window of the heaviest keeps at "
                   "least this many particles, weighted so the belief is unchanged (count, 0 to --particles / 2; "
-                  "0 = plain systematic resampling)")
+                  "0 = plain systematic resampling; by default at most --particles / 2)")
+      ->each([cli](const std::string&) { cli->given.hypothesis_floor = true; })
       ->capture_default_str();
   cmd->add_option("--max-particles", s.mcl.max_particle_count,
                   "With --hypothesis-floor: while rivals are alive a resampling draws up to this many particles, "
                   "twice the floor per live hypothesis, so that every rival keeps its floor; the set shrinks "
-                  "back to --particles as they fall out of the window (count; 0 = --particles, fixed size)")
+                  "back to --particles as they fall out of the window (count; 0 = --particles, fixed size; by "
+                  "default 0 without a floor)")
+      ->each([cli](const std::string&) { cli->given.max_particles = true; })
       ->capture_default_str();
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "

@@ -1,0 +1,26 @@
+#include "workloads/delibot/staged_sensor_model.h"
+
+#include <stdexcept>
+
+namespace rc {
+
+StagedSensorModel::StagedSensorModel(std::unique_ptr<SensorModel> global, std::unique_ptr<SensorModel> tracking)
+    : global_model_(std::move(global)), tracking_model_(std::move(tracking)) {
+  if (!global_model_ || !tracking_model_) throw std::invalid_argument("a staged sensor model needs both models");
+}
+
+std::string StagedSensorModel::name() const { return global_model_->name() + "-then-" + tracking_model_->name(); }
+
+void StagedSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                       const LaserGeometry& geometry, const BeamSelection& beams,
+                                       std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+  Current().LogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+}
+
+void StagedSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                                const LaserGeometry& geometry, const BeamSelection& beams,
+                                                std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
+  global_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+}
+
+}  // namespace rc
