@@ -50,6 +50,16 @@ TEST(ArtifactPreset, HoldsTheArtifactsValues) {
   EXPECT_EQ(DefaultPreset().kernel.grid_cell_bytes, 1u);
 }
 
+// `--backend-params artifact` and `--backend-params default` name the
+// presets; anything else is a file, checked like any parameter file.
+TEST(ArtifactPreset, LoadsByNameAndFilesAreStillChecked) {
+  EXPECT_EQ(LoadBackendPreset("artifact").backend.gpu.l1_bytes, 8192);
+  EXPECT_EQ(LoadBackendPreset("artifact").kernel.grid_cell_bytes, 8u);
+  EXPECT_EQ(LoadBackendPreset("default").backend.gpu.l1_bytes, BackendParameters{}.gpu.l1_bytes);
+  EXPECT_THROW(LoadBackendPreset("/nonexistent/artifact"), InputError);
+  EXPECT_THROW(ParseBackendPreset(R"({"gpu": {"l1_bytes": 1}})", "p.json"), InputError);
+}
+
 TEST(ArtifactPreset, EmbeddedCopyEqualsTheFile) {
   EXPECT_EQ(ReadSource("backends/presets/artifact.json"), ArtifactPresetJson()) << "rebuild to re-embed";
 }

@@ -112,7 +112,8 @@ TEST(WhySentences, TheSentenceFollowsTheMeasuredBound) {
   ASSERT_NE(base_why.find("RoboCore is latency-bound"), std::string::npos) << base_why;
 
   const BackendPreset throughput = ParseBackendPreset(
-      R"({"robocore": {"warp_buffer_warps": 64, "sact_pipeline_stages": 1}})", "throughput.json");
+      R"({"robocore": {"warp_buffer_warps": 64, "pre_process_initiation_cycles": 14,
+                 "box_normal_initiation_cycles": 12, "edge_edge_initiation_cycles": 12}})", "throughput.json");
   const std::string& unit_why = Row(Calibrate(w, artifact, throughput), row).why;
   EXPECT_EQ(unit_why.find("RoboCore is latency-bound"), std::string::npos) << unit_why;
   EXPECT_NE(unit_why.find("OP unit"), std::string::npos) << unit_why;
