@@ -101,7 +101,9 @@ SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const
   mix.fp64 = simt_.precision == SimtPrecision::kHost ? record.scalar_bytes != 4
                                                      : simt_.precision == SimtPrecision::kFp64;
   const char* precision = mix.fp64 ? "fp64" : "fp32";
-  const bool shipped_program = record.program && record.program == ShippedStepProgram(record.step_kind);
+  // The RT units' cost description may be a shipped variant (the artifact's
+  // march); the CUDA cores run the same kernel, compiled.
+  const bool shipped_program = IsShippedProgramOf(record.step_kind, record.program);
   const bool beam_leaf = record.leaf_kind == LeafProgramKind::kBeamModel && record.leaf &&
                          record.leaf == ShippedLeafProgram(LeafProgramKind::kBeamModel);
   const SimtInstructionTable& table = SimtInstructionTable::Shipped();

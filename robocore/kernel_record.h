@@ -71,9 +71,15 @@ struct MemoryRegion {
 // after another from first_base, each aligned to `alignment`, so the
 // footprint is contiguous (which lets a cache model tell from the total size
 // whether it fits).
+//
+// grid_cell_bytes is how the device stores one occupancy cell, which is a
+// cost (it sets how many cells share a sector): 1, our CellState byte; 8,
+// the RoboGPU artifact's grid of doubles (docs/artifact_preset.md). The
+// functional answer does not depend on it.
 struct DeviceLayout {
   std::uint64_t first_base = std::uint64_t{1} << 32;  // bytes; away from 0 so a bad address stands out
   std::uint64_t alignment = 4096;                     // bytes; a page
+  std::uint32_t grid_cell_bytes = 1;                  // bytes per occupancy cell: 1, 2, 4 or 8
 };
 
 struct KernelRecord {

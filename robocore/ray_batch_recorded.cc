@@ -9,6 +9,8 @@
 namespace rc {
 namespace {
 
+bool ValidCellBytes(std::uint32_t bytes) { return bytes == 1 || bytes == 2 || bytes == 4 || bytes == 8; }
+
 std::uint64_t AlignUp(std::uint64_t value, std::uint64_t alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
@@ -73,10 +75,38 @@ std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) 
 
 }  // namespace
 
+const char* ToString(MarchProgramChoice choice) {
+  return choice == MarchProgramChoice::kArtifact ? "artifact" : "shipped";
+}
+
+bool ParseMarchProgramChoice(const std::string& text, MarchProgramChoice* out) {
+  for (MarchProgramChoice c : {MarchProgramChoice::kShipped, MarchProgramChoice::kArtifact})
+    if (text == ToString(c)) return *out = c, true;
+  return false;
+}
+
+bool RayKernelChoices::IsValid(std::string* error) const {
+  if (ValidCellBytes(grid_cell_bytes)) return true;
+  if (error) *error = "grid_cell_bytes must be 1, 2, 4 or 8, got " + std::to_string(grid_cell_bytes);
+  return false;
+}
+
+RecordOptions RecordOptionsFor(RayCastMethod method, const RayKernelChoices& choices, RecordOptions base) {
+  std::string error;
+  if (!choices.IsValid(&error)) throw std::invalid_argument("ray kernel choices: " + error);
+  base.layout.grid_cell_bytes = choices.grid_cell_bytes;
+  if (method == RayCastMethod::kMarch && choices.march_program == MarchProgramChoice::kArtifact)
+    base.program = ShippedProgram("grid_march_artifact.asm");
+  return base;
+}
+
 std::vector<MemoryRegion> RayCastRegions(const RayCastScene& scene, const DeviceLayout& layout) {
+  if (!ValidCellBytes(layout.grid_cell_bytes))
+    throw std::invalid_argument("device layout: grid_cell_bytes must be 1, 2, 4 or 8, got " +
+                                std::to_string(layout.grid_cell_bytes));
   const OccupancyGrid& g = scene.grid();
   MemoryRegion grid{"occupancy grid", FetchKind::kGridCell, AlignUp(layout.first_base, layout.alignment),
-                    sizeof(CellState), g.cell_count()};
+                    layout.grid_cell_bytes, g.cell_count()};
   if (scene.method() != RayCastMethod::kRayMarching) return {grid};
   // The distance field lives after the grid, at its own base, even though
   // rm never reads the grid: the two are distinct device allocations.

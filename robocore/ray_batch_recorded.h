@@ -12,6 +12,7 @@
 // Cost: about CastRayBatch for the unkept queries, the scalar kernel for the
 // kept ones, plus one 8-byte store per kept fetch; a record reused across
 // batches keeps its capacity.
+#include <string>
 #include <vector>
 
 #include "robocore/kernel_record.h"
@@ -33,13 +34,36 @@ struct RecordOptions {
   AddressSample sample;
 };
 
+// The kernel-side choices a backend preset makes for the ray casts
+// (backends/presets/*.json, its "kernel" object): how the device stores the
+// occupancy grid, and which cost description the RT units run for march.
+// Neither changes a functional answer.
+enum class MarchProgramChoice : std::uint8_t {
+  kShipped,   // programs/grid_march.asm: the micro-ops CastMarch performs, 1-byte cells
+  kArtifact,  // programs/grid_march_artifact.asm: the artifact's 7-op cell transaction
+};
+const char* ToString(MarchProgramChoice choice);                  // "shipped" | "artifact"
+bool ParseMarchProgramChoice(const std::string& text, MarchProgramChoice* out);
+
+struct RayKernelChoices {
+  std::uint32_t grid_cell_bytes = 1;  // bytes per occupancy cell on the device: 1, 2, 4 or 8
+  MarchProgramChoice march_program = MarchProgramChoice::kShipped;
+  bool IsValid(std::string* error) const;
+};
+
+// `base` with the choices applied for a scene of `method`: the layout's
+// cell size, and for march the chosen program (other methods keep theirs).
+// Throws std::invalid_argument for invalid choices.
+RecordOptions RecordOptionsFor(RayCastMethod method, const RayKernelChoices& choices, RecordOptions base = {});
+
 void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
                           std::vector<RayHit>& hits, KernelRecord& record,
                           const RecordOptions& options = {});
 
 // The regions a scene's kernel fetches from, placed by `layout`: the grid
-// (1 byte per cell) for march and dda, the distance field (4 bytes per
-// cell) for rm.
+// (layout.grid_cell_bytes per cell) for march and dda, the distance field
+// (4 bytes per cell) for rm. Throws std::invalid_argument for a cell size
+// other than 1, 2, 4 or 8 bytes.
 std::vector<MemoryRegion> RayCastRegions(const RayCastScene& scene, const DeviceLayout& layout);
 
 }  // namespace rc

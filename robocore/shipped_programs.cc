@@ -37,6 +37,12 @@ std::shared_ptr<const MicroProgram> ShippedStepProgram(StepProgramKind kind) {
   throw std::logic_error("unhandled step program kind");
 }
 
+bool IsShippedProgramOf(StepProgramKind kind, const std::shared_ptr<const MicroProgram>& program) {
+  if (!program) return false;
+  if (program == ShippedStepProgram(kind)) return true;
+  return kind == StepProgramKind::kGridMarch && program == ShippedProgram("grid_march_artifact.asm");
+}
+
 std::shared_ptr<const MicroProgram> ShippedLeafProgram(LeafProgramKind kind) {
   switch (kind) {
     case LeafProgramKind::kNone: return nullptr;

@@ -32,6 +32,11 @@ std::string ShippedProgramDirectory();
 std::shared_ptr<const MicroProgram> ShippedProgram(const std::string& file_name);
 
 std::shared_ptr<const MicroProgram> ShippedStepProgram(StepProgramKind kind);
+// True if `program` is a shipped cost description of kind's kernel: its
+// shipped step program, or a shipped variant of it that describes the same
+// functional kernel for the RT units (grid_march_artifact.asm for march).
+// A CUDA-core model prices every such record by the kind's compiled kernel.
+bool IsShippedProgramOf(StepProgramKind kind, const std::shared_ptr<const MicroProgram>& program);
 // Null for LeafProgramKind::kNone.
 std::shared_ptr<const MicroProgram> ShippedLeafProgram(LeafProgramKind kind);
 

@@ -5,12 +5,18 @@
 
 namespace rc {
 
-CalibrationReport Calibrate(const CalibrationWorkloads& workloads, const BackendParameters& params) {
+CalibrationReport Calibrate(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
+                            const BackendPreset& ours) {
   CalibrationReport report;
-  report.workload_notes = {workloads.ray_description, workloads.collision_description};
-  report.rows = DelibotRows(workloads, params);
-  for (CalibrationRow& row : CollisionRows(workloads, params)) report.rows.push_back(std::move(row));
+  report.ours_name = ours.name;
+  report.workload_notes = workloads.notes;
+  report.rows = DelibotRows(workloads, artifact, ours, &report.workload_notes);
+  for (CalibrationRow& row : CollisionRows(workloads, artifact, ours)) report.rows.push_back(std::move(row));
   return report;
+}
+
+CalibrationReport CalibrateOneColumn(const CalibrationWorkloads& workloads, const BackendPreset& preset) {
+  return Calibrate(workloads, preset, preset);  // the row builders price a shared preset once
 }
 
 }  // namespace rc

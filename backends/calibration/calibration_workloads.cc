@@ -1,5 +1,6 @@
 #include "backends/calibration/calibration_workloads.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -12,22 +13,18 @@
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "robocore/collision/box_csv.h"
-#include "robocore/collision/collision_summary.h"
 #include "robocore/collision/shelf_scene.h"
 #include "robocore/collision/sphere_robot.h"
-#include "robocore/ray_batch_recorded.h"
+#include "traces/trace_reader.h"
+#include "workloads/delibot/trace_simulator.h"
 
 namespace rc {
 namespace {
 
 const char* const kWeanMap = "wean/wean.dat";
+const char* const kRobotData1 = "wean/robotdata1.log";
 const char* const kRobotObbs = "collision/mpnet_master_obb.csv";
-
-std::string Format(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, a, b, c, d);
-  return buf;
-}
+constexpr int kDemoRecords = 400;  // rcbench delibot's built-in demo (workloads/rcbench/demo_inputs.cc)
 
 // The first MCL update: every particle uniform in free space, which is when
 // rays are longest (the paper's "early iterations" regime).
@@ -61,7 +58,41 @@ std::vector<Obbd> RandomWorkspaceObbs(const CalibrationOptions& o) {
   return obbs;
 }
 
+SactSceneWorkload SceneWorkload(MpinetSceneKind kind, const std::vector<std::vector<Obbd>>& poses,
+                                const CalibrationOptions& o) {
+  const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(kind);
+  const SceneOctree octree = BuildSceneOctree(kind, seed);
+  std::size_t links = 0;
+  for (const auto& pose : poses) links += pose.size();
+  const int yaws = static_cast<int>((static_cast<std::size_t>(o.min_sact_queries) + links - 1) / links);
+  const std::vector<Obbd> queries = JitteredArmQueries(poses, yaws, octree, seed);
+  const FlatBoxTree<double> tree(octree.tree);
+  SactSceneWorkload w;
+  w.kind = kind;
+  w.resolution_m = octree.resolution_m;
+  w.octree_nodes = octree.octree_nodes;
+  w.box_nodes = tree.nodes().size();
+  const CollisionBatch batch = CollideBatch(tree, queries, CollisionOptions<double>{});
+  w.summary = Summarize(batch);
+  w.sact = SactKernelRecord(batch);
+  w.spheres = SphereKernelRecord(CollideSphereBatch(tree, queries, 1, TraversalOrder::kDepthFirst).spheres);
+  w.sphere_false_collisions = CompareSphereRobot(tree, queries, CollisionOptions<double>{}, 1).false_collisions;
+  return w;
+}
+
+std::string Format(const char* format, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, format, a, b, c, d);
+  return buf;
+}
+
 }  // namespace
+
+std::string SactSceneWorkload::Size() const {
+  return Format("%.0f queries x %.1f nodes; %.0f-node octree", double(sact.query_count()),
+               summary.nodes_per_query_mean, double(octree_nodes)) +
+         Format(" (%.0f box nodes, %.3g m voxels)", double(box_nodes), resolution_m);
+}
 
 bool CalibrationOptions::IsValid(std::string* error) const {
   auto fail = [&](const char* what) {
@@ -71,6 +102,9 @@ bool CalibrationOptions::IsValid(std::string* error) const {
   if (particles < 1 || beams < 1) return fail("calibration: particles and beams must be >= 1");
   if (!(max_range_m > 0)) return fail("calibration: max range must be > 0");
   if (random_obbs < 1) return fail("calibration: random OBB count must be >= 1");
+  if (min_sact_queries < 1) return fail("calibration: the SACT batch needs >= 1 query");
+  if (run_particles < 1 || run_beam_step < 1 || run_max_records < 0)
+    return fail("calibration: DeliBot runs need >= 1 particle, a beam step >= 1 and max records >= 0");
   return true;
 }
 
@@ -78,35 +112,72 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   std::string error;
   if (!o.IsValid(&error)) throw UsageError(error);
   CalibrationWorkloads w;
-
-  const std::string wean = o.data_dir + "/" + kWeanMap;
-  const bool have_wean = std::filesystem::exists(wean);
-  const OccupancyGrid grid = have_wean ? LoadCmuMap(wean) : GenerateOfficeMap();
-  const RayBatch batch = UniformParticleBeams(grid, o);
-  std::vector<RayHit> hits;
-  std::string nodes;
-  for (RayCastMethod method : {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching}) {
-    const RayCastScene scene(grid, method);
-    RayCasterRecord r;
-    r.method = method;
-    CastRayBatchRecorded(scene, batch, hits, r.record);
-    nodes += std::string(nodes.empty() ? "" : ", ") + ToString(method) +
-             Format(" %.1f", double(r.record.total_nodes()) / double(r.record.query_count()));
-    w.rays.push_back(std::move(r));
-  }
-  w.ray_description =
-      std::string("DeliBot: ") + (have_wean ? "Wean map (" + wean + ")" : "generated office map (no " + wean + ")") +
-      Format(", %.0f x %.0f cells; %.0f particles uniform in free space x %.0f beams", grid.size_x(), grid.size_y(),
-             o.particles, o.beams) +
-      Format(", max range %.3g m, beam-model leaf; nodes per ray: ", o.max_range_m) + nodes + ".";
+  w.options = o;
 
   const std::string robot_path = o.data_dir + "/" + kRobotObbs;
   const bool have_robot = std::filesystem::exists(robot_path);
-  std::vector<Obbd> obbs;
-  if (have_robot)
-    for (const RobotObb& r : ReadObbCsv(robot_path)) obbs.push_back(r.obb);
-  else
-    obbs = RandomWorkspaceObbs(o);
+  std::vector<Obbd> links;
+  std::vector<std::vector<Obbd>> poses;  // a pose's links, base to tip
+  if (have_robot) {
+    long pose = -1;
+    for (const RobotObb& r : ReadObbCsv(robot_path)) {
+      if (poses.empty() || r.pose != pose) poses.emplace_back(), pose = r.pose;
+      poses.back().push_back(r.obb);
+      links.push_back(r.obb);
+    }
+  } else {
+    links = RandomWorkspaceObbs(o);
+    for (const Obbd& b : links) poses.push_back({b});
+  }
+  const std::string links_source =
+      have_robot ? "the " + std::to_string(poses.size()) + " mpnet_master arm poses (" +
+                       std::to_string(links.size()) + " link OBBs, " + robot_path + ")"
+                 : std::to_string(links.size()) + " seeded random link-size OBBs (no " + robot_path + ")";
+
+  // Paper scale: SACT scenes.
+  for (MpinetSceneKind kind : o.scenes) {
+    w.scenes.push_back(SceneWorkload(kind, poses, o));
+    const SactSceneWorkload& s = w.scenes.back();
+    w.notes.push_back(std::string("SACT, ") + ToString(kind) + " scene (OctoMap, our boxes): " + s.Size() + "; " +
+                      Format("%.0f of %.0f queries collide; ", double(s.summary.collisions), double(s.summary.queries)) +
+                      links_source + " aimed across the scene and jittered, double precision, depth-first.");
+  }
+
+  // Paper scale: DeliBot runs.
+  const std::string wean = o.data_dir + "/" + kWeanMap;
+  const bool have_wean = std::filesystem::exists(wean);
+  if (o.delibot_runs) {
+    DelibotRunWorkload demo;
+    demo.name = "demo";
+    demo.grid = GenerateOfficeMap(OfficeMapOptions{});
+    SimulationOptions sim;
+    sim.record_count = kDemoRecords;
+    demo.trace = SimulateTrace(demo.grid, sim).trace;
+    w.runs.push_back(std::move(demo));
+    const std::string log = o.data_dir + "/" + kRobotData1;
+    if (have_wean && std::filesystem::exists(log)) {
+      DelibotRunWorkload real;
+      real.name = "robotdata1";
+      real.grid = LoadCmuMap(wean);
+      real.trace = ReadTrace(log, TraceReadOptions{});
+      w.runs.push_back(std::move(real));
+    } else {
+      w.notes.push_back("DeliBot robotdata1: not run (no " + wean + " or " + log + ").");
+    }
+  }
+
+  // Small batch: DeliBot's first update.
+  w.ray_grid = have_wean ? LoadCmuMap(wean) : GenerateOfficeMap();
+  w.first_update = UniformParticleBeams(w.ray_grid, o);
+  w.notes.push_back(
+      std::string("Small batch, DeliBot: ") +
+      (have_wean ? "Wean map (" + wean + ")" : "generated office map (no " + wean + ")") +
+      Format(", %.0f x %.0f cells; one update of %.0f particles uniform in free space x %.0f beams", w.ray_grid.size_x(),
+             w.ray_grid.size_y(), o.particles, o.beams) +
+      Format(", max range %.3g m, beam-model leaf.", o.max_range_m));
+
+  // Small batch: SACT against the shelf's median-split tree, in float.
+  std::vector<Obbd> obbs = have_robot ? links : RandomWorkspaceObbs(o);
   const std::vector<Aabbd> scene = MakeShelfScene();
   const FlatBoxTree<float> tree(BuildMedianSplitTree(scene));
   std::vector<Obbf> obbs_f;
@@ -118,16 +189,14 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   const SphereRobotReport spheres = CompareSphereRobot(tree, obbs_f, CollisionOptions<float>{}, 1);
   w.sphere_false_collisions = spheres.false_collisions;
   w.sphere_obb_collisions = spheres.obb_collisions;
-  w.collision_description =
-      std::string("SACT: ") +
+  w.notes.push_back(
+      std::string("Small batch, SACT: ") +
       (have_robot ? "mpnet_master robot-link OBBs (" + robot_path + ")"
                   : "seeded random workspace OBBs (no " + robot_path + ")") +
       Format(", %.0f queries (%.0f collide), against the shelf scene (%.0f boxes, ", double(obbs.size()),
              double(summary.collisions), double(scene.size())) +
-      Format("%.0f-node median-split tree, 32-byte float nodes), depth-first; %.2f nodes per query, %.1f axis "
-             "tests per node on average.",
-             double(tree.nodes().size()), summary.nodes_per_query_mean,
-             double(summary.box_normal + summary.edge_edge) / double(summary.node_visits));
+      Format("%.0f-node median-split tree, 32-byte float nodes), depth-first; %.2f nodes per query.",
+             double(tree.nodes().size()), summary.nodes_per_query_mean));
   return w;
 }
 

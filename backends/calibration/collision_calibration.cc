@@ -1,159 +1,308 @@
 #include "backends/calibration/collision_calibration.h"
 
+#include <functional>
+
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/sact_datapath_variants.h"
+#include "backends/calibration/why_sentences.h"
+#include "backends/energy_model.h"
+#include "backends/simt_backend.h"
 
 namespace rc {
 namespace {
 
-CalibrationRow Row(std::string result, std::string paper, double paper_value, double ours, CalibrationUnit unit,
-                   std::string why) {
-  CalibrationRow r;
-  r.result = std::move(result);
-  r.paper = std::move(paper);
-  r.paper_value = paper_value;
-  r.ours = ours;
-  r.unit = unit;
-  r.why = std::move(why);
-  return r;
-}
-
 constexpr double kNoPaperNumber = std::numeric_limits<double>::quiet_NaN();
 
-// Fraction of node tests in which no axis separated (every axis ran).
-double OverlapFraction(const KernelRecord& record) {
-  std::uint64_t overlaps = 0;
-  for (std::uint8_t exit : record.node_exits) overlaps += exit == kNoExit;
-  return double(overlaps) / double(record.total_nodes());
+// One batch to price: a SACT record and the same OBBs as spheres.
+struct SactInput {
+  const KernelRecord* sact = nullptr;
+  const KernelRecord* spheres = nullptr;
+  std::uint64_t sphere_false_collisions = 0;
+};
+
+// Everything one preset's pricing of a list of batches measured.
+struct SactColumn {
+  SideEvidence simt{"the CUDA cores"}, tta{"TTA+"}, tta_p{"TTA+-p"}, tta_cr{"TTA+-cr"}, robo{"RoboCore"};
+  SideEvidence half{"RoboCore"}, twice{"RoboCore"}, parallel{"RoboCore"}, doubled{"RoboCore"};
+  SideEvidence spheres{"RoboCore (spheres)"};
+  double queries = 0, nodes = 0, overlaps = 0, exit_axis_sum = 0, separated = 0;
+  double with_exit = 0, without_exit = 0, parallel_cycles = 0, doubled_cycles = 0;  // computation cycles, summed over queries
+  double sphere_nodes = 0, sphere_queries = 0, false_collisions = 0;
+  std::string simt_kernel;  // what the SIMT model priced
+  int predicated_op_cycles = 1;
+  double robo_memory_joules = 0, simt_memory_joules = 0;
+};
+
+// Sums another batch's column into this one.
+void Merge(SactColumn& c, const SactColumn& more) {
+  for (auto [to, from] : {std::pair{&c.simt, &more.simt}, {&c.tta, &more.tta}, {&c.tta_p, &more.tta_p},
+                          {&c.tta_cr, &more.tta_cr}, {&c.robo, &more.robo}, {&c.half, &more.half},
+                          {&c.twice, &more.twice}, {&c.parallel, &more.parallel}, {&c.doubled, &more.doubled},
+                          {&c.spheres, &more.spheres}})
+    to->Add(*from);
+  for (auto [to, from] : {std::pair{&c.queries, more.queries}, {&c.nodes, more.nodes}, {&c.overlaps, more.overlaps},
+                          {&c.exit_axis_sum, more.exit_axis_sum}, {&c.separated, more.separated},
+                          {&c.with_exit, more.with_exit}, {&c.without_exit, more.without_exit},
+                          {&c.parallel_cycles, more.parallel_cycles}, {&c.doubled_cycles, more.doubled_cycles},
+                          {&c.sphere_nodes, more.sphere_nodes}, {&c.sphere_queries, more.sphere_queries},
+                          {&c.false_collisions, more.false_collisions},
+                          {&c.robo_memory_joules, more.robo_memory_joules},
+                          {&c.simt_memory_joules, more.simt_memory_joules}})
+    *to += from;
+  if (c.simt_kernel.empty()) c.simt_kernel = more.simt_kernel;
+  c.predicated_op_cycles = more.predicated_op_cycles;
 }
 
-double RoboCoreKernelSeconds(const KernelRecord& record, const BackendParameters& params) {
-  return KernelSeconds(Backend::Create("robocore", params)->Price(record));
+SactColumn PriceSact(const std::vector<SactInput>& inputs, const BackendParameters& params) {
+  SactColumn c;
+  c.predicated_op_cycles = params.ttaplus.unit.predicated_op_cycles;
+  const SimtBackend simt_model(params);
+  BackendParameters half = params, twice = params;
+  half.robocore.sact_latency_scale *= 0.5;
+  twice.robocore.sact_latency_scale *= 2.0;
+  const auto robocore = Backend::Create("robocore", params);
+  const DatapathConfig datapath = params.robocore.Datapath();
+  DatapathConfig no_exit = datapath;
+  no_exit.exit_mode = EarlyExitMode::kNone;
+  for (const SactInput& in : inputs) {
+    const KernelRecord& r = *in.sact;
+    const auto cost = PriceByName({"simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"}, r, params);
+    c.simt.Add(cost.at("simt"));
+    c.tta.Add(cost.at("ttaplus"));
+    c.tta_p.Add(cost.at("ttaplus-p"));
+    c.tta_cr.Add(cost.at("ttaplus-cr"));
+    c.robo.Add(cost.at("robocore"));
+    c.robo_memory_joules += MemoryEnergyJoules(cost.at("robocore").memory, params.gpu, params.energy);
+    c.simt_memory_joules += MemoryEnergyJoules(cost.at("simt").memory, params.gpu, params.energy);
+    c.half.Add(Backend::Create("robocore", half)->Price(r));
+    c.twice.Add(Backend::Create("robocore", twice)->Price(r));
+    const double q = static_cast<double>(r.query_count());
+    c.queries += q;
+    c.nodes += static_cast<double>(r.total_nodes());
+    for (std::uint8_t exit : r.node_exits) {
+      c.overlaps += exit == kNoExit;
+      if (exit != kNoExit) c.separated += 1, c.exit_axis_sum += exit;
+    }
+    c.with_exit += q * AverageComputationCycles(r, datapath);
+    c.without_exit += q * AverageComputationCycles(r, no_exit);
+    const KernelRecord parallel = VariantRecord(r, FullyParallelSact(), datapath.latencies);
+    const KernelRecord doubled = VariantRecord(r, SactUnitCopies(2), datapath.latencies);
+    c.parallel.Add(robocore->Price(parallel));
+    c.doubled.Add(robocore->Price(doubled));
+    c.parallel_cycles += q * AverageComputationCycles(parallel, datapath);
+    c.doubled_cycles += q * AverageComputationCycles(doubled, datapath);
+    c.spheres.Add(robocore->Price(*in.spheres));
+    c.sphere_nodes += static_cast<double>(in.spheres->total_nodes());
+    c.sphere_queries += static_cast<double>(in.spheres->query_count());
+    c.false_collisions += static_cast<double>(in.sphere_false_collisions);
+    const SimtInstructionMix mix = simt_model.InstructionMix(r);
+    c.simt_kernel = mix.source;
+  }
+  return c;
+}
+
+std::string Tags(std::initializer_list<const SideEvidence*> sides) {
+  std::string text;
+  for (const SideEvidence* s : sides) text += (text.empty() ? "" : "; ") + LimitTag(*s);
+  return text;
+}
+
+// The rows, as functions of one column, so that both columns come from the
+// same code.
+struct RowSpec {
+  std::string result, workload, paper;
+  double paper_value;
+  CalibrationUnit unit;
+  std::function<ColumnValue(const SactColumn&)> measure;
+};
+
+std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workload) {
+  std::vector<RowSpec> specs;
+  specs.push_back({"SACT collision queries, RoboCore vs CUDA" + suffix, workload, "13.3x faster", 13.3,
+                   CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+                     return ColumnValue{
+                         Speedup(c.simt.kernel_seconds(), c.robo.kernel_seconds()),
+                         "The CUDA cores run " + c.simt_kernel + ". " + CompareSides(c.robo, c.simt),
+                         Tags({&c.robo, &c.simt})};
+                   }});
+  specs.push_back(
+      {"SACT collision queries, RoboCore vs CUDA, incl. launch" + suffix, workload, "13.3x faster", 13.3,
+       CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+         const double share = c.robo.launch_share();
+         const double launch = double(c.robo.total().launch_cycles) / double(c.robo.launches());
+         return ColumnValue{
+             Speedup(c.simt.seconds(), c.robo.seconds()),
+             share >= kLaunchShareWorthNaming
+                 ? FormatSentence("The %.0f-cycle launch (kernel launch + program and decode configuration) is %.0f%% "
+                                  "of RoboCore's time for this batch, so the ratio moves toward 1.",
+                                  launch, 100.0 * share)
+                 : FormatSentence("The %.0f-cycle launch is %.1f%% of RoboCore's time for this batch, so including "
+                                  "it changes the ratio little.",
+                                  launch, 100.0 * share),
+             Tags({&c.robo})};
+       }});
+  specs.push_back({"SACT, TTA+ with conditional return vs TTA+" + suffix, workload, "1.40x faster", 1.40,
+                   CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+                     return ColumnValue{
+                         Speedup(c.tta.kernel_seconds(), c.tta_cr.kernel_seconds()),
+                         FormatSentence("Conditional return cuts executed micro-ops from %.3g to %.3g (%+.0f%%). ",
+                                        c.tta.micro_ops(), c.tta_cr.micro_ops(),
+                                        PercentChange(c.tta.micro_ops(), c.tta_cr.micro_ops())) +
+                             CompareSides(c.tta_cr, c.tta),
+                         Tags({&c.tta_cr, &c.tta})};
+                   }});
+  specs.push_back({"SACT, RoboCore vs TTA+ with conditional return" + suffix, workload, "1.22x faster", 1.22,
+                   CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+                     return ColumnValue{
+                         Speedup(c.tta_cr.kernel_seconds(), c.robo.kernel_seconds()),
+                         FormatSentence("The chained SACT units replace each axis's TTA+ expansion (%.3g micro-ops, "
+                                        "%.3g hops) by one native micro-op with CTRL-folded exits (%.3g micro-ops, "
+                                        "%.3g hops). ",
+                                        c.tta_cr.micro_ops(), double(c.tta_cr.total().interconnect_hops),
+                                        c.robo.micro_ops(), double(c.robo.total().interconnect_hops)) +
+                             CompareSides(c.robo, c.tta_cr),
+                         Tags({&c.robo, &c.tta_cr})};
+                   }});
+  specs.push_back({"SACT, TTA+ with predication vs TTA+" + suffix, workload, "almost no change (~1x)", 1.0,
+                   CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+                     return ColumnValue{
+                         Speedup(c.tta.kernel_seconds(), c.tta_p.kernel_seconds()),
+                         FormatSentence("Predicated-off micro-ops (%.3g) take %d cycle(s) in their unit instead of "
+                                        "their latency (artifact rt_op_unit::cycle). ",
+                                        double(c.tta_p.total().predicated_off_micro_ops), c.predicated_op_cycles) +
+                             CompareSides(c.tta_p, c.tta),
+                         Tags({&c.tta_p, &c.tta})};
+                   }});
+  specs.push_back(
+      {"SACT collision queries, energy RoboCore vs CUDA" + suffix, workload, "87% less", -87.0,
+       CalibrationUnit::kPercentChange, [](const SactColumn& c) {
+         const double robo_memory = c.robo_memory_joules / c.robo.total().energy_joules;
+         const double simt_memory = c.simt_memory_joules / c.simt.total().energy_joules;
+         return ColumnValue{
+             PercentChange(c.simt.total().energy_joules, c.robo.total().energy_joules),
+             FormatSentence("Both fetch the same nodes (%.3g sectors); memory is %.0f%% of RoboCore's energy and "
+                            "%.0f%% of the CUDA cores', whose rest is instruction fetch and register accesses per "
+                            "instruction, RoboCore's packet-buffer accesses per micro-op; %s (Horowitz 45 nm; "
+                            "leakage not modelled).",
+                            double(c.robo.total().memory.sector_requests), 100.0 * robo_memory, 100.0 * simt_memory,
+                            robo_memory >= 0.5 ? "RoboCore's energy is mostly memory traffic, which no datapath saves"
+                                               : "RoboCore's energy is mostly its micro-ops' buffer accesses"),
+             ""};
+       }});
+  specs.push_back(
+      {"SACT early exit, average computation latency per query (RoboCore)" + suffix, workload, "-65%", -65.0,
+       CalibrationUnit::kPercentChange, [](const SactColumn& c) {
+         const double overlap = c.overlaps / c.nodes;
+         std::string mechanism =
+             overlap >= 0.5
+                 ? FormatSentence("%.0f%% of our node tests overlap, and an overlapping test runs every axis (a query "
+                                  "descends only through boxes it overlaps and stops at its first colliding leaf)",
+                                  100.0 * overlap)
+                 : FormatSentence("%.0f%% of our node tests separate, at axis %.1f of 15 on average, and %.0f%% "
+                                  "overlap and run every axis",
+                                  100.0 * (1.0 - overlap), c.separated ? 1.0 + c.exit_axis_sum / c.separated : 0.0,
+                                  100.0 * overlap);
+         return ColumnValue{
+             PercentChange(c.without_exit, c.with_exit),
+             FormatSentence("%.0f vs %.0f computation cycles per query: ", c.with_exit / c.queries,
+                            c.without_exit / c.queries) +
+                 mechanism + ".",
+             ""};
+       }});
+  for (double factor : {0.5, 2.0}) {
+    specs.push_back(
+        {FormatSentence("SACT unit latency x%g, RoboCore total time", factor) + suffix, workload, "small change",
+         kNoPaperNumber, CalibrationUnit::kPercentChange, [factor](const SactColumn& c) {
+           const SideEvidence& scaled = factor < 1 ? c.half : c.twice;
+           return ColumnValue{PercentChange(c.robo.kernel_seconds(), scaled.kernel_seconds()),
+                              "With the SACT latencies scaled, " + BoundClause(scaled) + ".", Tags({&scaled})};
+         }});
+  }
+  specs.push_back({"Fully parallel SACT (6 box + 9 edge units), RoboCore total time" + suffix, workload,
+                   "-41% latency (3.7x area)", -41.0, CalibrationUnit::kPercentChange, [](const SactColumn& c) {
+                     return ColumnValue{
+                         PercentChange(c.robo.kernel_seconds(), c.parallel.kernel_seconds()),
+                         FormatSentence("Our smallest model (sact_datapath_variants.h): all 15 axes in one round "
+                                        "after PRE, so a query computes for %.0f cycles instead of %.0f; ",
+                                        c.parallel_cycles / c.queries, c.with_exit / c.queries) +
+                             BoundClause(c.parallel) + ".",
+                         Tags({&c.parallel})};
+                   }});
+  specs.push_back({"Two of each SACT unit, RoboCore" + suffix, workload, "1.2x faster (1.8x area)", 1.2,
+                   CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+                     return ColumnValue{
+                         Speedup(c.robo.kernel_seconds(), c.doubled.kernel_seconds()),
+                         FormatSentence("Modelled as two axes of a stage per round (sact_datapath_variants.h): %.0f "
+                                        "instead of %.0f computation cycles per query; ",
+                                        c.doubled_cycles / c.queries, c.with_exit / c.queries) +
+                             BoundClause(c.doubled) + ".",
+                         Tags({&c.doubled})};
+                   }});
+  specs.push_back(
+      {"Sphere robot on RoboCore vs OBB SACT on CUDA" + suffix, workload, "21x faster; 10% false collisions", 21.0,
+       CalibrationUnit::kSpeedup, [](const SactColumn& c) {
+         return ColumnValue{
+             Speedup(c.simt.kernel_seconds(), c.spheres.kernel_seconds()),
+             FormatSentence("One bounding sphere per OBB, 9 micro-ops per node on the generic OP units (%.2f nodes "
+                            "per sphere against %.2f per OBB); the spheres report %.0f false collisions in %.0f "
+                            "queries (%.1f%%), measured against the SACT's answers. ",
+                            c.sphere_nodes / c.sphere_queries, c.nodes / c.queries, c.false_collisions, c.queries,
+                            100.0 * c.false_collisions / c.queries) +
+                 CompareSides(c.spheres, c.simt),
+             Tags({&c.spheres, &c.simt})};
+       }});
+  return specs;
+}
+
+void AddRows(std::vector<CalibrationRow>& rows, const std::vector<RowSpec>& specs, CalibrationScale scale,
+             const SactColumn& artifact, const SactColumn& ours) {
+  for (const RowSpec& spec : specs) {
+    CalibrationRow row;
+    row.result = spec.result;
+    row.scale = scale;
+    row.workload = spec.workload;
+    row.paper = spec.paper;
+    row.paper_value = spec.paper_value;
+    row.unit = spec.unit;
+    SetColumns(row, spec.measure(artifact), spec.measure(ours));
+    rows.push_back(std::move(row));
+  }
 }
 
 }  // namespace
 
-std::vector<CalibrationRow> CollisionRows(const CalibrationWorkloads& workloads, const BackendParameters& params) {
-  const KernelRecord& record = workloads.sact;
-  const auto cost = PriceByName({"simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"}, record, params);
-  const BatchCost& simt = cost.at("simt");
-  const BatchCost& tta = cost.at("ttaplus");
-  const BatchCost& tta_p = cost.at("ttaplus-p");
-  const BatchCost& tta_cr = cost.at("ttaplus-cr");
-  const BatchCost& robo = cost.at("robocore");
-  const double nodes_per_query = double(record.total_nodes()) / double(record.query_count());
-  const std::uint64_t warps = (record.query_count() + params.gpu.warp_size - 1) / params.gpu.warp_size;
+std::vector<CalibrationRow> CollisionRows(const CalibrationWorkloads& w, const BackendPreset& artifact,
+                                          const BackendPreset& ours) {
   std::vector<CalibrationRow> rows;
-
-  rows.push_back(Row(
-      "SACT collision queries, RoboCore vs CUDA", "13.3x faster", 13.3,
-      Speedup(KernelSeconds(simt), KernelSeconds(robo)), CalibrationUnit::kSpeedup,
-      FormatSentence("Our SIMT kernel runs the SACT as compiled FP32 code with fused multiply-adds (%.0f warp "
-                     "instructions, efficiency %.2f, bound by %s) while RoboCore is bound by %s; with %llu queries "
-                     "(%llu warps on %d SMs) most SMs idle, so neither side reaches its throughput.",
-                     double(simt.warp_instructions), simt.simt_efficiency, simt.bound.c_str(), robo.bound.c_str(),
-                     (unsigned long long)record.query_count(), (unsigned long long)warps, params.gpu.sms)));
-  rows.push_back(Row(
-      "SACT collision queries, RoboCore vs CUDA, incl. launch", "13.3x faster", 13.3,
-      Speedup(simt.seconds, robo.seconds), CalibrationUnit::kSpeedup,
-      FormatSentence("The %llu-cycle launch (kernel launch + program and decode configuration) is %.0f%% of "
-                     "RoboCore's time for this batch, so the ratio tends to 1; the paper's batches amortize it.",
-                     (unsigned long long)robo.launch_cycles, 100.0 * double(robo.launch_cycles) / double(robo.cycles))));
-  rows.push_back(Row(
-      "SACT, TTA+ with conditional return vs TTA+", "1.40x faster", 1.40,
-      Speedup(KernelSeconds(tta), KernelSeconds(tta_cr)), CalibrationUnit::kSpeedup,
-      FormatSentence("Conditional return cuts executed micro-ops from %llu to %llu, but a query's time also holds "
-                     "its %.1f node fetches' latency, which early exit does not shorten.",
-                     (unsigned long long)MicroOpsExecuted(tta), (unsigned long long)MicroOpsExecuted(tta_cr),
-                     nodes_per_query)));
-  rows.push_back(Row(
-      "SACT, RoboCore vs TTA+ with conditional return", "1.22x faster", 1.22,
-      Speedup(KernelSeconds(tta_cr), KernelSeconds(robo)), CalibrationUnit::kSpeedup,
-      FormatSentence("The chained SACT units replace each axis's TTA+ expansion (%llu micro-ops, %llu hops) by one "
-                     "native micro-op with CTRL-folded exits (%llu micro-ops, %llu hops); the node fetches cost both "
-                     "the same.",
-                     (unsigned long long)MicroOpsExecuted(tta_cr), (unsigned long long)tta_cr.interconnect_hops,
-                     (unsigned long long)MicroOpsExecuted(robo), (unsigned long long)robo.interconnect_hops)));
-  rows.push_back(Row(
-      "SACT, TTA+ with predication vs TTA+", "almost no change (~1x)", 1.0,
-      Speedup(KernelSeconds(tta), KernelSeconds(tta_p)), CalibrationUnit::kSpeedup,
-      FormatSentence("Predicated-off micro-ops (%llu) take %d cycle in their unit instead of their latency (12 "
-                     "for a DOT or CROSS; artifact rt_op_unit::cycle), which our model counts as saved latency on "
-                     "this latency-bound batch.",
-                     (unsigned long long)tta_p.predicated_off_micro_ops, params.ttaplus.unit.predicated_op_cycles)));
-  rows.push_back(Row(
-      "SACT collision queries, energy RoboCore vs CUDA", "87% less", -87.0,
-      PercentChange(simt.energy_joules, robo.energy_joules), CalibrationUnit::kPercentChange,
-      FormatSentence("Both pay the same %llu node-fetch sectors (%.0f%% L1 hits for RoboCore); SIMT pays an "
-                     "instruction fetch per warp instruction and register accesses per thread instruction, RoboCore "
-                     "packet-buffer accesses per micro-op (Horowitz 45 nm; leakage not modelled).",
-                     (unsigned long long)robo.memory.sector_requests,
-                     100.0 * double(robo.memory.l1_hits) / double(robo.memory.sector_requests))));
-
-  // Early exit: the same RoboCore datapath with every RETURN_IF dropped.
-  DatapathConfig no_exit = params.robocore.Datapath();
-  no_exit.exit_mode = EarlyExitMode::kNone;
-  const double with_exit = AverageComputationCycles(record, params.robocore.Datapath());
-  const double without_exit = AverageComputationCycles(record, no_exit);
-  rows.push_back(Row(
-      "SACT early exit, average computation latency per query (RoboCore)", "-65%", -65.0,
-      PercentChange(without_exit, with_exit), CalibrationUnit::kPercentChange,
-      FormatSentence("%.0f vs %.0f cycles per query: only separated node tests can exit, and %.0f%% of ours "
-                     "overlap (a query descends only through overlapping nodes and stops at its first colliding "
-                     "leaf), where the paper's 8-child octree nodes reject many empty children per fetch.",
-                     with_exit, without_exit, 100.0 * OverlapFraction(record))));
-
-  // SACT unit latency sweep, relative to the given parameters.
-  const double base_seconds = KernelSeconds(robo);
-  for (double factor : {0.5, 2.0}) {
-    BackendParameters scaled = params;
-    scaled.robocore.sact_latency_scale *= factor;
-    rows.push_back(Row(
-        FormatSentence("SACT unit latency x%g, RoboCore total time", factor), "small change", kNoPaperNumber,
-        PercentChange(base_seconds, RoboCoreKernelSeconds(record, scaled)), CalibrationUnit::kPercentChange,
-        FormatSentence("RoboCore is bound by %s: the SACT latencies enter each query's dependent chain in full "
-                       "(%.0f computation cycles per query) and a batch of a few warps has no other warps to hide "
-                       "them behind.",
-                       robo.bound.c_str(), with_exit)));
+  if (!w.scenes.empty()) {
+    SactColumn all_artifact, all_ours;
+    std::uint32_t fewest = ~0u, most = 0;
+    for (const SactSceneWorkload& s : w.scenes) {
+      const SactInput in{&s.sact, &s.spheres, s.sphere_false_collisions};
+      fewest = std::min(fewest, s.octree_nodes);
+      most = std::max(most, s.octree_nodes);
+      // The headline ratio per scene; every row over all scenes.
+      const SactColumn o = PriceSact({in}, ours.backend);
+      const SactColumn a = &artifact == &ours ? o : PriceSact({in}, artifact.backend);
+      std::vector<RowSpec> headline = Specs(std::string(" (") + ToString(s.kind) + ")", s.Size());
+      headline.resize(1);
+      AddRows(rows, headline, CalibrationScale::kPaperScale, a, o);
+      Merge(all_artifact, a);
+      Merge(all_ours, o);
+    }
+    const std::string workload =
+        FormatSentence("%zu scenes, %.0f queries x %.1f nodes; %u-%u-node octrees", w.scenes.size(),
+                       all_ours.queries, all_ours.nodes / all_ours.queries, fewest, most);
+    AddRows(rows, Specs(" (all scenes)", workload), CalibrationScale::kPaperScale, all_artifact, all_ours);
   }
-
-  // Datapath variants the parameters cannot express.
-  const OpUnitLatencies latencies = params.robocore.Datapath().latencies;
-  const KernelRecord parallel = VariantRecord(record, FullyParallelSact(), latencies);
-  rows.push_back(Row(
-      "Fully parallel SACT (6 box + 9 edge units), RoboCore total time", "-41% latency (3.7x area)", -41.0,
-      PercentChange(base_seconds, RoboCoreKernelSeconds(parallel, params)), CalibrationUnit::kPercentChange,
-      FormatSentence("Our smallest model (sact_datapath_variants.h): all 15 axes in one round after PRE, CTRL "
-                     "taking the lowest separating axis free, so a query computes for %.0f cycles instead of %.0f; "
-                     "its node fetches are unchanged.",
-                     AverageComputationCycles(parallel, params.robocore.Datapath()), with_exit)));
-  const KernelRecord doubled = VariantRecord(record, SactUnitCopies(2), latencies);
-  rows.push_back(Row(
-      "Two of each SACT unit, RoboCore", "1.2x faster (1.8x area)", 1.2,
-      Speedup(base_seconds, RoboCoreKernelSeconds(doubled, params)), CalibrationUnit::kSpeedup,
-      FormatSentence("Modelled as two axes of a stage per round (sact_datapath_variants.h): %.0f instead of %.0f "
-                     "computation cycles per query; whether the paper's second units serve other queries instead "
-                     "is not stated.",
-                     AverageComputationCycles(doubled, params.robocore.Datapath()), with_exit)));
-
-  // The sphere robot (CuRobo-style spheres; programs/sphere_aabb.asm) on
-  // RoboCore against the OBB SACT on CUDA cores, on the same OBBs and tree.
-  const KernelRecord& spheres = workloads.spheres;
-  const BatchCost robo_spheres = Backend::Create("robocore", params)->Price(spheres);
-  const std::uint64_t free_obbs = record.query_count() - workloads.sphere_obb_collisions;
-  rows.push_back(Row(
-      "Sphere robot on RoboCore vs OBB SACT on CUDA", "21x faster; 10% false collisions", 21.0,
-      Speedup(KernelSeconds(simt), KernelSeconds(robo_spheres)), CalibrationUnit::kSpeedup,
-      FormatSentence("One bounding sphere per OBB, 9 micro-ops per node on the generic OP units (%.2f nodes per "
-                     "sphere against %.2f per OBB), so the gain is the SACT's cost per node, not fewer nodes; the "
-                     "spheres report %llu false collisions of %llu OBBs (%.1f%%; %.1f%% of the %llu collision-free), "
-                     "measured against the SACT's answers.",
-                     double(spheres.total_nodes()) / double(spheres.query_count()), nodes_per_query,
-                     (unsigned long long)workloads.sphere_false_collisions,
-                     (unsigned long long)record.query_count(),
-                     100.0 * double(workloads.sphere_false_collisions) / double(record.query_count()),
-                     free_obbs ? 100.0 * double(workloads.sphere_false_collisions) / double(free_obbs) : 0.0,
-                     (unsigned long long)free_obbs)));
+  const SactInput small{&w.sact, &w.spheres, w.sphere_false_collisions};
+  const std::string workload =
+      FormatSentence("%zu queries x %.1f nodes; %.0f-node binary tree", w.sact.query_count(),
+                     double(w.sact.total_nodes()) / double(w.sact.query_count()),
+                     double(w.sact.regions.front().elements));
+  const SactColumn small_ours = PriceSact({small}, ours.backend);
+  AddRows(rows, Specs("", workload), CalibrationScale::kSmallBatch,
+          &artifact == &ours ? small_ours : PriceSact({small}, artifact.backend), small_ours);
   return rows;
 }
 

@@ -1,16 +1,26 @@
 #pragma once
 // The DeliBot rows: RoboCore vs CUDA cores (paper: 1.10x faster) and
-// RoboCore vs TTA+ (paper: 1.20x faster) on the first-MCL-update ray batch,
-// one pair of rows per ray caster (march, dda, rm). Times include the
-// kernel launch: an MCL update is one launch, as in the paper's runs.
+// RoboCore vs TTA+ (paper: 1.20x faster), priced per preset:
+//   paper scale  whole runs (RunDelibot with the march ray caster, every
+//                update priced on every backend, totals over the run), one
+//                pair of rows per run (demo, robotdata1);
+//   small batch  the first-update batch, one pair of rows per ray caster
+//                (march, dda, rm).
+// Each preset records with its own kernel choices (the grid's cell size and
+// the march program), so the artifact preset prices its 8-byte cells and
+// 7-op march. Times include the kernel launch: an MCL update is one launch
+// (and an injection check's replayed scans one more each), as in the
+// paper's runs.
 #include <vector>
 
-#include "backends/backend_params.h"
+#include "backends/backend_preset.h"
 #include "backends/calibration/calibration_row.h"
 #include "backends/calibration/calibration_workloads.h"
 
 namespace rc {
 
-std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& workloads, const BackendParameters& params);
+// `artifact` and `ours` the same object: priced once.
+std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
+                                        const BackendPreset& ours, std::vector<std::string>* notes = nullptr);
 
 }  // namespace rc

@@ -32,7 +32,8 @@ void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string
                      "0 = every SM, exact)")
       ->capture_default_str();
   command.add_option("--backend-params", cli.backend_params,
-                     "JSON file overriding backend cost parameters (see rcbench backends)");
+                     "A named preset (artifact: the RoboGPU artifact's configuration, backends/presets/artifact.json) or a JSON "
+                     "file overriding backend cost parameters (see rcbench backends)");
   command.add_flag("--no-pricing", cli.no_pricing, "Do not price the kernels on the modelled backends");
 }
 
@@ -63,9 +64,11 @@ LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
   return options;
 }
 
-BackendParameters BackendParametersOf(const SchedulerCli& cli) {
-  return cli.backend_params.empty() ? BackendParameters{} : LoadBackendParameters(cli.backend_params);
+BackendPreset BackendPresetOf(const SchedulerCli& cli) {
+  return cli.backend_params.empty() ? DefaultPreset() : LoadBackendPreset(cli.backend_params);
 }
+
+BackendParameters BackendParametersOf(const SchedulerCli& cli) { return BackendPresetOf(cli).backend; }
 
 namespace {
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backends/backend_params.h"
+#include "backends/backend_preset.h"
 #include "backends/scheduler/backend_ledger.h"
 
 namespace rc {
@@ -33,8 +34,11 @@ void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string
 // The ledger options the flags describe. Throws UsageError naming the flag.
 LedgerOptions ToLedgerOptions(const SchedulerCli& cli);
 
-// The backend parameters: defaults, or the --backend-params file (throws
-// InputError naming the file and the key).
+// The --backend-params preset: defaults, a named preset ("artifact") or a
+// file (backends/backend_preset.h; throws InputError naming the file and
+// the key). Its kernel choices apply to workloads that cast rays (DeliBot).
+BackendPreset BackendPresetOf(const SchedulerCli& cli);
+// The preset's backend parameters.
 BackendParameters BackendParametersOf(const SchedulerCli& cli);
 
 // The priced summary every subcommand prints: each static backend's total,

@@ -1,11 +1,14 @@
 // The calibration report (backends/calibration): every row is present and
-// finite, every "ours" comes from pricing (a parameter given through the
-// JSON override moves the row it should), early exit saves on the SACT, the
+// finite in both columns, with its workload's size and a reason; every
+// "ours" comes from pricing (a parameter given through the preset file moves
+// the rows it should, and leaves the artifact column alone); the artifact
+// preset is applied (its column differs); early exit saves on the SACT, the
 // SACT latency sweep is monotone, and the datapath-variant model reproduces
 // the shipped design when it has one unit of each kind.
 //
-// A small DeliBot batch keeps the run short; the real data is used when
-// present, the generated inputs otherwise (both paths build a report).
+// Small workloads keep the run short (a few SACT poses per scene, 12 DeliBot
+// records of 40 particles); the real data is used when present, the
+// generated inputs otherwise (both paths build a report).
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -16,6 +19,7 @@
 #include "backends/calibration/calibration.h"
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/sact_datapath_variants.h"
+#include "common/input_error.h"
 #include "test_data.h"
 
 namespace rc {
@@ -27,6 +31,9 @@ CalibrationOptions SmallOptions() {
   o.particles = 24;
   o.beams = 60;
   o.random_obbs = 200;
+  o.min_sact_queries = 700;
+  o.run_particles = 40;
+  o.run_max_records = 12;
   return o;
 }
 
@@ -34,7 +41,7 @@ class CalibrationTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     workloads_ = new CalibrationWorkloads(MakeCalibrationWorkloads(SmallOptions()));
-    report_ = new CalibrationReport(Calibrate(*workloads_, BackendParameters{}));
+    report_ = new CalibrationReport(Calibrate(*workloads_, ArtifactPreset(), DefaultPreset()));
   }
   static void TearDownTestSuite() {
     delete report_;
@@ -67,75 +74,131 @@ const char* const kDouble = "SACT unit latency x2, RoboCore total time";
 const char* const kParallel = "Fully parallel SACT (6 box + 9 edge units), RoboCore total time";
 const char* const kTwo = "Two of each SACT unit, RoboCore";
 const char* const kSpheres = "Sphere robot on RoboCore vs OBB SACT on CUDA";
+const char* const kAll = " (all scenes)";
 
-std::vector<std::string> ExpectedRows() {
+std::vector<std::string> SactRows(const std::string& suffix) {
   std::vector<std::string> rows;
-  for (const char* m : {"march", "dda", "rm"}) {
-    rows.push_back(std::string("DeliBot MCL (") + m + "), RoboCore vs CUDA");
-    rows.push_back(std::string("DeliBot MCL (") + m + "), RoboCore vs TTA+");
-  }
   for (const char* r : {kVsCuda, kVsCudaLaunch, kCrVsTta, kRoboVsCr, kPredication, kEnergy, kEarlyExit, kHalf,
                         kDouble, kParallel, kTwo, kSpheres})
-    rows.push_back(r);
+    rows.push_back(r + suffix);
   return rows;
 }
 
-TEST_F(CalibrationTest, ReportHasEveryRowFiniteWithAReason) {
+std::vector<std::string> ExpectedRows(const std::vector<std::string>& runs) {
+  std::vector<std::string> rows;
+  for (const std::string& run : runs)
+    for (const char* vs : {"CUDA", "TTA+"}) rows.push_back("DeliBot MCL, whole run (" + run + ", march), RoboCore vs " + vs);
+  for (const char* m : {"march", "dda", "rm"})
+    for (const char* vs : {"CUDA", "TTA+"}) rows.push_back(std::string("DeliBot MCL (") + m + "), RoboCore vs " + vs);
+  for (const char* scene : {"cubby", "merged cubby", "dresser", "tabletop"})
+    rows.push_back(std::string(kVsCuda) + " (" + scene + ")");
+  for (const std::string& r : SactRows(kAll)) rows.push_back(r);
+  for (const std::string& r : SactRows("")) rows.push_back(r);
+  return rows;
+}
+
+std::vector<std::string> RunNames(const CalibrationWorkloads& w) {
+  std::vector<std::string> names;
+  for (const DelibotRunWorkload& run : w.runs) names.push_back(run.name);
+  return names;
+}
+
+TEST_F(CalibrationTest, ReportHasEveryRowInBothColumnsWithItsSizeAndAReason) {
   std::vector<std::string> names;
   for (const CalibrationRow& r : report_->rows) {
     names.push_back(r.result);
     EXPECT_TRUE(std::isfinite(r.ours)) << r.result;
+    EXPECT_TRUE(std::isfinite(r.artifact)) << r.result;
     EXPECT_FALSE(r.paper.empty()) << r.result;
+    EXPECT_FALSE(r.workload.empty()) << r.result;
     EXPECT_GT(r.why.size(), 40u) << r.result;
+    EXPECT_EQ(r.why.find("fused multiply"), std::string::npos) << r.result;
   }
-  EXPECT_EQ(names, ExpectedRows());
-  EXPECT_EQ(report_->workload_notes.size(), 2u);
+  EXPECT_EQ(names, ExpectedRows(RunNames(*workloads_)));
   std::ostringstream md, csv;
   WriteCalibrationMarkdown(md, *report_);
   WriteCalibrationCsv(csv, *report_);
-  for (const std::string& name : ExpectedRows()) EXPECT_NE(md.str().find("| " + name + " |"), std::string::npos) << name;
+  for (const std::string& name : names) EXPECT_NE(md.str().find("| " + name + " |"), std::string::npos) << name;
+  EXPECT_NE(md.str().find("## Paper scale"), std::string::npos);
+  EXPECT_NE(md.str().find("## Small batch"), std::string::npos);
   std::size_t lines = 0;
   for (char c : csv.str()) lines += c == '\n';
   EXPECT_EQ(lines, report_->rows.size() + 1);
 }
 
-// Each perturbation, given through the JSON override file's parser, must
-// move the rows that depend on what it changes: the report is priced, not
-// written down.
+TEST_F(CalibrationTest, PaperScaleWorkloadsHaveThePapersSize) {
+  ASSERT_EQ(workloads_->scenes.size(), 4u);
+  for (const SactSceneWorkload& s : workloads_->scenes) {
+    EXPECT_GE(s.octree_nodes, 1000u);
+    EXPECT_LE(s.octree_nodes, 2000u);
+    EXPECT_GE(s.sact.query_count(), 700u);
+    EXPECT_NE(s.Size().find(std::to_string(s.sact.query_count()) + " queries"), std::string::npos) << s.Size();
+  }
+  ASSERT_FALSE(workloads_->runs.empty());
+  EXPECT_EQ(workloads_->runs.front().name, "demo");
+  EXPECT_NE(RowOf(*report_, "DeliBot MCL, whole run (demo, march), RoboCore vs CUDA").workload.find("updates"),
+            std::string::npos);
+  // The default batch floor is the paper's scale.
+  EXPECT_GE(CalibrationOptions{}.min_sact_queries, 10000);
+}
+
+// The artifact preset is applied: its 8-byte cells and 7-op march, its SACT
+// units and caches give other numbers than ours.
+TEST_F(CalibrationTest, TheArtifactColumnIsPricedUnderTheArtifactPreset) {
+  for (const std::string& row :
+       {std::string("DeliBot MCL (march), RoboCore vs CUDA"), std::string(kVsCuda) + kAll, std::string(kVsCuda)})
+    EXPECT_NE(RowOf(*report_, row).artifact, RowOf(*report_, row).ours) << row;
+}
+
+// Each perturbation, given through the preset file's parser, must move the
+// ours column of the rows that depend on what it changes, and never the
+// artifact column: the report is priced, not written down.
 TEST_F(CalibrationTest, EveryOursMovesWithTheParametersItIsPricedFrom) {
   const std::map<std::string, std::vector<std::string>> moves = {
       {R"({"simt": {"isa": "sass", "fp32_latency_cycles": 12, "fp32_initiation_cycles": 6, "fp64_latency_cycles": 24,
                     "fp64_initiation_cycles": 12, "other_latency_cycles": 3, "other_initiation_cycles": 3}})",
        {"DeliBot MCL (march), RoboCore vs CUDA", "DeliBot MCL (dda), RoboCore vs CUDA",
-        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres}},
+        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres,
+        std::string(kVsCuda) + kAll}},
       {R"({"robocore": {"cmp_cycles": 4, "return_cycles": 3, "box_normal_cycles": 20, "edge_edge_cycles": 18,
                         "pre_process_cycles": 30}})",
        {"DeliBot MCL (march), RoboCore vs TTA+", "DeliBot MCL (dda), RoboCore vs TTA+",
-        "DeliBot MCL (rm), RoboCore vs TTA+", kRoboVsCr, kEarlyExit, kHalf, kDouble, kParallel, kTwo, kSpheres}},
+        "DeliBot MCL (rm), RoboCore vs TTA+", kRoboVsCr, kEarlyExit, kHalf, kDouble, kParallel, kTwo, kSpheres,
+        std::string(kRoboVsCr) + kAll}},
       {R"({"ttaplus": {"predicated_op_cycles": 4, "addsub_cycles": 6}})", {kCrVsTta, kPredication}},
       {R"({"robocore": {"sact_latency_scale": 2.0}})", {kHalf, kDouble}},
+      {R"({"kernel": {"grid_cell_bytes": 8}})", {"DeliBot MCL (march), RoboCore vs CUDA"}},
   };
   for (const auto& [json, rows] : moves) {
-    const CalibrationReport changed = Calibrate(*workloads_, ParseBackendParameters(json, "perturbation.json"));
-    for (const std::string& row : rows)
+    const CalibrationReport changed =
+        Calibrate(*workloads_, ArtifactPreset(), ParseBackendPreset(json, "perturbation.json"));
+    for (const std::string& row : rows) {
       EXPECT_NE(Ours(changed, row), Ours(*report_, row)) << row << " did not move under " << json;
+      EXPECT_EQ(RowOf(changed, row).artifact, RowOf(*report_, row).artifact) << row;
+    }
   }
 }
 
 TEST_F(CalibrationTest, EarlyExitSavesComputationOnTheSact) {
-  EXPECT_LT(Ours(*report_, kEarlyExit), 0.0);  // a negative change: a saving
-  EXPECT_GT(Ours(*report_, kEarlyExit), -100.0);
+  for (const std::string& row : {std::string(kEarlyExit), std::string(kEarlyExit) + kAll}) {
+    EXPECT_LT(Ours(*report_, row), 0.0) << row;  // a negative change: a saving
+    EXPECT_GT(Ours(*report_, row), -100.0) << row;
+  }
 }
 
 TEST_F(CalibrationTest, SactLatencySweepIsMonotone) {
-  EXPECT_LE(Ours(*report_, kHalf), 0.0);
-  EXPECT_GE(Ours(*report_, kDouble), 0.0);
-  EXPECT_LT(Ours(*report_, kHalf), Ours(*report_, kDouble));
+  for (const std::string suffix : {"", kAll}) {
+    EXPECT_LE(Ours(*report_, kHalf + suffix), 0.0);
+    EXPECT_GE(Ours(*report_, kDouble + suffix), 0.0);
+    EXPECT_LT(Ours(*report_, kHalf + suffix), Ours(*report_, kDouble + suffix));
+  }
 }
 
 TEST_F(CalibrationTest, MoreSactUnitsNeverSlowAQueryDown) {
-  EXPECT_LE(Ours(*report_, kParallel), 0.0);
-  EXPECT_GE(Ours(*report_, kTwo), 1.0);
+  for (const std::string suffix : {"", kAll}) {
+    EXPECT_LE(Ours(*report_, kParallel + suffix), 0.0);
+    EXPECT_GE(Ours(*report_, kTwo + suffix), 1.0);
+  }
 }
 
 // One unit of each kind, one axis per round, is the shipped design: the
@@ -168,22 +231,26 @@ TEST_F(CalibrationTest, FullyParallelNodeCostsOneRound) {
 }
 
 // Without the shared data: the generated office map and random OBBs, said
-// so in the report, and still every row.
+// so in the report, the demo run only, and still every row.
 TEST(CalibrationFallback, GeneratedInputsGiveEveryRowAndSaySo) {
   CalibrationOptions o = SmallOptions();
   o.data_dir = "/nonexistent-calibration-data";
   o.random_obbs = 64;
+  o.min_sact_queries = 128;
   const CalibrationWorkloads w = MakeCalibrationWorkloads(o);
-  EXPECT_NE(w.ray_description.find("generated office map"), std::string::npos) << w.ray_description;
-  EXPECT_NE(w.collision_description.find("random"), std::string::npos) << w.collision_description;
+  std::string notes;
+  for (const std::string& n : w.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("generated office map"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("random"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("robotdata1: not run"), std::string::npos) << notes;
   EXPECT_EQ(w.sact.query_count(), 64u);
-  const CalibrationReport report = Calibrate(w, BackendParameters{});
+  const CalibrationReport report = Calibrate(w, ArtifactPreset(), DefaultPreset());
   std::vector<std::string> names;
   for (const CalibrationRow& r : report.rows) {
     names.push_back(r.result);
     EXPECT_TRUE(std::isfinite(r.ours)) << r.result;
   }
-  EXPECT_EQ(names, ExpectedRows());
+  EXPECT_EQ(names, ExpectedRows({"demo"}));
 }
 
 TEST(SactDatapathVariants, RoundsMustCoverEveryAxisOnce) {
@@ -192,6 +259,17 @@ TEST(SactDatapathVariants, RoundsMustCoverEveryAxisOnce) {
   EXPECT_THROW(VariantProgram(bad, OpUnitLatencies{}), std::invalid_argument);
   EXPECT_EQ(SactUnitCopies(2).rounds.size(), 3u + 5u);
   EXPECT_EQ(SactUnitCopies(6).rounds.size(), 1u + 2u);
+}
+
+TEST(CalibrationOptions, RejectsImpossibleSizes) {
+  CalibrationOptions o;
+  o.min_sact_queries = 0;
+  EXPECT_THROW(MakeCalibrationWorkloads(o), UsageError);
+  o = CalibrationOptions{};
+  o.run_beam_step = 0;
+  std::string error;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("beam step"), std::string::npos);
 }
 
 }  // namespace

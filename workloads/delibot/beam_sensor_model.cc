@@ -156,7 +156,7 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     // slots are placed by a prefix sum over every query).
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
-    RecordOptions record_options;
+    RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
     record_options.sample = work.record_sample;
     CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
 #pragma omp parallel for schedule(static)

@@ -101,7 +101,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
       one.queries.push_back({(free_cells[0] / grid.size_y() + 0.5) * r, (free_cells[0] % grid.size_y() + 0.5) * r, 0.0});
       std::vector<RayHit> hits;
       KernelRecord layout;
-      CastRayBatchRecorded(scene, one, hits, layout);
+      CastRayBatchRecorded(scene, one, hits, layout, RecordOptionsFor(settings.ray_caster, settings.mcl.record_choices));
       // A ray of length L crosses at most sqrt(2) L / r + 2 cells (march
       // samples fewer; rm fetches a subset of dda's cells).
       const auto max_nodes = static_cast<std::uint32_t>(

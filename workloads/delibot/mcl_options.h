@@ -92,6 +92,7 @@ struct MclOptions {
   // backends can price the update; off, the kernel runs without the hook.
   bool record_kernel = false;
   AddressSample record_sample;  // whose node addresses the record keeps (default: all)
+  RayKernelChoices record_choices;  // how the recorded kernel stores the grid and which march program it prices
 
   bool IsValid(std::string* error) const;
 };

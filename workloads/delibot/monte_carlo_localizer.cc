@@ -24,6 +24,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
   work_.record_kernel = options_.record_kernel;
   check_work_.record_kernel = options_.record_kernel;
   work_.record_sample = check_work_.record_sample = options_.record_sample;
+  work_.record_choices = check_work_.record_choices = options_.record_choices;
   if (free_cells_.empty())
     throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }

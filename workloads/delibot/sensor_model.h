@@ -11,6 +11,7 @@
 #include "common/angles.h"
 #include "robocore/kernel_record.h"
 #include "robocore/ray_batch.h"
+#include "robocore/ray_batch_recorded.h"
 #include "traces/sensor_trace.h"
 
 namespace rc {
@@ -34,6 +35,7 @@ struct SensorUpdateWork {
   // every query's node fetches (run once), for the backends to price.
   bool record_kernel = false;
   AddressSample record_sample;  // whose addresses the record keeps
+  RayKernelChoices record_choices;  // the device's cell size and march program (a preset's "kernel")
   KernelRecord record;
 };
 

@@ -1,8 +1,9 @@
 // `rcbench calibrate`: the RoboGPU paper's reported ratios beside ours,
-// measured by pricing our recorded DeliBot and SACT workloads in one run
-// (backends/calibration/calibration.h). Writes
-//   DIR/calibration.md   the table: result | paper | ours | why ours differs
-//   DIR/calibration.csv  result,unit,paper_value,ours (the plot's input)
+// measured by pricing our recorded DeliBot and SACT workloads in one run,
+// under the artifact preset and under ours (backends/calibration/
+// calibration.h). Writes
+//   DIR/calibration.md   the tables: result | workload | paper | artifact preset | ours | why ours differs
+//   DIR/calibration.csv  result,scale,unit,workload,paper_value,artifact,ours,... (the plot's input)
 //   DIR/calibration.png  paper vs ours bars, when python3 and matplotlib are
 //                        there (scripts/plot_calibration.py); otherwise the
 //                        command prints how to make it.
@@ -13,7 +14,7 @@
 //   DIR/flips.md         the parameters whose range flips a result
 //   DIR/sensitivity.png  a tornado plot per result (scripts/plot_sensitivity.py)
 //
-//   rcbench calibrate --out out/calibration [--backend-params FILE.json] [--data ../shared/data]
+//   rcbench calibrate --out out/calibration [--backend-params artifact|FILE.json] [--data ../shared/data]
 //                     [--sensitivity [--quick]]
 #include <cstdlib>
 #include <filesystem>
@@ -70,13 +71,21 @@ void Plot(const std::string& script, const std::string& input, const std::string
     std::cout << "plot    not made here; run: " << plot << "\n";
 }
 
-void RunSensitivity(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendParameters& params) {
+// Sweeps the ours column's parameters (the artifact preset fixed) and sets
+// each row's ours range to the lowest and highest value the sweep found.
+void RunSensitivity(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendPreset& artifact,
+                    const BackendPreset& ours, CalibrationReport& report) {
   SensitivityOptions options;
   options.quick = cli.quick;
+  options.artifact = &artifact.backend;
   std::cout << "sweeping " << (cli.quick ? "the quick subset of the" : "every") << " declared parameter"
             << (cli.quick ? "s" : "") << "...\n";
   const Sensitivity s = SweepParameters(
-      params, [&](const BackendParameters& p) { return Calibrate(workloads, p).rows; }, options);
+      ours.backend,
+      [&](const BackendParameters& p) {
+        return CalibrateOneColumn(workloads, BackendPreset{ours.name, p, ours.kernel}).rows;
+      },
+      options);
   const std::string csv = cli.out_dir + "/sensitivity.csv", flips = cli.out_dir + "/flips.md";
   WriteFile(csv, [&](std::ostream& out) { WriteSensitivityCsv(out, s); });
   WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, s); });
@@ -85,16 +94,20 @@ void RunSensitivity(const CalibrateCli& cli, const CalibrationWorkloads& workloa
   WriteFlipTable(std::cout, s);
   std::cout << "sweep   " << csv << "\nflips   " << flips << "\n";
   Plot(SourceScript("plot_sensitivity.py"), csv, cli.out_dir + "/sensitivity.png");
+  const std::vector<ResultRange> ranges = RangesOf(s);
+  for (std::size_t i = 0; i < ranges.size() && i < report.rows.size(); ++i)
+    report.rows[i].ours_range = ValueRange{ranges[i].low, ranges[i].high};
 }
 
 void Run(const CalibrateCli& cli) {
-  const BackendParameters params =
-      cli.params_path.empty() ? BackendParameters{} : LoadBackendParameters(cli.params_path);
+  const BackendPreset ours = cli.params_path.empty() ? DefaultPreset() : LoadBackendPreset(cli.params_path);
+  const BackendPreset artifact = ArtifactPreset();
   std::cout << "recording workloads...\n";
   const CalibrationWorkloads workloads = MakeCalibrationWorkloads(cli.options);
-  std::cout << "pricing...\n";
-  const CalibrationReport report = Calibrate(workloads, params);
+  std::cout << "pricing (artifact preset and " << ours.name << ")...\n";
+  CalibrationReport report = Calibrate(workloads, artifact, ours);
 
+  if (cli.sensitivity) RunSensitivity(cli, workloads, artifact, ours, report);
   const std::string md = cli.out_dir + "/calibration.md";
   const std::string csv = cli.out_dir + "/calibration.csv";
   WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
@@ -103,7 +116,6 @@ void Run(const CalibrateCli& cli) {
   std::cout << "\nreport  " << md << "\ndata    " << csv << "\n";
   Plot(cli.plot_script.empty() ? SourceScript("plot_calibration.py") : cli.plot_script, csv,
        cli.out_dir + "/calibration.png");
-  if (cli.sensitivity) RunSensitivity(cli, workloads, params);
 }
 
 }  // namespace
@@ -114,7 +126,8 @@ void AddCalibrateCommand(CLI::App& app) {
       "calibrate", "The paper's reported ratios beside ours, priced on recorded DeliBot and SACT workloads");
   cmd->add_option("--out", cli->out_dir, "Directory for calibration.md, .csv and .png")->capture_default_str();
   cmd->add_option("--backend-params", cli->params_path,
-                  "JSON file overriding backend cost parameters (see rcbench backends)");
+                  "The ours column's parameters: a named preset (artifact) or a JSON file overriding backend cost "
+                  "parameters (see rcbench backends; may hold a \"kernel\" object, as backends/presets/artifact.json)");
   cmd->add_flag("--sensitivity", cli->sensitivity,
                 "Also sweep every declared parameter over x0.5 and x2 (choices: every value), one at a time: "
                 "sensitivity.csv, flips.md, sensitivity.png");
@@ -125,8 +138,15 @@ void AddCalibrateCommand(CLI::App& app) {
                   "Shared data directory (wean/wean.dat, collision/mpnet_master_obb.csv); absent files fall back to "
                   "the generated office map and random OBBs")
       ->capture_default_str();
-  cmd->add_option("--particles", cli->options.particles, "DeliBot particles (count)")->capture_default_str();
+  cmd->add_option("--particles", cli->options.particles, "Small-batch DeliBot particles (count)")->capture_default_str();
   cmd->add_option("--beams", cli->options.beams, "DeliBot beams per particle (count)")->capture_default_str();
+  cmd->add_option("--sact-queries", cli->options.min_sact_queries, "Paper-scale SACT queries per scene, at least (count)")
+      ->capture_default_str();
+  cmd->add_option("--delibot-runs", cli->options.delibot_runs, "Price whole DeliBot runs (demo, robotdata1)")
+      ->capture_default_str();
+  cmd->add_option("--run-max-records", cli->options.run_max_records,
+                  "DeliBot runs: at most N laser records (count; 0 = the whole trace)")
+      ->capture_default_str();
   cmd->add_option("--plot-script", cli->plot_script, "Plot script (default: the source tree's scripts/plot_calibration.py)");
   cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] { Run(*cli); });

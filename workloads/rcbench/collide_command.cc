@@ -23,6 +23,7 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
+#include "backends/backend_preset.h"
 #include "common/atomic_file.h"
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
@@ -170,7 +171,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   if (!options.sact.IsValid(&error)) throw UsageError(error);
 
   const BackendParameters params =
-      cli.backend_params_path.empty() ? BackendParameters{} : LoadBackendParameters(cli.backend_params_path);
+      cli.backend_params_path.empty() ? BackendParameters{} : LoadBackendPreset(cli.backend_params_path).backend;
   // The OBB batch through the RoboCore API; with sphere pre-tests (which the
   // SACT program cannot price) the kernel runs directly and is not priced.
   std::vector<CollisionResult> results;
@@ -284,7 +285,8 @@ void AddCollideCommand(CLI::App& app) {
                   "Per-OBB results CSV: index,collides,nodes_visited,exit_axis (exit of the last node test: "
                   "0..14 separating axis, -1 overlap, -2 sphere reject, -3 none)");
   cmd->add_option("--backend-params", cli->backend_params_path,
-                  "JSON file overriding backend cost parameters (see rcbench backends)");
+                  "A named preset (artifact) or a JSON file overriding backend cost parameters (see rcbench "
+                  "backends)");
   cmd->add_option("--timeline", cli->timeline_path,
                   "Batch timeline CSV (section,key,value): nodes per query mean and histogram, exit-axis distributions");
   cmd->add_option("--precision", cli->precision, "SACT and node precision: double | float")

@@ -85,7 +85,9 @@ void Run(DelibotCli& cli) {
   // MRPT casts its own rays: there is no kernel record to price.
   s.price_backends = !cli.scheduler.no_pricing && engine == DelibotEngine::kOurs;
   s.ledger = ToLedgerOptions(cli.scheduler);
-  s.backend_params = BackendParametersOf(cli.scheduler);
+  const BackendPreset preset = BackendPresetOf(cli.scheduler);
+  s.backend_params = preset.backend;
+  s.mcl.record_choices = preset.kernel;  // how the priced ray kernel stores the grid, which march program
   if (s.price_backends && !CastsRays(s.sensor_model))
     std::cout << "note: the likelihood-field model casts no rays; backend pricing is off for this run\n";
   std::string error;
