@@ -14,7 +14,7 @@ std::uint64_t DelibotMemoryLowerBound(const DelibotSettings& settings, int beam_
       std::max({m.particle_count, m.initial_particle_count, m.max_particle_count}));
   const std::uint64_t per_particle = sizeof(Pose2) + 2 * sizeof(double);
   std::uint64_t per_ray = 0;
-  if (settings.sensor_model == SensorModelKind::kBeam) {
+  if (CastsRays(settings.sensor_model)) {  // the staged model casts once one hypothesis is left
     per_ray = sizeof(RayQuery) + sizeof(RayHit);
     if (settings.price_backends) per_ray += 2 * sizeof(std::uint64_t) + sizeof(std::uint8_t);
   }

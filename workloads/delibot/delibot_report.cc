@@ -43,9 +43,10 @@ void DelibotTimeline::Open(const DelibotRow& first) {
   CsvTableOptions options;
   options.timeline = true;
   if (priced_) {
-    // The ledger prices every modelled backend, in this order.
+    // The ledger prices every modelled backend, in this order. (A first
+    // record with no kernel work, as under the likelihood field, holds none.)
     backends_ = Backend::ModelledNames();
-    if (first.pricing.costs.size() != backends_.size())
+    if (first.pricing.priced && first.pricing.costs.size() != backends_.size())
       throw std::logic_error("a priced row holds " + std::to_string(first.pricing.costs.size()) +
                              " backend costs for " + std::to_string(backends_.size()) + " backends");
     for (const char* c : {"backend", "nodes_per_ray_prev", "threshold", "switched"}) columns.push_back(c);
