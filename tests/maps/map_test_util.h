@@ -75,4 +75,22 @@ inline std::string Picture(const OccupancyGrid& g) {
   return out;
 }
 
+// Cells that differ from their image under the two mirrors and the half
+// turn: a generated map for global localization must differ clearly under
+// each, or two places look alike.
+struct SymmetryDifferences {
+  std::size_t mirror_x = 0, mirror_y = 0, half_turn = 0;
+};
+inline SymmetryDifferences CountSymmetryDifferences(const OccupancyGrid& g) {
+  const int sx = g.size_x(), sy = g.size_y();
+  SymmetryDifferences d;
+  for (int ix = 0; ix < sx; ++ix)
+    for (int iy = 0; iy < sy; ++iy) {
+      d.mirror_x += g.At(ix, iy) != g.At(sx - 1 - ix, iy);
+      d.mirror_y += g.At(ix, iy) != g.At(ix, sy - 1 - iy);
+      d.half_turn += g.At(ix, iy) != g.At(sx - 1 - ix, sy - 1 - iy);
+    }
+  return d;
+}
+
 }  // namespace rc::test

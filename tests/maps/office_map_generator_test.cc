@@ -8,6 +8,7 @@
 
 #include "common/input_error.h"
 #include "maps/grid_connectivity.h"
+#include "map_test_util.h"
 
 namespace rc {
 namespace {
@@ -107,18 +108,11 @@ TEST(OfficeMapGenerator, SameSeedSameMapOtherSeedOtherFurniture) {
 // itself; require a clear difference, not just a few cells.
 TEST(OfficeMapGenerator, IsNotSymmetric) {
   const OccupancyGrid g = GenerateOfficeMap();
-  const int sx = g.size_x(), sy = g.size_y();
-  std::size_t differ_x = 0, differ_y = 0, differ_half_turn = 0;
-  for (int ix = 0; ix < sx; ++ix)
-    for (int iy = 0; iy < sy; ++iy) {
-      differ_x += g.At(ix, iy) != g.At(sx - 1 - ix, iy);
-      differ_y += g.At(ix, iy) != g.At(ix, sy - 1 - iy);
-      differ_half_turn += g.At(ix, iy) != g.At(sx - 1 - ix, sy - 1 - iy);
-    }
+  const test::SymmetryDifferences d = test::CountSymmetryDifferences(g);
   const std::size_t minimum = g.cell_count() / 20;  // 5 % of the cells
-  EXPECT_GT(differ_x, minimum);
-  EXPECT_GT(differ_y, minimum);
-  EXPECT_GT(differ_half_turn, minimum);
+  EXPECT_GT(d.mirror_x, minimum);
+  EXPECT_GT(d.mirror_y, minimum);
+  EXPECT_GT(d.half_turn, minimum);
 }
 
 TEST(OfficeMapGenerator, ResolutionOutsideItsRangeIsAUsageError) {
