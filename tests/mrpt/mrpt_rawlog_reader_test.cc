@@ -7,6 +7,10 @@
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/poses/CPosePDFGaussian.h>
 
 #include "common/input_error.h"
 #include "delibot/synthetic_world.h"
@@ -167,6 +171,85 @@ TEST(MrptRawlogReader, UnknownEstimationMethodIsAnInputErrorNotACrash) {
     EXPECT_EQ(e.field(), "estimationMethod");
   }
   std::filesystem::remove(path);
+}
+
+// The action of the first CActionCollection in `bytes`: where its head
+// ends (the version byte follows).
+std::vector<char>::iterator FirstMovementHeadEnd(std::vector<char>& bytes) {
+  const std::string head = std::string(1, static_cast<char>(0xa1)) + "mrpt::obs::CActionRobotMovement2D";
+  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
+  return at == bytes.end() ? at : at + static_cast<long>(head.size());
+}
+
+// A tests/fuzz finding: the same null pose PDF, reached through a
+// CActionCollection holding an action of version 6 (the earlier check read
+// only version 7).
+TEST(MrptRawlogReader, UnknownEstimationMethodOfAnOlderVersionIsAnInputError) {
+  const std::string path = TempPath("method6.rawlog");
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
+  std::vector<char> bytes = ReadBytes(path);
+  const auto version = FirstMovementHeadEnd(bytes);
+  ASSERT_NE(version, bytes.end());
+  version[0] = 6;
+  version[1] = static_cast<char>(0xff);  // estimationMethod = 0xfeff, as in the finding
+  version[2] = static_cast<char>(0xfe);
+  WriteBytes(path, bytes);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "estimationMethod");
+    EXPECT_NE(std::string(e.what()).find("version 6"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+// Scan matching (method 1) reads a pose PDF object; the odometry action's
+// next object is its CPose2D increment, which is no CPosePDF: MRPT would
+// get a null pointer and copy it.
+TEST(MrptRawlogReader, ScanMatchingActionWithoutAPosePdfIsAnInputError) {
+  const std::string path = TempPath("nopdf.rawlog");
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
+  std::vector<char> bytes = ReadBytes(path);
+  const auto version = FirstMovementHeadEnd(bytes);
+  ASSERT_NE(version, bytes.end());
+  version[1] = 1;  // estimationMethod = 1, scan matching
+  WriteBytes(path, bytes);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "poseChange");
+    EXPECT_NE(std::string(e.what()).find("CPose2D"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+// A valid log whose motion comes from scan matching (a pose PDF, no
+// odometer reading) is read, its increments taken from the PDF's mean.
+TEST(MrptRawlogReader, ScanMatchingActionsAreRead) {
+  const SensorTrace trace = SmallTrace();
+  const std::string odometry_path = TempPath("odometry.rawlog");
+  WriteMrptRawlog(trace, odometry_path, RawlogForm::kActionsObservations);
+  mrpt::obs::CRawlog rawlog;
+  ASSERT_TRUE(rawlog.loadFromRawLogFile(odometry_path));
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < rawlog.size(); ++i) {
+    if (rawlog.getType(i) != mrpt::obs::CRawlog::etActionCollection) continue;
+    const auto movement = rawlog.getAsAction(i)->getBestMovementEstimation();
+    ASSERT_TRUE(movement);
+    auto pdf = mrpt::poses::CPosePDFGaussian::Create();
+    pdf->mean = movement->rawOdometryIncrementReading;
+    movement->estimationMethod = mrpt::obs::CActionRobotMovement2D::emScan2DMatching;
+    movement->poseChange = mrpt::poses::CPosePDF::Ptr(pdf);
+    ++changed;
+  }
+  ASSERT_GT(changed, 0u);
+  const std::string matched_path = TempPath("matched.rawlog");
+  ASSERT_TRUE(rawlog.saveToRawLogFile(matched_path));
+  ExpectSameTrace(ReadMrptRawlog(odometry_path), ReadMrptRawlog(matched_path), 1e-9);
+  std::filesystem::remove(odometry_path);
+  std::filesystem::remove(matched_path);
 }
 
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {

@@ -4,6 +4,8 @@
 #include <string_view>
 
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/poses/CPosePDF.h>
+#include <mrpt/rtti/CObject.h>
 
 #include "common/input_error.h"
 #include "common/memory_cap.h"
@@ -74,22 +76,100 @@ std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t
          static_cast<std::uint32_t>(bytes[offset + 2]) << 16 | static_cast<std::uint32_t>(bytes[offset + 3]) << 24;
 }
 
-void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
-  // Every object head of the class, in CArchive's format: length byte with
-  // the top bit set, the name, the version byte.
-  static const std::string kName = "mrpt::obs::CActionRobotMovement2D";
-  std::string head(1, static_cast<char>(0x80 | kName.size()));
-  head += kName;
+namespace {
+
+// MRPT resolves a class by the name after its last "::" (findRegisteredClass
+// ignores the namespace), so a head names a class by that suffix.
+std::string_view BareClassName(std::string_view name) {
+  const std::size_t colons = name.rfind("::");
+  return colons == std::string_view::npos ? name : name.substr(colons + 2);
+}
+
+// The object head at `at`, in either of CArchive's formats, as
+// CArchive::internal_ReadObjectHeader reads it: a length byte with its top
+// bit set, at most 120 name bytes, a version byte ("nullptr" has none); or
+// a uint32 length below 128, the name, a uint32 version. False when the
+// bytes there are not such a head.
+bool ReadObjectHeadAt(const std::vector<unsigned char>& bytes, std::size_t at, ArchiveObjectHead* head) {
+  if (at >= bytes.size()) return false;
+  const bool old_format = !(bytes[at] & 0x80);
+  const std::size_t length = bytes[at] & 0x7F;
+  const std::size_t name_at = at + (old_format ? 4 : 1);
+  if (length == 0 || length > 120 || name_at + length > bytes.size()) return false;
+  if (old_format && (bytes[at + 1] || bytes[at + 2] || bytes[at + 3])) return false;
+  head->class_name.assign(bytes.begin() + static_cast<std::ptrdiff_t>(name_at),
+                          bytes.begin() + static_cast<std::ptrdiff_t>(name_at + length));
+  const std::size_t version_at = name_at + length;
+  if (!old_format && head->class_name == "nullptr") {
+    head->version = 0;
+    head->data_offset = version_at;
+    return true;
+  }
+  const std::size_t version_bytes = old_format ? 4 : 1;
+  if (version_at + version_bytes > bytes.size()) return false;
+  head->version = 0;
+  for (std::size_t i = 0; i < version_bytes; ++i)
+    head->version |= static_cast<std::uint32_t>(bytes[version_at + i]) << (8 * i);
+  head->data_offset = version_at + version_bytes;
+  return true;
+}
+
+// Where every head of a class named `bare` (with any namespace) starts.
+std::vector<std::size_t> HeadsOfClass(const std::vector<unsigned char>& bytes, const std::string& bare) {
+  std::vector<std::size_t> heads;
   const std::string_view all(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  for (std::size_t at = all.find(head); at != std::string_view::npos; at = all.find(head, at + 1)) {
-    const std::size_t version_at = at + head.size();
-    if (version_at + 5 > bytes.size() || bytes[version_at] != 7) continue;
-    const std::uint32_t method = ArchiveUint32(bytes, version_at + 1, path, "estimationMethod");
-    if (method > 1)
-      throw InputError(path, 0, "estimationMethod",
-                       "the CActionRobotMovement2D at byte " + std::to_string(at) + " has estimation method " +
-                           std::to_string(method) + " (MRPT knows 0, odometry, and 1, scan matching): corrupt " +
-                           what);
+  for (std::size_t q = all.find(bare); q != std::string_view::npos; q = all.find(bare, q + 1)) {
+    const std::size_t name_end = q + bare.size();
+    // The name starts at q, or earlier with "::" just before q.
+    for (std::size_t name_at = q + 1; name_at-- > 0;) {
+      if (name_end - name_at > 120) break;
+      if (name_at != q && (q < 2 || all.compare(q - 2, 2, "::") != 0)) break;
+      const std::size_t length = name_end - name_at;
+      if (name_at >= 1 && bytes[name_at - 1] == (0x80 | length)) heads.push_back(name_at - 1);
+      if (name_at >= 4 && bytes[name_at - 4] == length && !bytes[name_at - 3] && !bytes[name_at - 2] &&
+          !bytes[name_at - 1])
+        heads.push_back(name_at - 4);
+    }
+  }
+  return heads;
+}
+
+// True when MRPT knows the class and it derives from CPosePDF: only then does
+// CArchive::ReadObject<CPosePDF> return a non-null pointer.
+bool IsPosePdfClass(const std::string& name) {
+  const mrpt::rtti::TRuntimeClassId* id = mrpt::rtti::findRegisteredClass(name);
+  return id != nullptr && id->derivedFrom(CLASS_ID(mrpt::poses::CPosePDF));
+}
+
+}  // namespace
+
+void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
+  for (const std::size_t at : HeadsOfClass(bytes, "CActionRobotMovement2D")) {
+    ArchiveObjectHead head;
+    if (!ReadObjectHeadAt(bytes, at, &head) || BareClassName(head.class_name) != "CActionRobotMovement2D") continue;
+    const std::string where = "the CActionRobotMovement2D (version " + std::to_string(head.version) +
+                              ") at byte " + std::to_string(at);
+    // Versions 2 to 7 start with the estimation method; all but odometry
+    // (0) read the pose PDF object next. Versions 0 and 1 start with it.
+    std::size_t pdf_at = head.data_offset;
+    if (head.version >= 2 && head.version <= 7) {
+      if (head.data_offset + 4 > bytes.size()) continue;  // MRPT reports the end of file
+      const std::uint32_t method = ArchiveUint32(bytes, head.data_offset, path, "estimationMethod");
+      if (method == 0) continue;
+      if (method != 1)
+        throw InputError(path, 0, "estimationMethod",
+                         where + " has estimation method " + std::to_string(static_cast<std::int32_t>(method)) +
+                             " (MRPT knows 0, odometry, and 1, scan matching): corrupt " + what);
+      pdf_at = head.data_offset + 4;
+    } else if (head.version > 1) {
+      continue;  // MRPT refuses an unknown version itself
+    }
+    ArchiveObjectHead pdf;
+    if (!ReadObjectHeadAt(bytes, pdf_at, &pdf)) continue;  // MRPT reports a malformed head itself
+    if (!IsPosePdfClass(pdf.class_name))
+      throw InputError(path, 0, "poseChange",
+                       where + " holds a '" + pdf.class_name +
+                           "' where its pose PDF belongs (a CPosePDF class): corrupt " + what);
   }
 }
 

@@ -38,10 +38,16 @@ std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t
                             const std::string& field);
 
 // Fields that crash MRPT's deserializer instead of raising its exception,
-// checked in the bytes before MRPT reads them (tests/fuzz findings):
-// - CActionRobotMovement2D (version 7): an estimation method other than
-//   0 (odometry) or 1 (scan matching) leaves its pose PDF null, and MRPT
-//   dereferences it.
+// checked in the bytes before MRPT reads them (tests/fuzz findings). Every
+// object head of the class is checked, wherever it sits (a rawlog entry, an
+// action inside a CActionCollection, an object in a sensory frame), in both
+// of CArchive's head formats and with any namespace:
+// - CActionRobotMovement2D: unless its estimation method is odometry, it
+//   reads a pose PDF object and copies the pointer it gets; an object of a
+//   class that is not a CPosePDF gives a null pointer, whose copy MRPT
+//   dereferences. Refused: an estimation method other than 0 (odometry) or
+//   1 (scan matching), and a pose PDF head naming anything but a CPosePDF
+//   class MRPT knows.
 // Throws InputError naming the file, the byte offset and the field.
 void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what);
 

@@ -106,6 +106,8 @@ class RawlogParser {
       Fail("action", "the CActionCollection has no CActionRobotMovement2D (odometry is required)");
     // rawOdometryIncrementReading is the odometer's own increment; other
     // estimation methods (scan matching) only fill the pose PDF.
+    if (movement->estimationMethod != mrpt::obs::CActionRobotMovement2D::emOdometry && !movement->poseChange)
+      Fail("action", "the CActionRobotMovement2D has no pose PDF");
     const mrpt::poses::CPose2D increment =
         movement->estimationMethod == mrpt::obs::CActionRobotMovement2D::emOdometry
             ? movement->rawOdometryIncrementReading
