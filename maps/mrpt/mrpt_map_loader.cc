@@ -15,6 +15,7 @@
 #include "common/input_error.h"
 #include "common/memory_cap.h"
 #include "maps/grid_size_limits.h"
+#include "maps/mrpt/simplemap_grid_bound.h"
 #include "maps/value_convention.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
@@ -88,6 +89,7 @@ template <typename T>
 void ReadWholeArchive(const std::string& path, const std::string& what, T& object) {
   const std::vector<unsigned char> bytes = ReadArchiveBytes(path, what);
   CheckArchiveSizes(bytes, path, what);
+  CheckMrptCrashFields(bytes, path, what);
   mrpt::io::CMemoryStream memory;
   memory.assignMemoryNotOwn(bytes.data(), bytes.size());
   auto archive = mrpt::serialization::archiveFrom(memory);
@@ -124,18 +126,21 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m, cons
   mrpt::maps::CSimpleMap simple;
   ReadWholeArchive(path, "simplemap", simple);
   if (simple.empty()) throw InputError(path, 0, "", "the simplemap has no keyframes to build a grid from");
-  // The grid grows as observations are inserted; start with one cell.
+  // The grid grows as observations are inserted (loadFromSimpleMap first
+  // clears it to MRPT's default extent); start with one cell.
   mrpt::maps::COccupancyGridMap2D grid(0.0f, static_cast<float>(resolution_m), 0.0f, static_cast<float>(resolution_m),
                                        static_cast<float>(resolution_m));
-  grid.insertionOptions.maxDistanceInsertion = 15.0f;
+  grid.insertionOptions.maxDistanceInsertion = kSimplemapMaxDistanceInsertion_m;
   grid.insertionOptions.maxOccupancyUpdateCertainty = 0.55f;
   grid.insertionOptions.considerInvalidRangesAsFreeSpace = true;
   try {
-    // The grid grows with the scans' extent: bounded by the memory cap.
-    ParseWithinBudget(MemoryCapBytes(), [&] { grid.loadFromSimpleMap(simple); });
-  } catch (const AllocationBudgetExceeded&) {
-    throw InputError(path, 0, "", "the grid built from the simplemap's scans needs more than the memory cap of " +
-                                      DescribeBytes(MemoryCapBytes()) + " (rcbench --max-memory)");
+    // MRPT grows the grid in a noexcept function, where a refused
+    // allocation terminates the process: the size it can reach is checked
+    // first, and the insertion runs under no allocation budget.
+    CheckSimplemapGridBound(simple, grid, path);
+    grid.loadFromSimpleMap(simple);
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(path, 0, "", "MRPT could not build a grid from the simplemap: " + MrptMessage(e.what()));
   }

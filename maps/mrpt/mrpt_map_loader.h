@@ -46,11 +46,15 @@ struct MrptGridMap {
 // Default cell size for grids built from a .simplemap (MRPT's
 // localization_demo.ini uses 0.06 m).
 inline constexpr double kSimplemapDefaultResolution_m = 0.06;
+// Farthest a beam is inserted into a grid built from a .simplemap: 15 m
+// (MRPT's localization_demo.ini, maxDistanceInsertion).
+inline constexpr float kSimplemapMaxDistanceInsertion_m = 15.0f;
 
 // Throw InputError naming the file for a missing, empty, corrupt or
 // truncated archive, an archive of another class, or an empty grid.
 // The grid's size is checked against grid_size_limits.h before our copy
-// is allocated.
+// is allocated; for a simplemap, the size MRPT's grid can grow to is
+// checked before MRPT inserts the keyframes (simplemap_grid_bound.h).
 MrptGridMap LoadMrptGridmap(const std::string& path, const ProbabilityThresholds& thresholds = {});
 MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m = kSimplemapDefaultResolution_m,
                               const ProbabilityThresholds& thresholds = {});

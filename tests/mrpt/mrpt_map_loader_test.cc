@@ -1,7 +1,9 @@
 // MRPT .gridmap / .simplemap input: the value convention and the frame
 // offset checked against MRPT's own API, MRPT's example maps, and the bad
 // archives that must become InputErrors.
+#include <cmath>
 #include <cstdint>
+#include <iostream>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -9,12 +11,18 @@
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
+#include <mrpt/maps/CSimpleMap.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include "common/input_error.h"
+#include "common/memory_cap.h"
 #include "delibot/synthetic_world.h"
 #include "maps/mrpt/mrpt_map_dispatch.h"
 #include "maps/mrpt/mrpt_map_loader.h"
+#include "maps/mrpt/simplemap_grid_bound.h"
 #include "mrpt/mrpt_test_data.h"
 
 namespace rc {
@@ -191,6 +199,132 @@ TEST(MrptArchiveBadInput, GridmapDeclaringMoreCellsThanItHolds) {
   EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(big); }).find("100000 x 100000 cells"), std::string::npos);
   const std::string cut = WriteBytes("cut.gridmap", head + Uint32(1000) + Uint32(1000) + std::string(64, '\0'));
   EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(cut); }).find("corrupt or truncated gridmap"), std::string::npos);
+}
+
+// ---- The grid MRPT builds from a simplemap is bounded before MRPT grows it. ----
+
+struct Keyframe {
+  double x_m, y_m, yaw_rad;
+  float range_m;  // every beam
+};
+
+// A simplemap written through MRPT's API: one 181-beam planar scan per
+// keyframe, ranges as given.
+mrpt::maps::CSimpleMap MakeSimplemap(const std::vector<Keyframe>& keyframes) {
+  mrpt::maps::CSimpleMap simple;
+  for (const Keyframe& k : keyframes) {
+    auto scan = mrpt::obs::CObservation2DRangeScan::Create();
+    scan->aperture = static_cast<float>(M_PI);
+    scan->maxRange = 20.0f;
+    scan->resizeScanAndAssign(181, k.range_m, true);
+    auto frame = mrpt::obs::CSensoryFrame::Create();
+    frame->insert(scan);
+    auto pose = mrpt::poses::CPose3DPDFGaussian::Create();
+    pose->mean = mrpt::poses::CPose3D(k.x_m, k.y_m, 0.0, k.yaw_rad, 0.0, 0.0);
+    simple.insert(mrpt::poses::CPose3DPDF::Ptr(pose), frame);
+  }
+  return simple;
+}
+
+std::string SaveSimplemap(const std::string& name, const mrpt::maps::CSimpleMap& simple) {
+  const std::string path = TempPath(name);
+  mrpt::io::CFileGZOutputStream file(path);
+  auto archive = mrpt::serialization::archiveFrom(file);
+  archive << simple;
+  return path;
+}
+
+SimplemapGridBound BoundFor(const mrpt::maps::CSimpleMap& simple, double resolution_m, const std::string& path) {
+  const auto r = static_cast<float>(resolution_m);
+  mrpt::maps::COccupancyGridMap2D grid(0.0f, r, 0.0f, r, r);
+  grid.insertionOptions.maxDistanceInsertion = kSimplemapMaxDistanceInsertion_m;
+  return CheckSimplemapGridBound(simple, grid, path);
+}
+
+void ExpectInsideBound(const MrptGridMap& map, const SimplemapGridBound& bound) {
+  const double r = map.grid.resolution_m();
+  EXPECT_GE(map.x_min_m, bound.x_min_m);
+  EXPECT_GE(map.y_min_m, bound.y_min_m);
+  EXPECT_LE(map.x_min_m + map.grid.size_x() * r, bound.x_max_m);
+  EXPECT_LE(map.y_min_m + map.grid.size_y() * r, bound.y_max_m);
+  EXPECT_LE(map.grid.size_x(), bound.size_x);
+  EXPECT_LE(map.grid.size_y(), bound.size_y);
+}
+
+TEST(SimplemapGridBound, HoldsTheGridMrptBuilds) {
+  const mrpt::maps::CSimpleMap simple =
+      MakeSimplemap({{0.0, 0.0, 0.0, 3.0f}, {30.0, -12.0, 1.0, 25.0f}, {-25.0, 40.0, -2.0, 8.0f}});
+  const std::string path = SaveSimplemap("bound.simplemap", simple);
+  for (double resolution_m : {0.05, 0.25}) {
+    const MrptGridMap map = LoadMrptSimplemap(path, resolution_m);
+    ExpectInsideBound(map, BoundFor(simple, resolution_m, path));
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(SimplemapGridBound, HoldsTheLocalizationDemo) {
+  RC_REQUIRE_MRPT_DATASET("localization_demo.simplemap.gz");
+  const std::string path = test::MrptDatasetPath("localization_demo.simplemap.gz");
+  mrpt::maps::CSimpleMap simple;
+  ASSERT_TRUE(simple.loadFromFile(path));
+  const MrptGridMap map = LoadMrptSimplemap(path);
+  const SimplemapGridBound bound = BoundFor(simple, kSimplemapDefaultResolution_m, path);
+  ExpectInsideBound(map, bound);
+  std::cout << "localization_demo.simplemap at " << kSimplemapDefaultResolution_m << " m: MRPT's grid "
+            << map.grid.size_x() << " x " << map.grid.size_y() << " cells, bound " << bound.size_x << " x "
+            << bound.size_y << "\n";
+}
+
+// A tests/fuzz finding: a keyframe's scan reaching 10^30 m away made MRPT
+// grow the grid inside a noexcept function, where the refused allocation
+// terminated the process. Now refused before MRPT inserts anything.
+TEST(SimplemapGridBound, KeyframesTooFarApartAreAnInputError) {
+  const std::string path =
+      SaveSimplemap("far.simplemap", MakeSimplemap({{0.0, 0.0, 0.0, 3.0f}, {1e30, 0.0, 0.0, 3.0f}}));
+  try {
+    LoadMrptSimplemap(path, 0.25);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.field(), "keyframe 1 pose");
+    EXPECT_NE(std::string(e.what()).find("each side must be at most 100000 cells"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+// The fuzz finding's own input: a range of -3.9e7 m placed a beam end that
+// far behind the laser.
+TEST(SimplemapGridBound, NegativeOrNanRangesAreInputErrors) {
+  mrpt::maps::CSimpleMap simple = MakeSimplemap({{0.0, 0.0, 0.0, 3.0f}, {1.0, 0.0, 0.0, 3.0f}});
+  for (float bad : {-3.86e7f, std::nanf("")}) {
+    mrpt::obs::CSensoryFrame::Ptr frame;
+    mrpt::poses::CPose3DPDF::Ptr pose;
+    simple.get(1, pose, frame);
+    frame->getObservationByClass<mrpt::obs::CObservation2DRangeScan>()->setScanRange(2, bad);
+    const std::string path = SaveSimplemap("negative.simplemap", simple);
+    try {
+      LoadMrptSimplemap(path, 0.25);
+      ADD_FAILURE() << "no InputError for range " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "keyframe 1 observation 0 range 2");
+      EXPECT_NE(std::string(e.what()).find("is not a distance"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(path);
+  }
+}
+
+TEST(SimplemapGridBound, AGridOverTheMemoryCapIsAnInputError) {
+  // 2 km apart at 0.05 m: about 41,000 x 1,200 cells, 150 MB with MRPT's
+  // resize copy, over a 64 MiB cap.
+  const std::string path =
+      SaveSimplemap("wide.simplemap", MakeSimplemap({{0.0, 0.0, 0.0, 3.0f}, {2000.0, 0.0, 0.0, 3.0f}}));
+  const std::uint64_t cap = MemoryCapBytes();
+  SetMemoryCapBytes(64ULL << 20);
+  const std::string text = InputErrorText([&] { LoadMrptSimplemap(path, 0.05); });
+  SetMemoryCapBytes(cap);
+  EXPECT_NE(text.find("memory cap"), std::string::npos) << text;
+  EXPECT_NE(text.find("keyframe 1 pose"), std::string::npos) << text;
+  std::filesystem::remove(path);
 }
 
 }  // namespace
