@@ -252,6 +252,37 @@ TEST(MrptRawlogReader, ScanMatchingActionsAreRead) {
   std::filesystem::remove(matched_path);
 }
 
+// A tests/fuzz finding: a 2D scan declaring about 4e9 ranges made MRPT ask
+// aligned_alloc for 16 GB, past the allocation budget, which saw only
+// operator new. mrpt::aligned_malloc is now counted too.
+TEST(MrptRawlogReader, ScanDeclaringBillionsOfRangesIsAnInputError) {
+  const SensorTrace trace = SmallTrace();
+  const std::string path = TempPath("huge_scan.rawlog");
+  WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
+  std::vector<char> bytes = ReadBytes(path);
+  const std::string scan_head = std::string(1, static_cast<char>(0xa2)) + "mrpt::obs::CObservation2DRangeScan";
+  const std::string pose_head = std::string(1, static_cast<char>(0x94)) + "mrpt::poses::CPose3D";
+  const auto scan = std::search(bytes.begin(), bytes.end(), scan_head.begin(), scan_head.end());
+  const auto pose = std::search(scan, bytes.end(), pose_head.begin(), pose_head.end());
+  ASSERT_NE(pose, bytes.end());
+  // The range count follows the sensor pose: the first little-endian copy of
+  // the beam count after the pose's head.
+  const auto n = static_cast<std::uint32_t>(trace.geometry.beam_count);
+  const std::string count{static_cast<char>(n & 0xFF), static_cast<char>((n >> 8) & 0xFF), '\0', '\0'};
+  const auto at = std::search(pose + static_cast<long>(pose_head.size()), bytes.end(), count.begin(), count.end());
+  ASSERT_NE(at, bytes.end());
+  at[2] = static_cast<char>(0xF0);
+  at[3] = static_cast<char>(0xF0);
+  WriteBytes(path, bytes);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would take more than"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
   RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
   const std::vector<char> whole = ReadBytes(test::MrptDatasetPath("localization_demo.rawlog"));
