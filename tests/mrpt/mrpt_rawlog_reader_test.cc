@@ -283,6 +283,29 @@ TEST(MrptRawlogReader, ScanDeclaringBillionsOfRangesIsAnInputError) {
   std::filesystem::remove(path);
 }
 
+// A tests/fuzz finding (UBSan): MRPT copies a bool field's byte from the
+// file, so rightToLeft may hold 9, which is no bool value.
+TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
+  const std::string path = TempPath("bool.rawlog");
+  WriteMrptRawlog(SmallTrace(), path, RawlogForm::kObservationsOnly);
+  std::vector<char> bytes = ReadBytes(path);
+  const std::string head = std::string(1, static_cast<char>(0xa2)) + "mrpt::obs::CObservation2DRangeScan";
+  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
+  ASSERT_NE(at, bytes.end());
+  // version byte, aperture (float), then rightToLeft.
+  char& right_to_left = at[static_cast<long>(head.size()) + 1 + 4];
+  ASSERT_EQ(right_to_left, 1);
+  right_to_left = 9;
+  WriteBytes(path, bytes);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.field().find("rightToLeft"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
   RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
   const std::vector<char> whole = ReadBytes(test::MrptDatasetPath("localization_demo.rawlog"));

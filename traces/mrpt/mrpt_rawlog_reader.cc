@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -148,10 +149,11 @@ class RawlogParser {
     out.odometry = *odometry_;
     out.source_line = static_cast<long>(entry_);
     const std::size_t n = scan->getScanSize();
+    const bool right_to_left = BoolField(scan->rightToLeft, "rightToLeft");
     out.ranges_m.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       // LaserGeometry's beams run right to left; MRPT may store them the other way.
-      const std::size_t source = scan->rightToLeft ? i : n - 1 - i;
+      const std::size_t source = right_to_left ? i : n - 1 - i;
       const float r = scan->getScanRange(source);
       if (!std::isfinite(r) || r < 0.0f)
         Fail("range " + std::to_string(source), "range " + std::to_string(r) + " m is not a distance");
@@ -161,6 +163,16 @@ class RawlogParser {
     trace_.scans.push_back(std::move(out));
     ++stats_.laser_records;
     return true;
+  }
+
+  // MRPT reads a bool field as the file's byte: anything but 0 or 1 is no
+  // bool value, and reading the field would be undefined (a tests/fuzz
+  // finding under UBSan), so its byte is inspected instead.
+  bool BoolField(const bool& field, const std::string& name) const {
+    unsigned char byte = 0;
+    std::memcpy(&byte, &field, 1);
+    if (byte > 1) Fail(name, "byte " + std::to_string(byte) + " is not a bool (0 or 1)");
+    return byte == 1;
   }
 
   LaserGeometry GeometryOf(const mrpt::obs::CObservation2DRangeScan& scan) const {
