@@ -306,6 +306,24 @@ TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
   std::filesystem::remove(path);
 }
 
+// A tests/fuzz finding: a CActionCollection whose object is not a CAction
+// (here "nullptr") made MRPT copy a null pointer and dereference it.
+TEST(MrptRawlogReader, ACollectionHoldingNoActionIsAnInputError) {
+  const std::string path = TempPath("null_action.rawlog");
+  const std::string name = "mrpt::obs::CActionCollection";
+  const std::string archive = std::string(1, static_cast<char>(0x80 | name.size())) + name + std::string(1, '\0') +
+                              std::string("\x01\0\0\0", 4) + "\x87nullptr\x88" + "\x88";
+  WriteBytes(path, std::vector<char>(archive.begin(), archive.end()));
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "action");
+    EXPECT_NE(std::string(e.what()).find("'nullptr'"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
   RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
   const std::vector<char> whole = ReadBytes(test::MrptDatasetPath("localization_demo.rawlog"));

@@ -1,12 +1,17 @@
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string_view>
 
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/obs/CAction.h>
 #include <mrpt/poses/CPosePDF.h>
 #include <mrpt/rtti/CObject.h>
+#include <mrpt/serialization/CArchive.h>
 
+#include "common/allocation_budget.h"
 #include "common/input_error.h"
 #include "common/memory_cap.h"
 
@@ -141,6 +146,46 @@ bool IsPosePdfClass(const std::string& name) {
   return id != nullptr && id->derivedFrom(CLASS_ID(mrpt::poses::CPosePDF));
 }
 
+// CActionCollection (version 0: a uint32 count, then that many objects):
+// MRPT copies each object's pointer into a deepcopy_poly_ptr, which
+// dereferences a null one, and an object of a class that is not a CAction
+// (or "nullptr") reads as null. The objects are read here with MRPT's
+// generic ReadObject, which keeps a null, and their classes checked.
+// Collections are checked from the last to the first, so one nested in
+// another's objects has been checked before MRPT reads it here.
+void CheckActionCollections(const std::vector<unsigned char>& bytes, const std::string& path,
+                            const std::string& what) {
+  std::vector<std::size_t> heads = HeadsOfClass(bytes, "CActionCollection");
+  std::sort(heads.rbegin(), heads.rend());
+  for (const std::size_t at : heads) {
+    ArchiveObjectHead head;
+    if (!ReadObjectHeadAt(bytes, at, &head) || BareClassName(head.class_name) != "CActionCollection" ||
+        head.version != 0 || head.data_offset + 4 > bytes.size())
+      continue;  // MRPT reports another version or a truncated count itself
+    const std::uint32_t count = ArchiveUint32(bytes, head.data_offset, path, "action count");
+    const std::size_t first = head.data_offset + 4;
+    mrpt::io::CMemoryStream memory;
+    memory.assignMemoryNotOwn(bytes.data() + first, bytes.size() - first);
+    auto archive = mrpt::serialization::archiveFrom(memory);
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const std::size_t object_at = first + static_cast<std::size_t>(memory.getPosition());
+      mrpt::serialization::CSerializable::Ptr object;
+      try {
+        ParseWithinBudget(ParseBudgetBytes(bytes.size()), [&] { object = archive.ReadObject(); });
+      } catch (...) {
+        break;  // a malformed object: MRPT raises its own exception on it
+      }
+      if (std::dynamic_pointer_cast<mrpt::obs::CAction>(object)) continue;
+      ArchiveObjectHead action;
+      const std::string name = ReadObjectHeadAt(bytes, object_at, &action) ? action.class_name : "?";
+      throw InputError(path, 0, "action",
+                       "the CActionCollection at byte " + std::to_string(at) + " holds a '" + name + "' at byte " +
+                           std::to_string(object_at) + " as its action " + std::to_string(i) +
+                           " (not a CAction): corrupt " + what);
+    }
+  }
+}
+
 }  // namespace
 
 void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
@@ -171,6 +216,7 @@ void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::st
                        where + " holds a '" + pdf.class_name +
                            "' where its pose PDF belongs (a CPosePDF class): corrupt " + what);
   }
+  CheckActionCollections(bytes, path, what);
 }
 
 std::string MrptMessage(const std::string& text) {

@@ -48,6 +48,8 @@ std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t
 //   dereferences. Refused: an estimation method other than 0 (odometry) or
 //   1 (scan matching), and a pose PDF head naming anything but a CPosePDF
 //   class MRPT knows.
+// - CActionCollection: MRPT copies each object's pointer the same way, so
+//   an object that is not a CAction (or "nullptr") is refused.
 // Throws InputError naming the file, the byte offset and the field.
 void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what);
 
