@@ -79,7 +79,14 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
                             const PixelThresholds& thresholds, ImageMapMode mode, CellClassCounts* counts) {
   // Checked first: OpenCV would also print its own warning for a missing file.
   if (!std::ifstream(image_path)) throw InputError(image_path, 0, "", "cannot open image file");
-  const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+  // A corrupt file can make a decoder throw (cv::Exception) instead of
+  // returning an empty image.
+  cv::Mat image;
+  try {
+    image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw InputError(image_path, 0, "", std::string("cannot decode the image (corrupt): ") + e.what());
+  }
   if (image.empty())
     throw InputError(image_path, 0, "",
                      "cannot decode the image (not an image format OpenCV knows, or corrupt)");

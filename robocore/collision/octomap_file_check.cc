@@ -87,7 +87,11 @@ void CheckOctoMapFile(const std::string& path, bool binary) {
   if (id != "OcTree") throw InputError(path, 0, "id", "the file holds a '" + id + "', not an OcTree");
   if (!(resolution > 0.0) || !std::isfinite(resolution))
     throw InputError(path, 0, "res", "the resolution must be a positive number of metres");
-  if (in.peek() == std::char_traits<char>::eof()) return;  // an empty tree
+  // OctoMap reads a root node after the 'data' line whatever follows it: at
+  // the end of the file its reads fail and leave the child bits it recurses
+  // on undefined, so a file without a node stream is refused here.
+  if (in.peek() == std::char_traits<char>::eof())
+    throw InputError(path, 0, "data", "no node stream follows the 'data' line (truncated file)");
   NodeStreamCheck(in, path, binary).Node(0);
 }
 
