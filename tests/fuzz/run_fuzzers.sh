@@ -29,11 +29,14 @@ for target in "${targets[@]}"; do
   binary="$BUILD/$target"
   [ -x "$binary" ] || { echo "run_fuzzers: no binary $binary"; failed+=("$target"); continue; }
   mkdir -p "$SCRATCH/$target"
+  # Seed folders outside tests/ (the SEEDS of tests/fuzz/CMakeLists.txt).
+  seeds=()
+  [ "$target" = fuzz_micro_program ] && seeds+=("$HERE/../../robocore/programs")
   start=$SECONDS
   # -timeout: one input may take 10 s (a hang otherwise); -rss_limit_mb and
   # -malloc_limit_mb: a parser must refuse an impossible size before it
   # allocates, so one allocation above 1 GiB is a finding.
-  if "$binary" "$SCRATCH/$target" "$HERE/corpus/$target" -max_total_time="$SECONDS_EACH" -seed="$SEED" -timeout=10 \
+  if "$binary" "$SCRATCH/$target" "$HERE/corpus/$target" "${seeds[@]}" -max_total_time="$SECONDS_EACH" -seed="$SEED" -timeout=10 \
       -rss_limit_mb=2048 -malloc_limit_mb=1024 -print_final_stats=1 -artifact_prefix="$ARTIFACTS/$target-" \
       >"$ARTIFACTS/$target.log" 2>&1; then
     runs=$(grep -Eo 'stat::number_of_executed_units: *[0-9]+' "$ARTIFACTS/$target.log" | grep -Eo '[0-9]+$')
