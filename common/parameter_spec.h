@@ -10,8 +10,7 @@
 // default comes from ("paper", "artifact: <config line>", "Horowitz", or
 // "assumption: <why>").
 //
-//   #define RC_EXAMPLE_PARAMETERS(X) \
-//     X(int, sms, 8, "count", 1, 1024, "paper: Vulkan-Sim configuration table")
+//   #define RC_EXAMPLE_PARAMETERS(X) X(int, sms, 8, "count", 1, 1024, "paper: Vulkan-Sim configuration table")
 //   struct Example {
 //     RC_EXAMPLE_PARAMETERS(RC_PARAMETER_MEMBER)
 //     template <class Self, class Visitor>

@@ -53,7 +53,7 @@ class NodeStreamCheck {
 
 }  // namespace
 
-void CheckOctoMapFile(const std::string& path, bool binary) {
+CheckedOctoMapFile CheckOctoMapFile(const std::string& path, bool binary) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open OctoMap file");
   std::string first;
@@ -92,7 +92,9 @@ void CheckOctoMapFile(const std::string& path, bool binary) {
   // on undefined, so a file without a node stream is refused here.
   if (in.peek() == std::char_traits<char>::eof())
     throw InputError(path, 0, "data", "no node stream follows the 'data' line (truncated file)");
+  const std::streamoff node_stream_at = in.tellg();
   NodeStreamCheck(in, path, binary).Node(0);
+  return {resolution, node_stream_at};
 }
 
 }  // namespace rc

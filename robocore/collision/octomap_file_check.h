@@ -4,6 +4,7 @@
 // child mask uninitialized, so a corrupt file overflows the stack or reads
 // garbage (tests/fuzz found both). This check walks the same header and
 // node stream first, bounded, and refuses what OctoMap would choke on.
+#include <ios>
 #include <string>
 
 namespace rc {
@@ -15,6 +16,17 @@ inline constexpr int kOctoMapTreeDepth = 16;
 // `binary`, else .ot) has an OctoMap header with "id OcTree" (for .ot) and a
 // positive resolution, then a node stream that is complete and no deeper
 // than kOctoMapTreeDepth.
-void CheckOctoMapFile(const std::string& path, bool binary);
+//
+// OctoMap must then read the stream this check walked, not re-read the
+// header: its header reader and this one can stop at different bytes of a
+// malformed header (a repeated 'res', binary bytes in a keyword), and the
+// stream after OctoMap's stop was never checked (tests/fuzz found it).
+// LoadOctoMapFile builds the tree at `resolution_m` and reads its nodes
+// from `node_stream_at`.
+struct CheckedOctoMapFile {
+  double resolution_m = 0.0;
+  std::streamoff node_stream_at = 0;  // bytes from the start of the file
+};
+CheckedOctoMapFile CheckOctoMapFile(const std::string& path, bool binary);
 
 }  // namespace rc

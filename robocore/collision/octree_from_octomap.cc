@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <memory>
+#include <fstream>
 
 #include <octomap/OcTree.h>
 
@@ -95,21 +95,24 @@ BoxTree BuildOctreeFromOctoMap(const octomap::OcTree& tree) {
 BoxTree LoadOctoMapFile(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path, 0, "", "file not found");
   const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".bt" && ext != ".ot")
+    throw InputError(path, 0, "", "unknown OctoMap extension '" + ext + "' (expected .bt or .ot)");
   // The checked node stream bounds OctoMap's nodes by the file's size (at
-  // most eight children of about 100 bytes per two bytes of stream).
-  if (ext == ".bt" || ext == ".ot") CheckOctoMapFile(path, ext == ".bt");
-  if (ext == ".bt") {
-    octomap::OcTree tree(0.1);  // the resolution is replaced by the file's
-    if (!tree.readBinary(path)) throw InputError(path, 0, "", "not a readable OctoMap binary (.bt) file");
-    return BuildOctreeFromOctoMap(tree);
-  }
-  if (ext == ".ot") {
-    std::unique_ptr<octomap::AbstractOcTree> read(octomap::AbstractOcTree::read(path));
-    const auto* tree = dynamic_cast<const octomap::OcTree*>(read.get());
-    if (!tree) throw InputError(path, 0, "", "not a readable OctoMap .ot file holding an OcTree");
-    return BuildOctreeFromOctoMap(*tree);
-  }
-  throw InputError(path, 0, "", "unknown OctoMap extension '" + ext + "' (expected .bt or .ot)");
+  // most eight children of about 100 bytes per two bytes of stream). OctoMap
+  // reads exactly that stream, from the checked offset, into a tree of the
+  // checked resolution (octomap_file_check.h says why).
+  const bool binary = ext == ".bt";
+  const CheckedOctoMapFile checked = CheckOctoMapFile(path, binary);
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(checked.node_stream_at);
+  if (!in) throw InputError(path, 0, "", "cannot reopen the OctoMap file at its node stream");
+  octomap::OcTree tree(checked.resolution_m);
+  if (binary)
+    tree.readBinaryData(in);
+  else
+    tree.readData(in);
+  if (!in) throw InputError(path, 0, "data", "OctoMap could not read the node stream");
+  return BuildOctreeFromOctoMap(tree);
 }
 
 }  // namespace rc

@@ -25,7 +25,13 @@ const std::string& Folder() {
   static const std::string folder = [] {
     const std::filesystem::path base =
         std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : std::filesystem::temp_directory_path();
-    const std::filesystem::path dir = base / ("rcbench-fuzz-" + std::to_string(::getpid()));
+    // The pid keeps parallel fuzzers apart; padded to a fixed width so the
+    // path, which error messages quote, has the same length in every run
+    // (a length that varies varies the coverage libFuzzer sees, and with it
+    // the inputs a seeded run tries).
+    char pid[16];
+    std::snprintf(pid, sizeof pid, "%010ld", static_cast<long>(::getpid()));
+    const std::filesystem::path dir = base / (std::string("rcbench-fuzz-") + pid);
     std::filesystem::create_directories(dir);
     // Removed at exit; a crashed fuzzer leaves it for inspection.
     static const std::string kept = dir.string();

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/maps/CSimpleMap.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -199,6 +200,36 @@ TEST(MrptArchiveBadInput, GridmapDeclaringMoreCellsThanItHolds) {
   EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(big); }).find("100000 x 100000 cells"), std::string::npos);
   const std::string cut = WriteBytes("cut.gridmap", head + Uint32(1000) + Uint32(1000) + std::string(64, '\0'));
   EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(cut); }).find("corrupt or truncated gridmap"), std::string::npos);
+}
+
+// The archive bytes of one object, as MRPT writes it.
+std::string Serialized(const mrpt::serialization::CSerializable& object) {
+  mrpt::io::CMemoryStream memory;
+  mrpt::serialization::archiveFrom(memory) << object;
+  return std::string(static_cast<const char*>(memory.getRawBufferData()), memory.getTotalBytesCount());
+}
+
+// A version-0 simplemap keyframe whose pose is not a 2D pose PDF (here a
+// 3D one): MRPT read it as a null pointer and converted it to 3D through it.
+TEST(MrptArchiveBadInput, Version0SimplemapWithA3dPoseIsAnInputError) {
+  const std::string path =
+      WriteBytes("v0_3d_pose.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 0) + Uint32(1) +
+                                             Serialized(mrpt::poses::CPose3DPDFGaussian()) +
+                                             Serialized(mrpt::obs::CSensoryFrame()));
+  const std::string text = InputErrorText([&] { LoadMrptSimplemap(path); });
+  EXPECT_NE(text.find("keyframe pose 0 (not a mrpt::poses::CPosePDF)"), std::string::npos) << text;
+  EXPECT_NE(text.find("'mrpt::poses::CPose3DPDFGaussian'"), std::string::npos) << text;
+}
+
+// A sensory frame holding "nullptr" where an observation belongs: MRPT
+// dereferences every observation of a frame it inserts into a map.
+TEST(MrptArchiveBadInput, SensoryFrameWithANullObservationIsAnInputError) {
+  const std::string frame = ObjectHead("mrpt::obs::CSensoryFrame", 2) + Uint32(1) + "\x87nullptr" + "\x88";
+  const std::string path =
+      WriteBytes("null_observation.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 1) + Uint32(1) +
+                                                   Serialized(mrpt::poses::CPose3DPDFGaussian()) + frame + "\x88");
+  const std::string text = InputErrorText([&] { LoadMrptSimplemap(path); });
+  EXPECT_NE(text.find("observation 0 (not a mrpt::obs::CObservation)"), std::string::npos) << text;
 }
 
 // ---- The grid MRPT builds from a simplemap is bounded before MRPT grows it. ----

@@ -306,6 +306,23 @@ TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
   std::filesystem::remove(path);
 }
 
+// A tests/fuzz finding: a laser mount with a NaN coordinate passed every
+// tolerance check (NaN compares false) into the trace's geometry.
+TEST(MrptRawlogReader, ANonFiniteLaserMountIsAnInputError) {
+  const std::string path = TempPath("nan_mount.rawlog");
+  SensorTrace trace = SmallTrace();
+  trace.geometry.offset_forward_m = std::nan("");
+  WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.field().find("sensorPose"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
 // A tests/fuzz finding: a CActionCollection whose object is not a CAction
 // (here "nullptr") made MRPT copy a null pointer and dereference it.
 TEST(MrptRawlogReader, ACollectionHoldingNoActionIsAnInputError) {

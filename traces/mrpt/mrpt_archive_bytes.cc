@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <string_view>
+#include <utility>
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/obs/CAction.h>
+#include <mrpt/obs/CObservation.h>
 #include <mrpt/poses/CPosePDF.h>
 #include <mrpt/rtti/CObject.h>
 #include <mrpt/serialization/CArchive.h>
@@ -146,42 +148,85 @@ bool IsPosePdfClass(const std::string& name) {
   return id != nullptr && id->derivedFrom(CLASS_ID(mrpt::poses::CPosePDF));
 }
 
-// CActionCollection (version 0: a uint32 count, then that many objects):
-// MRPT copies each object's pointer into a deepcopy_poly_ptr, which
-// dereferences a null one, and an object of a class that is not a CAction
-// (or "nullptr") reads as null. The objects are read here with MRPT's
-// generic ReadObject, which keeps a null, and their classes checked.
-// Collections are checked from the last to the first, so one nested in
-// another's objects has been checked before MRPT reads it here.
-void CheckActionCollections(const std::vector<unsigned char>& bytes, const std::string& path,
-                            const std::string& what) {
-  std::vector<std::size_t> heads = HeadsOfClass(bytes, "CActionCollection");
+// An object that MRPT reads through a typed pointer and then dereferences:
+// an object of another class (or "nullptr") reads as a null pointer, so it
+// must be of class `base`. A null `base` accepts any object (read only to
+// reach the next one).
+struct ListedObject {
+  const char* field;
+  const mrpt::rtti::TRuntimeClassId* base;
+};
+
+// A class whose body holds a uint32 count, then that many groups of objects
+// in `group` order. `count_at` gives the count's offset from the head's
+// data_offset for a version, or -1 for a version MRPT itself refuses or
+// reads without dereferencing.
+struct ObjectList {
+  const char* class_name;
+  std::ptrdiff_t (*count_at)(std::uint32_t version);
+  std::vector<ListedObject> group;
+};
+
+// The lists whose null entries crash MRPT (tests/fuzz findings):
+// - CActionCollection (version 0): copies each action into a
+//   deepcopy_poly_ptr, which dereferences a null one.
+// - CSensoryFrame (versions 0-2): version 0 sets each observation's
+//   timestamp; every version's observations are dereferenced by whoever
+//   inserts the frame into a map (CMetricMap::loadFromSimpleMap).
+// - CSimpleMap (version 0): converts each keyframe's 2D pose PDF with
+//   CPose3DPDF::createFrom2D(*pdf).
+const std::vector<ObjectList>& CrashingObjectLists() {
+  static const std::vector<ObjectList> lists = {
+      {"CActionCollection", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
+       {{"action", CLASS_ID(mrpt::obs::CAction)}}},
+      // Version 0 and 1 start with a uint32 ID, version 0 then a timestamp.
+      {"CSensoryFrame", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 12 : v == 1 ? 4 : v == 2 ? 0 : -1; },
+       {{"observation", CLASS_ID(mrpt::obs::CObservation)}}},
+      {"CSimpleMap", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
+       {{"keyframe pose", CLASS_ID(mrpt::poses::CPosePDF)}, {"keyframe sensory frame", nullptr}}},
+  };
+  return lists;
+}
+
+// Reads every listed object with MRPT's generic ReadObject, which keeps a
+// null, and checks its class. Lists are checked from the last head in the
+// file to the first, so one nested in another's objects (a sensory frame
+// in a simplemap) has been checked before MRPT reads it here.
+void CheckObjectLists(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what) {
+  std::vector<std::pair<std::size_t, const ObjectList*>> heads;
+  for (const ObjectList& list : CrashingObjectLists())
+    for (const std::size_t at : HeadsOfClass(bytes, list.class_name)) heads.emplace_back(at, &list);
   std::sort(heads.rbegin(), heads.rend());
-  for (const std::size_t at : heads) {
+  for (const auto& [at, list] : heads) {
     ArchiveObjectHead head;
-    if (!ReadObjectHeadAt(bytes, at, &head) || BareClassName(head.class_name) != "CActionCollection" ||
-        head.version != 0 || head.data_offset + 4 > bytes.size())
+    if (!ReadObjectHeadAt(bytes, at, &head) || BareClassName(head.class_name) != list->class_name) continue;
+    const std::ptrdiff_t count_at = list->count_at(head.version);
+    if (count_at < 0 || head.data_offset + static_cast<std::size_t>(count_at) + 4 > bytes.size())
       continue;  // MRPT reports another version or a truncated count itself
-    const std::uint32_t count = ArchiveUint32(bytes, head.data_offset, path, "action count");
-    const std::size_t first = head.data_offset + 4;
+    const std::size_t first = head.data_offset + static_cast<std::size_t>(count_at) + 4;
+    const std::uint32_t count = ArchiveUint32(bytes, first - 4, path, std::string(list->class_name) + " count");
     mrpt::io::CMemoryStream memory;
     memory.assignMemoryNotOwn(bytes.data() + first, bytes.size() - first);
     auto archive = mrpt::serialization::archiveFrom(memory);
-    for (std::uint32_t i = 0; i < count; ++i) {
-      const std::size_t object_at = first + static_cast<std::size_t>(memory.getPosition());
-      mrpt::serialization::CSerializable::Ptr object;
-      try {
-        ParseWithinBudget(ParseBudgetBytes(bytes.size()), [&] { object = archive.ReadObject(); });
-      } catch (...) {
-        break;  // a malformed object: MRPT raises its own exception on it
+    bool readable = true;
+    for (std::uint32_t i = 0; readable && i < count; ++i) {
+      for (const ListedObject& listed : list->group) {
+        const std::size_t object_at = first + static_cast<std::size_t>(memory.getPosition());
+        mrpt::serialization::CSerializable::Ptr object;
+        try {
+          ParseWithinBudget(ParseBudgetBytes(bytes.size()), [&] { object = archive.ReadObject(); });
+        } catch (...) {
+          readable = false;  // a malformed object: MRPT raises its own exception on it
+          break;
+        }
+        if (!listed.base || (object && object->GetRuntimeClass()->derivedFrom(listed.base))) continue;
+        ArchiveObjectHead held;
+        const std::string name = ReadObjectHeadAt(bytes, object_at, &held) ? held.class_name : "?";
+        throw InputError(path, 0, listed.field,
+                         "the " + std::string(list->class_name) + " at byte " + std::to_string(at) + " holds a '" +
+                             name + "' at byte " + std::to_string(object_at) + " as its " + listed.field + " " +
+                             std::to_string(i) + " (not a " + listed.base->className + "): corrupt " + what);
       }
-      if (std::dynamic_pointer_cast<mrpt::obs::CAction>(object)) continue;
-      ArchiveObjectHead action;
-      const std::string name = ReadObjectHeadAt(bytes, object_at, &action) ? action.class_name : "?";
-      throw InputError(path, 0, "action",
-                       "the CActionCollection at byte " + std::to_string(at) + " holds a '" + name + "' at byte " +
-                           std::to_string(object_at) + " as its action " + std::to_string(i) +
-                           " (not a CAction): corrupt " + what);
     }
   }
 }
@@ -216,7 +261,7 @@ void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::st
                        where + " holds a '" + pdf.class_name +
                            "' where its pose PDF belongs (a CPosePDF class): corrupt " + what);
   }
-  CheckActionCollections(bytes, path, what);
+  CheckObjectLists(bytes, path, what);
 }
 
 std::string MrptMessage(const std::string& text) {

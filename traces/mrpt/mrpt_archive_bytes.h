@@ -50,6 +50,10 @@ std::uint32_t ArchiveUint32(const std::vector<unsigned char>& bytes, std::size_t
 //   class MRPT knows.
 // - CActionCollection: MRPT copies each object's pointer the same way, so
 //   an object that is not a CAction (or "nullptr") is refused.
+// - CSensoryFrame: an object that is not a CObservation (MRPT's version 0
+//   reader and every map insertion dereference it).
+// - CSimpleMap version 0: a keyframe pose that is not a CPosePDF (MRPT
+//   converts it to 3D through the pointer).
 // Throws InputError naming the file, the byte offset and the field.
 void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::string& path, const std::string& what);
 

@@ -183,6 +183,9 @@ class RawlogParser {
     if (!(scan.maxRange > 0.0f) || !std::isfinite(scan.maxRange))
       Fail("maxRange", std::to_string(scan.maxRange) + " m is not a positive distance");
     const mrpt::poses::CPose3D& mount = scan.sensorPose;
+    // Checked first: a NaN passes every tolerance comparison below.
+    for (const double v : {mount.x(), mount.y(), mount.z(), mount.yaw(), mount.pitch(), mount.roll()})
+      if (!std::isfinite(v)) Fail("sensorPose", "the laser's pose on the robot is not finite");
     if (std::abs(mount.y()) > kMountPositionTolerance_m)
       Fail("sensorPose", "the laser is " + std::to_string(mount.y()) +
                              " m off the robot's heading axis; LaserGeometry models only a forward offset");
