@@ -98,7 +98,10 @@ std::vector<Aabbd> Tabletop(std::uint64_t seed) {
     for (double y : {y0, y1 - leg}) boxes.push_back(FromCorners({x, y, 0}, {x + leg, y + leg, top - t}));
   RandomStream rng(seed, StreamPurpose::kMapGeneration, 1, 0);
   for (int k = 0; k < 10; ++k) {
-    const Eigen::Vector3d half(rng.Uniform(0.02, 0.08), rng.Uniform(0.02, 0.08), rng.Uniform(0.03, 0.12));
+    // One draw per declarator (declarators are sequenced, a call's
+    // arguments are not): z, y, x is the order GCC gave the scenes so far.
+    const double half_z = rng.Uniform(0.03, 0.12), half_y = rng.Uniform(0.02, 0.08), half_x = rng.Uniform(0.02, 0.08);
+    const Eigen::Vector3d half(half_x, half_y, half_z);
     const double cx = rng.Uniform(x0 + half.x(), x1 - half.x()), cy = rng.Uniform(y0 + half.y(), y1 - half.y());
     boxes.push_back(Aabbd{{cx, cy, top + half.z()}, half});
   }
@@ -229,7 +232,8 @@ std::vector<Obbd> JitteredArmQueries(const std::vector<std::vector<Obbd>>& poses
       const double turn = aim - std::atan2(tip.y(), tip.x());
       const Eigen::Matrix3d yaw = Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       for (const Obbd& link : pose) {
-        Eigen::Vector3d axis(rng.Gaussian(), rng.Gaussian(), rng.Gaussian());
+        const double axis_z = rng.Gaussian(), axis_y = rng.Gaussian(), axis_x = rng.Gaussian();  // as above
+        Eigen::Vector3d axis(axis_x, axis_y, axis_z);
         axis = axis.norm() > 0 ? axis.normalized() : Eigen::Vector3d::UnitX();
         const Eigen::Matrix3d tilt =
             Eigen::AngleAxisd(rng.Uniform(-kRotationJitter, kRotationJitter), axis).toRotationMatrix();

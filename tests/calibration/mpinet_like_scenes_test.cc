@@ -47,6 +47,31 @@ TEST(MpinetLikeScenes, VoxelsCoverTheScenesBoxes) {
   EXPECT_THROW(VoxelizeScene(boxes, 0.0), std::invalid_argument);
 }
 
+// The same seed gives the same scene and queries from every compiler: a
+// call's arguments are evaluated in an unspecified order (GCC and clang
+// differ), so draws must not share one call. The pinned values are the
+// scenes the GCC build has always made; the clang (sanitizer) build checks
+// them too.
+TEST(MpinetLikeScenes, SameSeedSameSceneFromEveryCompiler) {
+  const std::vector<Aabbd> boxes = MakeMpinetLikeScene(MpinetSceneKind::kTabletop, 7);
+  ASSERT_GE(boxes.size(), 6u);
+  const Aabbd& first_object = boxes[5];  // after the table top and its four legs
+  EXPECT_NEAR(first_object.centre.x(), 1.0383068877733255, 1e-12);
+  EXPECT_NEAR(first_object.centre.y(), -0.25393833465779769, 1e-12);
+  EXPECT_NEAR(first_object.half.x(), 0.027390022170929826, 1e-12);
+  EXPECT_NEAR(first_object.half.y(), 0.026364397181878753, 1e-12);
+  EXPECT_NEAR(first_object.half.z(), 0.046427387886119394, 1e-12);
+  const SceneOctree octree = BuildSceneOctree(MpinetSceneKind::kCubby, 7);
+  Obbd link;
+  link.half = {0.05, 0.05, 0.05};
+  link.centre = {0.0, 0.6, 0.4};
+  const Obbd q = JitteredArmQueries({{link}}, 1, octree, 11).front();
+  EXPECT_NEAR(q.centre.x(), 0.11644794127604764, 1e-12);
+  EXPECT_NEAR(q.centre.y(), 0.71196541075759245, 1e-12);
+  EXPECT_NEAR(q.centre.z(), 0.38709279146477288, 1e-12);
+  EXPECT_NEAR(q.axes(0, 1), 0.9997108875477444, 1e-12);
+}
+
 TEST(MpinetLikeScenes, QueriesArePosesAimedAcrossTheSceneAndDeterministic) {
   const SceneOctree octree = BuildSceneOctree(MpinetSceneKind::kCubby, 7);
   Obbd base, tip;
