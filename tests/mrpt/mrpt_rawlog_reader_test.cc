@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 
 #include <gtest/gtest.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -34,6 +35,20 @@ std::vector<char> ReadBytes(const std::string& path) {
 void WriteBytes(const std::string& path, const std::vector<char>& bytes) {
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// The InputError that reading `path` raises, or nothing (a test failure)
+// when it reads cleanly; the file is removed either way.
+std::optional<InputError> ReadingError(const std::string& path) {
+  std::optional<InputError> error;
+  try {
+    ReadMrptRawlog(path);
+    ADD_FAILURE() << "no InputError reading " << path;
+  } catch (const InputError& e) {
+    error = e;
+  }
+  std::filesystem::remove(path);
+  return error;
 }
 
 SensorTrace SmallTrace() {
@@ -152,33 +167,28 @@ TEST(MrptRawlogReader, TruncatedArchivesAreInputErrors) {
   std::filesystem::remove(cut);
 }
 
+// Where the first CActionRobotMovement2D head in `bytes` ends (its version
+// byte follows), or end() when there is none.
+std::vector<char>::iterator FirstMovementHeadEnd(std::vector<char>& bytes) {
+  const std::string head = std::string(1, static_cast<char>(0xa1)) + "mrpt::obs::CActionRobotMovement2D";
+  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
+  return at == bytes.end() ? at : at + static_cast<long>(head.size());
+}
+
 // A tests/fuzz finding: MRPT dereferences a null pose PDF when a
 // CActionRobotMovement2D names an estimation method it does not know.
 TEST(MrptRawlogReader, UnknownEstimationMethodIsAnInputErrorNotACrash) {
   const std::string path = TempPath("method.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
   std::vector<char> bytes = ReadBytes(path);
-  const std::string head = std::string(1, static_cast<char>(0xa1)) + "mrpt::obs::CActionRobotMovement2D";
-  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
-  ASSERT_NE(at, bytes.end());
-  ASSERT_EQ(at[static_cast<long>(head.size())], 7);  // the version this layout is known for
-  at[static_cast<long>(head.size()) + 1] = 5;       // estimationMethod = 5
+  const auto version = FirstMovementHeadEnd(bytes);
+  ASSERT_NE(version, bytes.end());
+  ASSERT_EQ(version[0], 7);  // the version this layout is known for
+  version[1] = 5;            // estimationMethod = 5
   WriteBytes(path, bytes);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "estimationMethod");
-  }
-  std::filesystem::remove(path);
-}
-
-// The action of the first CActionCollection in `bytes`: where its head
-// ends (the version byte follows).
-std::vector<char>::iterator FirstMovementHeadEnd(std::vector<char>& bytes) {
-  const std::string head = std::string(1, static_cast<char>(0xa1)) + "mrpt::obs::CActionRobotMovement2D";
-  const auto at = std::search(bytes.begin(), bytes.end(), head.begin(), head.end());
-  return at == bytes.end() ? at : at + static_cast<long>(head.size());
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field(), "estimationMethod");
 }
 
 // A tests/fuzz finding: the same null pose PDF, reached through a
@@ -194,14 +204,10 @@ TEST(MrptRawlogReader, UnknownEstimationMethodOfAnOlderVersionIsAnInputError) {
   version[1] = static_cast<char>(0xff);  // estimationMethod = 0xfeff, as in the finding
   version[2] = static_cast<char>(0xfe);
   WriteBytes(path, bytes);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "estimationMethod");
-    EXPECT_NE(std::string(e.what()).find("version 6"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field(), "estimationMethod");
+  EXPECT_NE(std::string(e->what()).find("version 6"), std::string::npos) << e->what();
 }
 
 // Scan matching (method 1) reads a pose PDF object; the odometry action's
@@ -215,14 +221,10 @@ TEST(MrptRawlogReader, ScanMatchingActionWithoutAPosePdfIsAnInputError) {
   ASSERT_NE(version, bytes.end());
   version[1] = 1;  // estimationMethod = 1, scan matching
   WriteBytes(path, bytes);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "poseChange");
-    EXPECT_NE(std::string(e.what()).find("CPose2D"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field(), "poseChange");
+  EXPECT_NE(std::string(e->what()).find("CPose2D"), std::string::npos) << e->what();
 }
 
 // A valid log whose motion comes from scan matching (a pose PDF, no
@@ -274,13 +276,9 @@ TEST(MrptRawlogReader, ScanDeclaringBillionsOfRangesIsAnInputError) {
   at[2] = static_cast<char>(0xF0);
   at[3] = static_cast<char>(0xF0);
   WriteBytes(path, bytes);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("would take more than"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_NE(std::string(e->what()).find("would take more than"), std::string::npos) << e->what();
 }
 
 // A tests/fuzz finding (UBSan): MRPT copies a bool field's byte from the
@@ -297,13 +295,9 @@ TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
   ASSERT_EQ(right_to_left, 1);
   right_to_left = 9;
   WriteBytes(path, bytes);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.field().find("rightToLeft"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->field().find("rightToLeft"), std::string::npos) << e->what();
 }
 
 // A tests/fuzz finding: a laser mount with a NaN coordinate passed every
@@ -313,14 +307,10 @@ TEST(MrptRawlogReader, ANonFiniteLaserMountIsAnInputError) {
   SensorTrace trace = SmallTrace();
   trace.geometry.offset_forward_m = std::nan("");
   WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.field().find("sensorPose"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->field().find("sensorPose"), std::string::npos) << e->what();
+  EXPECT_NE(std::string(e->what()).find("not finite"), std::string::npos) << e->what();
 }
 
 // A tests/fuzz finding: a CActionCollection whose object is not a CAction
@@ -331,14 +321,10 @@ TEST(MrptRawlogReader, ACollectionHoldingNoActionIsAnInputError) {
   const std::string archive = std::string(1, static_cast<char>(0x80 | name.size())) + name + std::string(1, '\0') +
                               std::string("\x01\0\0\0", 4) + "\x87nullptr\x88" + "\x88";
   WriteBytes(path, std::vector<char>(archive.begin(), archive.end()));
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "action");
-    EXPECT_NE(std::string(e.what()).find("'nullptr'"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const std::optional<InputError> e = ReadingError(path);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->field(), "action");
+  EXPECT_NE(std::string(e->what()).find("'nullptr'"), std::string::npos) << e->what();
 }
 
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
