@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 
 #include "common/input_error.h"
 
@@ -53,9 +52,7 @@ class NodeStreamCheck {
 
 }  // namespace
 
-CheckedOctoMapFile CheckOctoMapFile(const std::string& path, bool binary) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open OctoMap file");
+CheckedOctoMapFile CheckOctoMapFile(std::istream& in, const std::string& path, bool binary) {
   std::string first;
   std::getline(in, first);
   const std::string expected = binary ? "# Octomap OcTree binary file" : "# Octomap OcTree file";

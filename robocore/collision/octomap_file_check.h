@@ -4,7 +4,7 @@
 // child mask uninitialized, so a corrupt file overflows the stack or reads
 // garbage (tests/fuzz found both). This check walks the same header and
 // node stream first, bounded, and refuses what OctoMap would choke on.
-#include <ios>
+#include <istream>
 #include <string>
 
 namespace rc {
@@ -27,6 +27,8 @@ struct CheckedOctoMapFile {
   double resolution_m = 0.0;
   std::streamoff node_stream_at = 0;  // bytes from the start of the file
 };
-CheckedOctoMapFile CheckOctoMapFile(const std::string& path, bool binary);
+// Reads `in` (the file at `path`, opened in binary mode) from its start to
+// the end of the node stream; `path` names the file in errors.
+CheckedOctoMapFile CheckOctoMapFile(std::istream& in, const std::string& path, bool binary);
 
 }  // namespace rc

@@ -102,10 +102,12 @@ BoxTree LoadOctoMapFile(const std::string& path) {
   // reads exactly that stream, from the checked offset, into a tree of the
   // checked resolution (octomap_file_check.h says why).
   const bool binary = ext == ".bt";
-  const CheckedOctoMapFile checked = CheckOctoMapFile(path, binary);
   std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open OctoMap file");
+  const CheckedOctoMapFile checked = CheckOctoMapFile(in, path, binary);
+  in.clear();  // the check may stop at the end of the file
   in.seekg(checked.node_stream_at);
-  if (!in) throw InputError(path, 0, "", "cannot reopen the OctoMap file at its node stream");
+  if (!in) throw InputError(path, 0, "", "cannot seek back to the OctoMap file's node stream");
   octomap::OcTree tree(checked.resolution_m);
   if (binary)
     tree.readBinaryData(in);
