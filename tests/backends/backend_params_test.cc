@@ -10,18 +10,14 @@
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "common/input_error.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
 InputError ParseError(const std::string& json) {
-  try {
-    ParseBackendParameters(json, "sweep.json");
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError for " << json;
-  return InputError("", 0, "", "");
+  return test::InputErrorFrom([&] { ParseBackendParameters(json, "sweep.json"); }, json);
 }
 
 TEST(BackendParameters, EveryFieldIsPrintedWithValueUnitAndSource) {
@@ -47,16 +43,12 @@ TEST(BackendParameters, EveryFieldIsPrintedWithValueUnitAndSource) {
 }
 
 TEST(BackendParameters, ValidOverrideFileNestedAndDotted) {
-  const std::string path = ::testing::TempDir() + "/rc_backend_params.json";
-  {
-    std::ofstream out(path);
-    out << R"({"gpu": {"sms": 16, "l1_bytes": 131072},
+  const test::TempDir dir;
+  const std::string path = dir.Write("rc_backend_params.json", R"({"gpu": {"sms": 16, "l1_bytes": 131072},
                "robocore.sact_latency_scale": 2.0,
                "ttaplus": {"warp_buffer_warps": 8},
-               "simt": {"instructions_per_element": {"DOT": 2}}})";
-  }
+               "simt": {"instructions_per_element": {"DOT": 2}}})");
   const BackendParameters p = LoadBackendParameters(path);
-  std::remove(path.c_str());
   EXPECT_EQ(p.gpu.sms, 16);
   EXPECT_EQ(p.gpu.l1_bytes, 131072);
   EXPECT_EQ(p.gpu.l2_ways, 16);  // untouched
@@ -141,12 +133,9 @@ TEST(BackendParameters, WithParameterChecksLikeTheFileLoader) {
   EXPECT_EQ(WithParameter(p, "robocore.warp_buffer_warps", "8").robocore.unit.warp_buffer_warps, 8);
   EXPECT_EQ(WithParameter(p, "simt.precision", "\"fp32\"").simt.precision, SimtPrecision::kFp32);
   EXPECT_EQ(ParameterValue(p, "gpu.sms"), "8");
-  try {
-    WithParameter(p, "ttaplus.warp_buffer_warps", "0");
-    ADD_FAILURE() << "a warp buffer of 0 warps was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("ttaplus.warp_buffer_warps"), std::string::npos) << e.what();
-  }
+  const InputError zero_warps =
+      test::InputErrorFrom([&] { WithParameter(p, "ttaplus.warp_buffer_warps", "0"); }, "a warp buffer of 0 warps");
+  EXPECT_NE(std::string(zero_warps.what()).find("ttaplus.warp_buffer_warps"), std::string::npos) << zero_warps.what();
   EXPECT_THROW(WithParameter(p, "gpu.no_such_thing", "1"), InputError);
   EXPECT_THROW(ParseBackendParameters(R"({"energy": {"dram_pj": -1}})", "x.json"), InputError);
 }

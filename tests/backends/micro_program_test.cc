@@ -10,18 +10,13 @@
 #include "common/input_error.h"
 #include "robocore/micro_program.h"
 #include "robocore/shipped_programs.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
 
 InputError ParseError(const std::string& text) {
-  try {
-    ParseMicroProgram(text, "prog.asm");
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError for:\n" << text;
-  return InputError("", 0, "", "");
+  return test::InputErrorFrom([&] { ParseMicroProgram(text, "prog.asm"); }, text);
 }
 
 TEST(MicroProgramParser, ParsesSectionsWidthsAxesAndComments) {
@@ -100,12 +95,7 @@ TEST(MicroProgramParser, WidthAxisAndLoadRules) {
 }
 
 TEST(MicroProgramParser, LoadFileErrorsNameTheFile) {
-  try {
-    LoadMicroProgram("/nonexistent/x.asm");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "/nonexistent/x.asm");
-  }
+  EXPECT_EQ(test::InputErrorFrom([] { LoadMicroProgram("/nonexistent/x.asm"); }).file(), "/nonexistent/x.asm");
 }
 
 TEST(ShippedPrograms, EveryEmbeddedProgramEqualsItsFileAndParses) {

@@ -26,7 +26,7 @@
 #include "maps/cmu_map_loader.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/shipped_programs.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "test_scenes.h"
 
 namespace rc {

@@ -22,6 +22,7 @@
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/shipped_programs.h"
 #include "test_scenes.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -78,14 +79,9 @@ TEST(SimtInstructionTable, EmbeddedTableNamesItsCompilerAndCoversEveryShippedPro
 
 TEST(SimtInstructionTable, MalformedTablesAreInputErrorsNamingTheKey) {
   auto key_of = [](const std::string& json) {
-    try {
-      SimtInstructionTable::Parse(json, "t.json");
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.file(), "t.json");
-      return e.field();
-    }
-    ADD_FAILURE() << "accepted " << json;
-    return std::string();
+    const InputError e = test::InputErrorFrom([&] { SimtInstructionTable::Parse(json, "t.json"); }, json);
+    EXPECT_EQ(e.file(), "t.json");
+    return e.field();
   };
   EXPECT_EQ(key_of("{"), "");
   EXPECT_EQ(key_of(R"({"arch": "sm_75"})"), "nvcc");
@@ -265,13 +261,9 @@ TEST(SimtParameters, PrecisionAndIsaAreNamedChoicesInTheOverrideFile) {
   EXPECT_EQ(p.simt.isa, SimtIsa::kSass);
   for (const char* bad : {R"({"simt": {"precision": "double"}})", R"({"simt": {"precision": 64}})",
                           R"({"simt": {"isa": "ptxas"}})"}) {
-    try {
-      ParseBackendParameters(bad, "p.json");
-      ADD_FAILURE() << "accepted " << bad;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("expected one of"), std::string::npos) << e.what();
-      EXPECT_EQ(e.field().rfind("simt.", 0), 0u) << e.field();
-    }
+    const InputError e = test::InputErrorFrom([&] { ParseBackendParameters(bad, "p.json"); }, bad);
+    EXPECT_NE(std::string(e.what()).find("expected one of"), std::string::npos) << e.what();
+    EXPECT_EQ(e.field().rfind("simt.", 0), 0u) << e.field();
   }
   bool printed = false;
   for (const ParameterDescription& d : DescribeBackendParameters(BackendParameters{}))

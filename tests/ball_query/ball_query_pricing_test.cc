@@ -16,6 +16,7 @@
 #include "robocore/micro_program.h"
 #include "robocore/shipped_programs.h"
 #include "workloads/movebot/backend_nearest_neighbors.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -51,14 +52,10 @@ TEST(BallQueryPrograms, AMalformedCopyIsAClearError) {
   const auto at = broken.find("DOT.3   sa, da, da");
   ASSERT_NE(at, std::string::npos);
   broken.replace(at, 3, "DOX");
-  try {
-    ParseMicroProgram(broken, "ball_query_psphere.asm");
-    FAIL() << "an unknown micro-op was accepted";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("ball_query_psphere.asm"), std::string::npos) << what;
-    EXPECT_NE(what.find("DOX"), std::string::npos) << what;
-  }
+  const std::string what =
+      test::InputErrorFrom([&] { ParseMicroProgram(broken, "ball_query_psphere.asm"); }, "an unknown micro-op").what();
+  EXPECT_NE(what.find("ball_query_psphere.asm"), std::string::npos) << what;
+  EXPECT_NE(what.find("DOX"), std::string::npos) << what;
 }
 
 struct QueryRun {

@@ -19,6 +19,7 @@
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/shipped_programs.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -76,12 +77,7 @@ TEST(ArtifactPreset, EveryKeyIsCitedInTheDoc) {
 
 TEST(ArtifactPreset, BadKernelChoicesNameTheKey) {
   auto error_key = [](const std::string& json) {
-    try {
-      ParseBackendPreset(json, "p.json");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return std::string(test::InputErrorFrom([&] { ParseBackendPreset(json, "p.json"); }, json).what());
   };
   EXPECT_NE(error_key(R"({"kernel": {"grid_cell_bytes": 3}})").find("kernel.grid_cell_bytes"), std::string::npos);
   EXPECT_NE(error_key(R"({"kernel": {"grid_cell_bytes": "8"}})").find("kernel.grid_cell_bytes"), std::string::npos);

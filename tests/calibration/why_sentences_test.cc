@@ -9,7 +9,7 @@
 
 #include "backends/calibration/calibration.h"
 #include "backends/calibration/why_sentences.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

@@ -15,8 +15,8 @@
 #include "common/exit_codes.h"
 
 #include "common/input_error.h"
-#include "maps/map_test_util.h"
-#include "test_data.h"
+#include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "traces/csv_table.h"
 #include "workloads/rcbench/commands.h"
 

@@ -9,7 +9,7 @@
 #include "carribot/carribot_test_util.h"
 #include "carribot/footprint_checker_conformance.h"
 #include "maps/movingai_map_loader.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "workloads/carribot/octile_steps.h"
 #include "workloads/carribot/rasterized_footprint_checker.h"
 

@@ -22,7 +22,7 @@
 #include <random>
 
 #include "maps/movingai_map_loader.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/movingai_scenario_reader.h"
 

@@ -4,7 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "carribot/carribot_test_util.h"
-#include "maps/map_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {

@@ -6,7 +6,8 @@
 
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
-#include "test_data.h"
+#include "support/test_data.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -17,14 +18,12 @@ const std::string kHeader =
 const std::string kRow = "3,1,0.1,0.2,0.3,0.6,0.8,0,-0.8,0.6,0,0,0,1,0.5,0.25,0.125\n";
 
 InputError ObbError(const std::string& text) {
-  std::istringstream in(text);
-  try {
-    ReadObbCsv(in, "obbs.csv");
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return InputError("", 0, "", "");
+  return test::InputErrorFrom(
+      [&] {
+        std::istringstream in(text);
+        ReadObbCsv(in, "obbs.csv");
+      },
+      text);
 }
 
 TEST(ObbCsv, ReadsAxesAsColumns) {
@@ -93,14 +92,12 @@ TEST(BoxCsv, OptionalHeaderRoundTripAndErrors) {
   const std::vector<Aabbd> back = ReadBoxCsv(written, "written.csv");
   ASSERT_EQ(back.size(), 1u);
   EXPECT_EQ(back[0].centre, Eigen::Vector3d(0.1, 1.0 / 3, -7e-9));  // 17 digits: exact
-  try {
-    std::istringstream bad("1,2,3,0.5,-1,0.25\n");
-    ReadBoxCsv(bad, "bad.csv");
-    ADD_FAILURE();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.line(), 1);
-    EXPECT_EQ(e.field(), "hy");
-  }
+  test::ExpectInputError(
+      [] {
+        std::istringstream bad("1,2,3,0.5,-1,0.25\n");
+        ReadBoxCsv(bad, "bad.csv");
+      },
+      "bad.csv", 1, "hy");
   std::istringstream nan("1,2,3,0.5,1,inf\n");
   EXPECT_THROW(ReadBoxCsv(nan, "nan.csv"), InputError);
   std::istringstream truncated("1,2,3,0.5,1\n");

@@ -16,7 +16,7 @@
 #include "robocore/micro_op.h"
 #include "robocore/shipped_programs.h"
 #include "overlap_oracle.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

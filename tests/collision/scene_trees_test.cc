@@ -1,7 +1,6 @@
 // The planar quadtree (2D occupancy grid) and the OctoMap octree: their
 // answers equal testing every occupied cell / every occupied leaf, their
 // structure, and the OctoMap file loaders.
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -16,6 +15,8 @@
 #include "robocore/collision/quadtree_from_grid.h"
 #include "robocore/collision/tree_collision.h"
 #include "scene_test_util.h"
+#include "support/temp_dir.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -131,10 +132,6 @@ TEST(OctreeFromOctoMap, LeavesAreTheOccupiedLeavesAndTheTreeEqualsTestingThemAll
   ExpectQueriesMatch(tree, every_leaf, 6, 4000);
 }
 
-std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("rc_collision_" + std::to_string(::getpid()) + "_" + name)).string();
-}
-
 double Volume(const std::vector<Aabbd>& boxes) {
   double v = 0;
   for (const Aabbd& b : boxes) v += 8 * b.half.prod();
@@ -144,7 +141,7 @@ double Volume(const std::vector<Aabbd>& boxes) {
 TEST(OctreeFromOctoMap, LoadsBtAndOtFiles) {
   octomap::OcTree original = MakeOcTree();
   const std::vector<Aabbd> leaves = OccupiedLeafBoxes(original);
-  const std::string ot = TempPath("scene.ot"), bt = TempPath("scene.bt");
+  const std::string ot = test::ProgramTempPath("scene.ot"), bt = test::ProgramTempPath("scene.bt");
   ASSERT_TRUE(original.write(ot));
   const BoxTree from_ot = LoadOctoMapFile(ot);
   EXPECT_EQ(from_ot.boxes.size(), leaves.size());
@@ -159,12 +156,12 @@ TEST(OctreeFromOctoMap, LoadsBtAndOtFiles) {
   std::filesystem::remove(ot);
   std::filesystem::remove(bt);
 
-  EXPECT_THROW(LoadOctoMapFile(TempPath("missing.bt")), InputError);
-  const std::string garbage = TempPath("garbage.bt");
+  EXPECT_THROW(LoadOctoMapFile(test::ProgramTempPath("missing.bt")), InputError);
+  const std::string garbage = test::ProgramTempPath("garbage.bt");
   std::ofstream(garbage) << "not an octree\n";
   EXPECT_THROW(LoadOctoMapFile(garbage), InputError);
   std::filesystem::remove(garbage);
-  const std::string wrong = TempPath("scene.pcd");
+  const std::string wrong = test::ProgramTempPath("scene.pcd");
   std::ofstream(wrong) << "x\n";
   EXPECT_THROW(LoadOctoMapFile(wrong), InputError);
   std::filesystem::remove(wrong);
@@ -175,19 +172,15 @@ TEST(OctreeFromOctoMap, LoadsBtAndOtFiles) {
 TEST(OctreeFromOctoMapBadInput, NodeStreamDeeperThanAnOcTreeOrTruncated) {
   const std::string header =
       "# Octomap OcTree binary file\n# (comment)\nid OcTree\nsize 3\nres 0.1\ndata\n";
-  const std::string deep = TempPath("deep.bt");
+  const std::string deep = test::ProgramTempPath("deep.bt");
   std::ofstream(deep, std::ios::binary) << header << std::string(200, '\xff');  // every child an inner node
-  try {
-    LoadOctoMapFile(deep);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "data");
-    EXPECT_NE(std::string(e.what()).find("deeper than an OcTree's 16 levels"), std::string::npos);
-  }
-  const std::string cut = TempPath("cut.bt");
+  const InputError e = test::InputErrorFrom([&] { LoadOctoMapFile(deep); }, deep);
+  EXPECT_EQ(e.field(), "data");
+  EXPECT_NE(std::string(e.what()).find("deeper than an OcTree's 16 levels"), std::string::npos) << e.what();
+  const std::string cut = test::ProgramTempPath("cut.bt");
   std::ofstream(cut, std::ios::binary) << header << std::string(1, '\x03');
   EXPECT_THROW(LoadOctoMapFile(cut), InputError);
-  const std::string other = TempPath("color.ot");
+  const std::string other = test::ProgramTempPath("color.ot");
   std::ofstream(other, std::ios::binary) << "# Octomap OcTree file\nid ColorOcTree\nres 0.1\ndata\n";
   EXPECT_THROW(LoadOctoMapFile(other), InputError);
 }

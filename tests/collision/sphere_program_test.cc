@@ -20,7 +20,7 @@
 #include "robocore/micro_program.h"
 #include "robocore/shipped_programs.h"
 #include "scene_test_util.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

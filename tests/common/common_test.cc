@@ -16,6 +16,8 @@
 #include "common/input_error.h"
 #include "common/memory_cap.h"
 #include "maps/grid_size_limits.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
@@ -52,14 +54,10 @@ TEST(MemoryCap, MapSizeIsCheckedAgainstItBeforeAllocation) {
   const std::uint64_t saved = MemoryCapBytes();
   SetMemoryCapBytes(1 << 20);
   EXPECT_NO_THROW(CheckMapSize("m.dat", 2, "size", 1000, 1000));  // 1 MB of cells... just under
-  try {
-    CheckMapSize("m.dat", 2, "size", 2000, 2000);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.line(), 2);
-    EXPECT_NE(std::string(e.what()).find("2000 x 2000 cells needs 3.8 MiB"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("memory cap of 1.0 MiB"), std::string::npos) << e.what();
-  }
+  const InputError e = test::InputErrorFrom([] { CheckMapSize("m.dat", 2, "size", 2000, 2000); });
+  EXPECT_EQ(e.line(), 2);
+  EXPECT_NE(std::string(e.what()).find("2000 x 2000 cells needs 3.8 MiB"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("memory cap of 1.0 MiB"), std::string::npos) << e.what();
   SetMemoryCapBytes(saved);
   EXPECT_EQ(BytesFor(UINT64_MAX / 2, 4), UINT64_MAX);  // saturates, never wraps
 }
@@ -101,9 +99,8 @@ TEST(AllocationBudget, ParseWithinBudgetReportsTheRefusalAfterTheBudget) {
 }
 
 TEST(AtomicFile, CreatesFoldersAndLeavesNothingWithoutCommit) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "rc_atomic_file_test";
-  std::filesystem::remove_all(dir);
-  const std::string path = (dir / "a" / "b" / "out.json").string();
+  const test::TempDir dir;
+  const std::string path = dir.Path("a/b/out.json");
   {
     AtomicFile file(path);
     file.stream() << "{}";
@@ -116,7 +113,6 @@ TEST(AtomicFile, CreatesFoldersAndLeavesNothingWithoutCommit) {
   }
   EXPECT_TRUE(std::filesystem::exists(path));
   EXPECT_THROW(AtomicFile("/proc/rc_no_such_folder/out.json"), OutputError);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "real_log_recipes.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/trace_simulator.h"
 

@@ -32,7 +32,7 @@
 
 #include "maps/map_loader.h"
 #include "real_log_recipes.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "traces/trace_reader.h"
 #include "workloads/delibot/delibot_defaults.h"
 #include "workloads/delibot/delibot_run.h"

@@ -6,6 +6,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "map_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {

@@ -2,7 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "map_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "maps/map_loader.h"
 #include "maps/movingai_map_loader.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

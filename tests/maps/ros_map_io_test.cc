@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "map_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
@@ -147,13 +149,9 @@ TEST(RosMapIo, RawModeRejectsValuesThatAreNotPercentages) {
   test::TempDir dir;
   const std::string image = dir.Write("m.pgm", Pgm({{0, 0}, {0, 254}}));
   const std::string yaml = dir.Write("m.yaml", Yaml("m.pgm", "mode: raw\n"));
-  try {
-    LoadRosMap(yaml);
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), image);
-    EXPECT_EQ(e.field(), "pixel (row 1, column 1)");
-  }
+  const InputError e = test::InputErrorFrom([&] { LoadRosMap(yaml); }, yaml);
+  EXPECT_EQ(e.file(), image);
+  EXPECT_EQ(e.field(), "pixel (row 1, column 1)");
 }
 
 TEST(RosMapIo, SaveThenLoadGivesTheSameGridAndOrigin) {
@@ -278,12 +276,7 @@ TEST(RosMapIo, ThrowsInputErrorNamingTheYamlLineAndKey) {
     test::TempDir dir;
     dir.Write("m.pgm", Pgm({{0, 254}}));
     const std::string yaml = dir.Write("m.yaml", c.yaml);
-    try {
-      LoadRosMap(yaml);
-      ADD_FAILURE() << "no error";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.file(), yaml) << e.what();
-    }
+    EXPECT_EQ(test::InputErrorFrom([&] { LoadRosMap(yaml); }, c.yaml).file(), yaml);
     EXPECT_TRUE(ThrowsInputError([&] { LoadRosMap(yaml); }, c.line, c.field, c.problem));
   }
 }
@@ -296,13 +289,9 @@ TEST(RosMapIo, UndecodableImageIsAnInputErrorNamingTheImage) {
   test::TempDir dir;
   const std::string image = dir.Write("m.pgm", "this is not an image\n");
   const std::string yaml = dir.Write("m.yaml", Yaml("m.pgm"));
-  try {
-    LoadRosMap(yaml);
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), image);
-    EXPECT_NE(std::string(e.what()).find("cannot decode"), std::string::npos);
-  }
+  const InputError e = test::InputErrorFrom([&] { LoadRosMap(yaml); }, yaml);
+  EXPECT_EQ(e.file(), image);
+  EXPECT_NE(std::string(e.what()).find("cannot decode"), std::string::npos) << e.what();
 }
 
 }  // namespace

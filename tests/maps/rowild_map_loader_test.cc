@@ -4,9 +4,10 @@
 
 #include <fstream>
 
-#include "map_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "maps/cmu_map_loader.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "maps/cmu_map_loader.h"
 #include "maps/distance_field.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

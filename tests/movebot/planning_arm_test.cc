@@ -11,10 +11,11 @@
 #include "backends/calibration/sact_kernel_record.h"
 #include "common/input_error.h"
 #include "robocore/collision/exact_overlap_reference.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "workloads/movebot/arm_scene.h"
 #include "workloads/movebot/locobot_arm.h"
 #include "workloads/movebot/obstacle_file.h"
+#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -77,15 +78,12 @@ TEST(ObstacleFile, ReadsRowildFormatWithCommentsAndRotations) {
 }
 
 void ExpectInputError(const std::string& text, long line, const std::string& field) {
-  std::istringstream in(text);
-  try {
-    ReadObstacleFile(in, "bad.txt");
-    FAIL() << "accepted: " << text;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), "bad.txt");
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_EQ(e.field(), field) << e.what();
-  }
+  test::ExpectInputError(
+      [&] {
+        std::istringstream in(text);
+        ReadObstacleFile(in, "bad.txt");
+      },
+      "bad.txt", line, field);
 }
 
 TEST(ObstacleFile, MalformedLinesNameLineAndField) {

@@ -9,7 +9,7 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
-#include "test_data.h"
+#include "support/test_data.h"
 #include "workloads/movebot/arm_validity.h"
 #include "workloads/movebot/movebot_run.h"
 #include "workloads/movebot/path_verification.h"

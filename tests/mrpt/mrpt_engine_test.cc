@@ -13,6 +13,7 @@
 #include "mrpt/mrpt_test_data.h"
 #include "traces/mrpt/mrpt_rawlog_reader.h"
 #include "workloads/delibot/mrpt/delibot_engine.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
@@ -96,8 +97,7 @@ TEST(MrptEngine, TimelineHasOurColumnsWithKernelWorkEmpty) {
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.6, 0.03, 7);
   const DelibotSettings s = TrackingSettings(SensorModelKind::kLikelihoodField, run.truth.front());
   const DelibotResult r = RunDelibotEngine(DelibotEngine::kMrpt, g, run.trace, &run.truth, s);
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("rc_mrpt_timeline_" + std::to_string(::getpid()) + ".csv")).string();
+  const std::string path = test::ProgramTempPath("timeline.csv");
   WriteDelibotTimeline(path, r);
   std::ifstream in(path);
   std::string header, first;

@@ -25,13 +25,11 @@
 #include "maps/mrpt/mrpt_map_loader.h"
 #include "maps/mrpt/simplemap_grid_bound.h"
 #include "mrpt/mrpt_test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
-
-std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("rc_mrpt_" + std::to_string(::getpid()) + "_" + name)).string();
-}
 
 // A grid written by MRPT itself, through its world-coordinate API: the
 // loader must place each marked point in the matching cell of our frame.
@@ -42,7 +40,7 @@ TEST(MrptMapLoader, ValueConventionAndFrameMatchMrptsOwnApi) {
   mrpt_grid.setPos(1.05f, 0.15f, 0.0f);   // P(free) 0: a wall at world (1.05, 0.15)
   mrpt_grid.setPos(-1.55f, 2.45f, 1.0f);  // P(free) 1: free at world (-1.55, 2.45)
   mrpt_grid.setPos(0.35f, -0.95f, 0.4f);  // in between: unknown under the ROS thresholds
-  const std::string path = TempPath("frame.gridmap.gz");
+  const std::string path = test::ProgramTempPath("frame.gridmap.gz");
   {
     mrpt::io::CFileGZOutputStream file(path);
     auto archive = mrpt::serialization::archiveFrom(file);
@@ -66,12 +64,11 @@ TEST(MrptMapLoader, ValueConventionAndFrameMatchMrptsOwnApi) {
   EXPECT_EQ(cell_at_world(0.35, -0.95), CellState::kUnknown);
   EXPECT_EQ(loaded.grid.CountCells(CellState::kOccupied), 1u);
   EXPECT_EQ(loaded.grid.CountCells(CellState::kFree), 1u);
-  std::filesystem::remove(path);
 }
 
 TEST(MrptMapLoader, SaveThenLoadKeepsCellsAndOrigin) {
   const OccupancyGrid room = test::AsymmetricRoom();
-  const std::string path = TempPath("room.gridmap.gz");
+  const std::string path = test::ProgramTempPath("room.gridmap.gz");
   SaveMrptGridmap(room, path, -3.5, 2.0);
   const MrptGridMap loaded = LoadMrptGridmap(path);
   EXPECT_NEAR(loaded.x_min_m, -3.5, 1e-5);
@@ -79,7 +76,6 @@ TEST(MrptMapLoader, SaveThenLoadKeepsCellsAndOrigin) {
   ASSERT_EQ(loaded.grid.size_x(), room.size_x());
   ASSERT_EQ(loaded.grid.size_y(), room.size_y());
   EXPECT_EQ(loaded.grid.cells(), room.cells());
-  std::filesystem::remove(path);
 }
 
 TEST(MrptMapLoader, MalagaGridmap) {
@@ -115,7 +111,7 @@ TEST(MrptMapLoader, LocalizationDemoSimplemapBuildsAGrid) {
 }
 
 TEST(MrptMapLoader, DispatcherRulesAndOptions) {
-  const std::string path = TempPath("d.gridmap");
+  const std::string path = test::ProgramTempPath("d.gridmap");
   SaveMrptGridmap(test::AsymmetricRoom(), path);
   EXPECT_EQ(LoadMapWithMrpt(path).map.format, "gridmap");
   MapLoadOptions options;
@@ -124,13 +120,12 @@ TEST(MrptMapLoader, DispatcherRulesAndOptions) {
   options = {};
   options.resolution_m = 0.2;
   EXPECT_THROW(LoadMapWithMrpt(path, options), UsageError);  // a gridmap declares its resolution
-  std::filesystem::remove(path);
 }
 
 TEST(MrptMapLoader, CorruptAndTruncatedMapsAreInputErrors) {
-  const std::string whole = TempPath("whole.gridmap");
+  const std::string whole = test::ProgramTempPath("whole.gridmap");
   SaveMrptGridmap(test::AsymmetricRoom(), whole);
-  const std::string cut = TempPath("cut.gridmap");
+  const std::string cut = test::ProgramTempPath("cut.gridmap");
   {
     // The saved file is gzip: truncating it breaks the gzip stream or the object.
     std::ifstream in(whole, std::ios::binary);
@@ -145,15 +140,13 @@ TEST(MrptMapLoader, CorruptAndTruncatedMapsAreInputErrors) {
   }
   EXPECT_THROW(LoadMrptGridmap(cut), InputError);
   EXPECT_THROW(LoadMrptSimplemap(cut), InputError);
-  EXPECT_THROW(LoadMrptGridmap(TempPath("missing.gridmap")), InputError);
-  std::filesystem::remove(whole);
-  std::filesystem::remove(cut);
+  EXPECT_THROW(LoadMrptGridmap(test::ProgramTempPath("missing.gridmap")), InputError);
 }
 
 // ---- Findings of tests/fuzz (their inputs are in tests/fuzz/corpus). ----
 
 std::string WriteBytes(const std::string& name, const std::string& bytes) {
-  const std::string path = TempPath(name);
+  const std::string path = test::ProgramTempPath(name);
   std::ofstream(path, std::ios::binary) << bytes;
   return path;
 }
@@ -170,13 +163,7 @@ std::string ObjectHead(const std::string& class_name, int version) {
 
 template <typename Load>
 std::string InputErrorText(Load&& load) {
-  try {
-    load();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError";
-  return "";
+  return test::InputErrorFrom(std::forward<Load>(load)).what();
 }
 
 // zlib reports a corrupt stream as -1, which reached the reader as SIZE_MAX
@@ -258,7 +245,7 @@ mrpt::maps::CSimpleMap MakeSimplemap(const std::vector<Keyframe>& keyframes) {
 }
 
 std::string SaveSimplemap(const std::string& name, const mrpt::maps::CSimpleMap& simple) {
-  const std::string path = TempPath(name);
+  const std::string path = test::ProgramTempPath(name);
   mrpt::io::CFileGZOutputStream file(path);
   auto archive = mrpt::serialization::archiveFrom(file);
   archive << simple;
@@ -290,7 +277,6 @@ TEST(SimplemapGridBound, HoldsTheGridMrptBuilds) {
     const MrptGridMap map = LoadMrptSimplemap(path, resolution_m);
     ExpectInsideBound(map, BoundFor(simple, resolution_m, path));
   }
-  std::filesystem::remove(path);
 }
 
 TEST(SimplemapGridBound, HoldsTheLocalizationDemo) {
@@ -312,15 +298,10 @@ TEST(SimplemapGridBound, HoldsTheLocalizationDemo) {
 TEST(SimplemapGridBound, KeyframesTooFarApartAreAnInputError) {
   const std::string path =
       SaveSimplemap("far.simplemap", MakeSimplemap({{0.0, 0.0, 0.0, 3.0f}, {1e30, 0.0, 0.0, 3.0f}}));
-  try {
-    LoadMrptSimplemap(path, 0.25);
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), path);
-    EXPECT_EQ(e.field(), "keyframe 1 pose");
-    EXPECT_NE(std::string(e.what()).find("each side must be at most 100000 cells"), std::string::npos) << e.what();
-  }
-  std::filesystem::remove(path);
+  const InputError e = test::InputErrorFrom([&] { LoadMrptSimplemap(path, 0.25); }, path);
+  EXPECT_EQ(e.file(), path);
+  EXPECT_EQ(e.field(), "keyframe 1 pose");
+  EXPECT_NE(std::string(e.what()).find("each side must be at most 100000 cells"), std::string::npos) << e.what();
 }
 
 // The fuzz finding's own input: a range of -3.9e7 m placed a beam end that
@@ -333,14 +314,10 @@ TEST(SimplemapGridBound, NegativeOrNanRangesAreInputErrors) {
     simple.get(1, pose, frame);
     frame->getObservationByClass<mrpt::obs::CObservation2DRangeScan>()->setScanRange(2, bad);
     const std::string path = SaveSimplemap("negative.simplemap", simple);
-    try {
-      LoadMrptSimplemap(path, 0.25);
-      ADD_FAILURE() << "no InputError for range " << bad;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.field(), "keyframe 1 observation 0 range 2");
-      EXPECT_NE(std::string(e.what()).find("is not a distance"), std::string::npos) << e.what();
-    }
-    std::filesystem::remove(path);
+    const InputError e =
+        test::InputErrorFrom([&] { LoadMrptSimplemap(path, 0.25); }, "range " + std::to_string(bad));
+    EXPECT_EQ(e.field(), "keyframe 1 observation 0 range 2");
+    EXPECT_NE(std::string(e.what()).find("is not a distance"), std::string::npos) << e.what();
   }
 }
 
@@ -355,7 +332,6 @@ TEST(SimplemapGridBound, AGridOverTheMemoryCapIsAnInputError) {
   SetMemoryCapBytes(cap);
   EXPECT_NE(text.find("memory cap"), std::string::npos) << text;
   EXPECT_NE(text.find("keyframe 1 pose"), std::string::npos) << text;
-  std::filesystem::remove(path);
 }
 
 }  // namespace

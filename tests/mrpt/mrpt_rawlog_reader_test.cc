@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <optional>
 
 #include <gtest/gtest.h>
 #include <mrpt/obs/CActionCollection.h>
@@ -16,16 +15,14 @@
 #include "common/input_error.h"
 #include "delibot/synthetic_world.h"
 #include "mrpt/mrpt_test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "traces/mrpt/mrpt_rawlog_reader.h"
 #include "traces/mrpt/mrpt_rawlog_writer.h"
 #include "traces/mrpt/mrpt_trace_dispatch.h"
 
 namespace rc {
 namespace {
-
-std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("rc_mrpt_" + std::to_string(::getpid()) + "_" + name)).string();
-}
 
 std::vector<char> ReadBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -37,18 +34,10 @@ void WriteBytes(const std::string& path, const std::vector<char>& bytes) {
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
-// The InputError that reading `path` raises, or nothing (a test failure)
-// when it reads cleanly; the file is removed either way.
-std::optional<InputError> ReadingError(const std::string& path) {
-  std::optional<InputError> error;
-  try {
-    ReadMrptRawlog(path);
-    ADD_FAILURE() << "no InputError reading " << path;
-  } catch (const InputError& e) {
-    error = e;
-  }
-  std::filesystem::remove(path);
-  return error;
+// The InputError that reading `path` raises (a test failure, and an empty
+// error, when it reads cleanly).
+InputError ReadingError(const std::string& path) {
+  return test::InputErrorFrom([&] { ReadMrptRawlog(path); }, path);
 }
 
 SensorTrace SmallTrace() {
@@ -109,9 +98,10 @@ TEST(MrptRawlogReader, ReadsMrptLocalizationDemoWithItsOwnGeometry) {
 }
 
 TEST(MrptRawlogReader, BothFormsGiveTheSameTrace) {
+  const test::TempDir dir;
   const SensorTrace trace = SmallTrace();
-  const std::string actions = TempPath("actions.rawlog");
-  const std::string observations = TempPath("observations.rawlog");
+  const std::string actions = dir.Path("actions.rawlog");
+  const std::string observations = dir.Path("observations.rawlog");
   WriteMrptRawlog(trace, actions, RawlogForm::kActionsObservations);
   WriteMrptRawlog(trace, observations, RawlogForm::kObservationsOnly);
   TraceReadStats stats;
@@ -120,14 +110,13 @@ TEST(MrptRawlogReader, BothFormsGiveTheSameTrace) {
   ExpectSameTrace(trace, from_observations, 1e-9);  // absolute poses, double precision
   // The actions form stores increments, composed back on reading.
   ExpectSameTrace(trace, ReadMrptRawlog(actions), 1e-5);
-  std::filesystem::remove(actions);
-  std::filesystem::remove(observations);
 }
 
 TEST(MrptRawlogReader, DispatcherPicksRawlogByExtensionOrName) {
+  const test::TempDir dir;
   const SensorTrace trace = SmallTrace();
-  const std::string path = TempPath("dispatch.rawlog");
-  const std::string renamed = TempPath("dispatch.bin");
+  const std::string path = dir.Path("dispatch.rawlog");
+  const std::string renamed = dir.Path("dispatch.bin");
   WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
   std::filesystem::copy_file(path, renamed, std::filesystem::copy_options::overwrite_existing);
   TraceReadOptions options;
@@ -138,33 +127,26 @@ TEST(MrptRawlogReader, DispatcherPicksRawlogByExtensionOrName) {
   EXPECT_THROW(ReadTraceWithRawlog(path, options), InputError);  // the room trace has 180 beams
   options.format = "nonsense";
   EXPECT_THROW(ReadTraceWithRawlog(path, options), UsageError);
-  std::filesystem::remove(path);
-  std::filesystem::remove(renamed);
 }
 
 void ExpectInputErrorNamingFile(const std::string& path) {
-  try {
-    ReadMrptRawlog(path);
-    FAIL() << "no error for " << path;
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), path);
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-  }
+  const InputError e = ReadingError(path);
+  EXPECT_EQ(e.file(), path);
+  EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
 }
 
 TEST(MrptRawlogReader, TruncatedArchivesAreInputErrors) {
-  const std::string path = TempPath("whole.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("whole.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
   const std::vector<char> whole = ReadBytes(path);
-  const std::string cut = TempPath("cut.rawlog");
+  const std::string cut = dir.Path("cut.rawlog");
   // Cut inside the last object, inside the first, and after a few bytes.
   for (std::size_t keep : {whole.size() - 10, whole.size() / 2, std::size_t{300}, std::size_t{3}}) {
     WriteBytes(cut, std::vector<char>(whole.begin(), whole.begin() + static_cast<long>(keep)));
     SCOPED_TRACE("kept " + std::to_string(keep) + " of " + std::to_string(whole.size()) + " bytes");
     ExpectInputErrorNamingFile(cut);
   }
-  std::filesystem::remove(path);
-  std::filesystem::remove(cut);
 }
 
 // Where the first CActionRobotMovement2D head in `bytes` ends (its version
@@ -178,7 +160,8 @@ std::vector<char>::iterator FirstMovementHeadEnd(std::vector<char>& bytes) {
 // A tests/fuzz finding: MRPT dereferences a null pose PDF when a
 // CActionRobotMovement2D names an estimation method it does not know.
 TEST(MrptRawlogReader, UnknownEstimationMethodIsAnInputErrorNotACrash) {
-  const std::string path = TempPath("method.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("method.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
   std::vector<char> bytes = ReadBytes(path);
   const auto version = FirstMovementHeadEnd(bytes);
@@ -186,16 +169,16 @@ TEST(MrptRawlogReader, UnknownEstimationMethodIsAnInputErrorNotACrash) {
   ASSERT_EQ(version[0], 7);  // the version this layout is known for
   version[1] = 5;            // estimationMethod = 5
   WriteBytes(path, bytes);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "estimationMethod");
+  const InputError e = ReadingError(path);
+  EXPECT_EQ(e.field(), "estimationMethod");
 }
 
 // A tests/fuzz finding: the same null pose PDF, reached through a
 // CActionCollection holding an action of version 6 (the earlier check read
 // only version 7).
 TEST(MrptRawlogReader, UnknownEstimationMethodOfAnOlderVersionIsAnInputError) {
-  const std::string path = TempPath("method6.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("method6.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
   std::vector<char> bytes = ReadBytes(path);
   const auto version = FirstMovementHeadEnd(bytes);
@@ -204,34 +187,34 @@ TEST(MrptRawlogReader, UnknownEstimationMethodOfAnOlderVersionIsAnInputError) {
   version[1] = static_cast<char>(0xff);  // estimationMethod = 0xfeff, as in the finding
   version[2] = static_cast<char>(0xfe);
   WriteBytes(path, bytes);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "estimationMethod");
-  EXPECT_NE(std::string(e->what()).find("version 6"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_EQ(e.field(), "estimationMethod");
+  EXPECT_NE(std::string(e.what()).find("version 6"), std::string::npos) << e.what();
 }
 
 // Scan matching (method 1) reads a pose PDF object; the odometry action's
 // next object is its CPose2D increment, which is no CPosePDF: MRPT would
 // get a null pointer and copy it.
 TEST(MrptRawlogReader, ScanMatchingActionWithoutAPosePdfIsAnInputError) {
-  const std::string path = TempPath("nopdf.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("nopdf.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kActionsObservations);
   std::vector<char> bytes = ReadBytes(path);
   const auto version = FirstMovementHeadEnd(bytes);
   ASSERT_NE(version, bytes.end());
   version[1] = 1;  // estimationMethod = 1, scan matching
   WriteBytes(path, bytes);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "poseChange");
-  EXPECT_NE(std::string(e->what()).find("CPose2D"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_EQ(e.field(), "poseChange");
+  EXPECT_NE(std::string(e.what()).find("CPose2D"), std::string::npos) << e.what();
 }
 
 // A valid log whose motion comes from scan matching (a pose PDF, no
 // odometer reading) is read, its increments taken from the PDF's mean.
 TEST(MrptRawlogReader, ScanMatchingActionsAreRead) {
+  const test::TempDir dir;
   const SensorTrace trace = SmallTrace();
-  const std::string odometry_path = TempPath("odometry.rawlog");
+  const std::string odometry_path = dir.Path("odometry.rawlog");
   WriteMrptRawlog(trace, odometry_path, RawlogForm::kActionsObservations);
   mrpt::obs::CRawlog rawlog;
   ASSERT_TRUE(rawlog.loadFromRawLogFile(odometry_path));
@@ -247,19 +230,18 @@ TEST(MrptRawlogReader, ScanMatchingActionsAreRead) {
     ++changed;
   }
   ASSERT_GT(changed, 0u);
-  const std::string matched_path = TempPath("matched.rawlog");
+  const std::string matched_path = dir.Path("matched.rawlog");
   ASSERT_TRUE(rawlog.saveToRawLogFile(matched_path));
   ExpectSameTrace(ReadMrptRawlog(odometry_path), ReadMrptRawlog(matched_path), 1e-9);
-  std::filesystem::remove(odometry_path);
-  std::filesystem::remove(matched_path);
 }
 
 // A tests/fuzz finding: a 2D scan declaring about 4e9 ranges made MRPT ask
 // aligned_alloc for 16 GB, past the allocation budget, which saw only
 // operator new. mrpt::aligned_malloc is now counted too.
 TEST(MrptRawlogReader, ScanDeclaringBillionsOfRangesIsAnInputError) {
+  const test::TempDir dir;
   const SensorTrace trace = SmallTrace();
-  const std::string path = TempPath("huge_scan.rawlog");
+  const std::string path = dir.Path("huge_scan.rawlog");
   WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
   std::vector<char> bytes = ReadBytes(path);
   const std::string scan_head = std::string(1, static_cast<char>(0xa2)) + "mrpt::obs::CObservation2DRangeScan";
@@ -276,15 +258,15 @@ TEST(MrptRawlogReader, ScanDeclaringBillionsOfRangesIsAnInputError) {
   at[2] = static_cast<char>(0xF0);
   at[3] = static_cast<char>(0xF0);
   WriteBytes(path, bytes);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_NE(std::string(e->what()).find("would take more than"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_NE(std::string(e.what()).find("would take more than"), std::string::npos) << e.what();
 }
 
 // A tests/fuzz finding (UBSan): MRPT copies a bool field's byte from the
 // file, so rightToLeft may hold 9, which is no bool value.
 TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
-  const std::string path = TempPath("bool.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("bool.rawlog");
   WriteMrptRawlog(SmallTrace(), path, RawlogForm::kObservationsOnly);
   std::vector<char> bytes = ReadBytes(path);
   const std::string head = std::string(1, static_cast<char>(0xa2)) + "mrpt::obs::CObservation2DRangeScan";
@@ -295,49 +277,49 @@ TEST(MrptRawlogReader, ABoolFieldThatIsNeitherZeroNorOneIsAnInputError) {
   ASSERT_EQ(right_to_left, 1);
   right_to_left = 9;
   WriteBytes(path, bytes);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_NE(e->field().find("rightToLeft"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_NE(e.field().find("rightToLeft"), std::string::npos) << e.what();
 }
 
 // A tests/fuzz finding: a laser mount with a NaN coordinate passed every
 // tolerance check (NaN compares false) into the trace's geometry.
 TEST(MrptRawlogReader, ANonFiniteLaserMountIsAnInputError) {
-  const std::string path = TempPath("nan_mount.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("nan_mount.rawlog");
   SensorTrace trace = SmallTrace();
   trace.geometry.offset_forward_m = std::nan("");
   WriteMrptRawlog(trace, path, RawlogForm::kObservationsOnly);
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_NE(e->field().find("sensorPose"), std::string::npos) << e->what();
-  EXPECT_NE(std::string(e->what()).find("not finite"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_NE(e.field().find("sensorPose"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
 }
 
 // A tests/fuzz finding: a CActionCollection whose object is not a CAction
 // (here "nullptr") made MRPT copy a null pointer and dereference it.
 TEST(MrptRawlogReader, ACollectionHoldingNoActionIsAnInputError) {
-  const std::string path = TempPath("null_action.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("null_action.rawlog");
   const std::string name = "mrpt::obs::CActionCollection";
   const std::string archive = std::string(1, static_cast<char>(0x80 | name.size())) + name + std::string(1, '\0') +
                               std::string("\x01\0\0\0", 4) + "\x87nullptr\x88" + "\x88";
   WriteBytes(path, std::vector<char>(archive.begin(), archive.end()));
-  const std::optional<InputError> e = ReadingError(path);
-  ASSERT_TRUE(e);
-  EXPECT_EQ(e->field(), "action");
-  EXPECT_NE(std::string(e->what()).find("'nullptr'"), std::string::npos) << e->what();
+  const InputError e = ReadingError(path);
+  EXPECT_EQ(e.field(), "action");
+  EXPECT_NE(std::string(e.what()).find("'nullptr'"), std::string::npos) << e.what();
 }
 
 TEST(MrptRawlogReader, TruncatedMrptDemoIsAnInputError) {
+  const test::TempDir dir;
   RC_REQUIRE_MRPT_DATASET("localization_demo.rawlog");
   const std::vector<char> whole = ReadBytes(test::MrptDatasetPath("localization_demo.rawlog"));
-  const std::string cut = TempPath("demo_cut.rawlog");
+  const std::string cut = dir.Path("demo_cut.rawlog");
   WriteBytes(cut, std::vector<char>(whole.begin(), whole.begin() + static_cast<long>(whole.size() * 2 / 3)));
   ExpectInputErrorNamingFile(cut);
-  std::filesystem::remove(cut);
 }
 
 TEST(MrptRawlogReader, CorruptAndForeignFilesAreInputErrors) {
-  const std::string path = TempPath("corrupt.rawlog");
+  const test::TempDir dir;
+  const std::string path = dir.Path("corrupt.rawlog");
   WriteBytes(path, std::vector<char>{'n', 'o', 't', ' ', 'a', ' ', 'r', 'a', 'w', 'l', 'o', 'g', '\n'});
   ExpectInputErrorNamingFile(path);
   // A valid archive whose class names are overwritten.
@@ -348,8 +330,7 @@ TEST(MrptRawlogReader, CorruptAndForeignFilesAreInputErrors) {
   ExpectInputErrorNamingFile(path);
   WriteBytes(path, {});
   ExpectInputErrorNamingFile(path);
-  ExpectInputErrorNamingFile(TempPath("missing.rawlog"));
-  std::filesystem::remove(path);
+  ExpectInputErrorNamingFile(dir.Path("missing.rawlog"));
 }
 
 }  // namespace

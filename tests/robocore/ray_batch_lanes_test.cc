@@ -18,7 +18,7 @@
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_lanes.h"
-#include "test_data.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

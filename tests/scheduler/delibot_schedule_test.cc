@@ -14,7 +14,7 @@
 
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
-#include "test_data.h"
+#include "support/test_data.h"
 #include "traces/trace_reader.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/trace_simulator.h"

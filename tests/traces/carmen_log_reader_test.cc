@@ -7,13 +7,14 @@
 
 #include <gtest/gtest.h>
 
-#include "trace_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 std::string Join(const std::vector<std::string>& fields) {
   std::string line;
@@ -82,7 +83,7 @@ const std::string kHeader =
 const std::string kOdom = "ODOM 1.0 2.0 0.5 0.1 0.0 0.0 999.9 robot-host 1000.0\n";
 
 TEST(CarmenLogReader, FlaserRecordsWithDefaultGeometry) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser a, b;
   a.ranges[0] = "0.66";
   b.ts = 1000.5;
@@ -114,7 +115,7 @@ TEST(CarmenLogReader, FlaserRecordsWithDefaultGeometry) {
 }
 
 TEST(CarmenLogReader, OddBeamCountsSpanBothEnds) {
-  ScratchDir dir;
+  TempDir dir;
   const SensorTrace t181 = ReadCarmenLog(dir.Write("181.clf", WithBeams(181).Text()));
   EXPECT_DOUBLE_EQ(t181.geometry.angle_increment_rad, kPi / 180);
   EXPECT_NEAR(t181.geometry.BeamAngle(180), kPi / 2, 1e-12);
@@ -126,7 +127,7 @@ TEST(CarmenLogReader, OddBeamCountsSpanBothEnds) {
 }
 
 TEST(CarmenLogReader, ParamsSetFlaserResolutionAndMaxRange) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write(
       "params.clf", "PARAM laser_front_laser_resolution 0.5 0.0 host 0.0\n"
                     "PARAM robot_front_laser_max 50.0\n" + WithBeams(361).Text());
@@ -136,7 +137,7 @@ TEST(CarmenLogReader, ParamsSetFlaserResolutionAndMaxRange) {
 }
 
 TEST(CarmenLogReader, MountDerivedFromLaserPose) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser a, b;
   a.offset_m = b.offset_m = 0.12;
   b.odom_theta = -2.0;
@@ -149,7 +150,7 @@ TEST(CarmenLogReader, MountDerivedFromLaserPose) {
 }
 
 TEST(CarmenLogReader, ExplicitMountIgnoresLoggedLaserPose) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser a, b;
   b.offset_m = 3.0;  // e.g. a corrected pose, not odometry plus mount
   b.ts = 1001.0;
@@ -161,7 +162,7 @@ TEST(CarmenLogReader, ExplicitMountIgnoresLoggedLaserPose) {
 }
 
 TEST(CarmenLogReader, RobotLaserCarriesItsGeometry) {
-  ScratchDir dir;
+  TempDir dir;
   RobotLaser a, b;
   b.ts = 50.1;
   const SensorTrace trace = ReadCarmenLog(dir.Write("robotlaser.clf", kOdom + a.Text() + b.Text()));
@@ -180,7 +181,7 @@ TEST(CarmenLogReader, RobotLaserCarriesItsGeometry) {
 // ---- Bad input ----
 
 TEST(CarmenLogReaderBadInput, NanRange) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser l;
   l.ranges[36] = "nan";
   const std::string path = dir.Write("nan.clf", kHeader + l.Text());
@@ -188,7 +189,7 @@ TEST(CarmenLogReaderBadInput, NanRange) {
 }
 
 TEST(CarmenLogReaderBadInput, InfRange) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser l;
   l.ranges[179] = "inf";
   const std::string path = dir.Write("inf.clf", l.Text());
@@ -196,7 +197,7 @@ TEST(CarmenLogReaderBadInput, InfRange) {
 }
 
 TEST(CarmenLogReaderBadInput, NegativeRange) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser l;
   l.ranges[0] = "-0.01";
   const std::string path = dir.Write("neg.clf", l.Text());
@@ -204,7 +205,7 @@ TEST(CarmenLogReaderBadInput, NegativeRange) {
 }
 
 TEST(CarmenLogReaderBadInput, TruncatedLine) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = Flaser().Fields();
   f.resize(2 + 180 + 4);  // ends after odom_x
   const std::string path = dir.Write("cut.clf", kOdom + Join(f));
@@ -212,7 +213,7 @@ TEST(CarmenLogReaderBadInput, TruncatedLine) {
 }
 
 TEST(CarmenLogReaderBadInput, FewerRangesThanDeclared) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser l;
   l.ranges.pop_back();  // declares 180, carries 179
   const std::string path = dir.Write("179.clf", l.Text());
@@ -220,7 +221,7 @@ TEST(CarmenLogReaderBadInput, FewerRangesThanDeclared) {
 }
 
 TEST(CarmenLogReaderBadInput, BeamCountChangesBetweenRecords) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser b = WithBeams(181);
   b.ts = 2000.0;
   const std::string path = dir.Write("mixed_n.clf", Flaser().Text() + b.Text());
@@ -228,7 +229,7 @@ TEST(CarmenLogReaderBadInput, BeamCountChangesBetweenRecords) {
 }
 
 TEST(CarmenLogReaderBadInput, NonNumericField) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = Flaser().Fields();
   f[2 + 180 + 5] = "west";  // odom_theta
   const std::string path = dir.Write("alpha.clf", Join(f));
@@ -236,7 +237,7 @@ TEST(CarmenLogReaderBadInput, NonNumericField) {
 }
 
 TEST(CarmenLogReaderBadInput, NonNumericBeamCount) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = Flaser().Fields();
   f[1] = "many";
   const std::string path = dir.Write("n.clf", Join(f));
@@ -244,13 +245,13 @@ TEST(CarmenLogReaderBadInput, NonNumericBeamCount) {
 }
 
 TEST(CarmenLogReaderBadInput, EmptyTrace) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("odom_only.clf", kHeader + "PARAM a b\n" + kOdom);
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 0, "FLASER or ROBOTLASER1 records");
 }
 
 TEST(CarmenLogReaderBadInput, MixedLaserMessages) {
-  ScratchDir dir;
+  TempDir dir;
   RobotLaser r;
   r.ts = 2000.0;
   const std::string path = dir.Write("mixed.clf", Flaser().Text() + r.Text());
@@ -258,7 +259,7 @@ TEST(CarmenLogReaderBadInput, MixedLaserMessages) {
 }
 
 TEST(CarmenLogReaderBadInput, MountChangesBetweenRecords) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser b;
   b.offset_m = 0.5;
   b.ts = 2000.0;
@@ -267,7 +268,7 @@ TEST(CarmenLogReaderBadInput, MountChangesBetweenRecords) {
 }
 
 TEST(CarmenLogReaderBadInput, TimeGoesBackwards) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser b;
   b.ts = 10.0;
   const std::string path = dir.Write("back.clf", Flaser().Text() + b.Text());
@@ -275,19 +276,19 @@ TEST(CarmenLogReaderBadInput, TimeGoesBackwards) {
 }
 
 TEST(CarmenLogReaderBadInput, NotACarmenLine) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("cmu.clf", "L 1 2 3\n");
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "message");
 }
 
 TEST(CarmenLogReaderBadInput, TruncatedOdom) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("odom.clf", "ODOM 1.0 2.0 0.5 0.1 0.0 0.0 999.9\n");
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "hostname");
 }
 
 TEST(CarmenLogReaderBadInput, ParamChangesGeometryAfterFirstScan) {
-  ScratchDir dir;
+  TempDir dir;
   Flaser b;
   b.ts = 2000.0;
   const std::string path = dir.Write("late_param.clf", Flaser().Text() +
@@ -296,7 +297,7 @@ TEST(CarmenLogReaderBadInput, ParamChangesGeometryAfterFirstScan) {
 }
 
 TEST(CarmenLogReaderBadInput, RobotLaserCutInRemissions) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = RobotLaser().Fields();
   f.resize(9 + 361 + 1 + 1);  // declares 2 remissions, carries 1
   const std::string path = dir.Write("rl_cut.clf", Join(f));

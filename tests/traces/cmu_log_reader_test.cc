@@ -8,8 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "test_data.h"
-#include "trace_test_util.h"
+#include "support/test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "traces/cmu_laser_geometry.h"
 #include "traces/record_fields.h"
 
@@ -17,7 +18,7 @@ namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 // One well-formed L record, to be broken one field at a time.
 struct CmuLaserLine {
@@ -44,7 +45,7 @@ struct CmuLaserLine {
 const std::string kOdometryLine = "O 100.000000 200.000000 0.500000 0.900000\n";
 
 TEST(CmuLogReader, ReadsWellFormedRecordInMetres) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[0] = "66";
   l.ranges[179] = "8191";
@@ -68,7 +69,7 @@ TEST(CmuLogReader, ReadsWellFormedRecordInMetres) {
 }
 
 TEST(CmuLogReader, ZeroRangeIsAValidReading) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[10] = "0";
   const SensorTrace trace = ReadCmuLog(dir.Write("zero.log", l.Text()));
@@ -88,7 +89,7 @@ TEST(CmuLogReader, GeometryIsTheWeanLaser) {
 // ---- Bad input: each case names file, line and field. ----
 
 TEST(CmuLogReaderBadInput, NanRange) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[36] = "nan";
   const std::string path = dir.Write("nan.log", kOdometryLine + l.Text());
@@ -96,7 +97,7 @@ TEST(CmuLogReaderBadInput, NanRange) {
 }
 
 TEST(CmuLogReaderBadInput, InfRange) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[0] = "inf";
   const std::string path = dir.Write("inf.log", l.Text());
@@ -104,7 +105,7 @@ TEST(CmuLogReaderBadInput, InfRange) {
 }
 
 TEST(CmuLogReaderBadInput, NegativeRange) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[179] = "-5";
   const std::string path = dir.Write("neg.log", l.Text() + l.Text());
@@ -112,7 +113,7 @@ TEST(CmuLogReaderBadInput, NegativeRange) {
 }
 
 TEST(CmuLogReaderBadInput, TruncatedLineNamesFirstMissingField) {
-  ScratchDir dir;
+  TempDir dir;
   std::string line = CmuLaserLine().Text();
   // Keep "L", 6 pose fields and 43 ranges: range 44 is the first missing one.
   std::size_t pos = 0;
@@ -122,7 +123,7 @@ TEST(CmuLogReaderBadInput, TruncatedLineNamesFirstMissingField) {
 }
 
 TEST(CmuLogReaderBadInput, TooFewBeams) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges.pop_back();  // 179 ranges: the timestamp lands in range 180's place
   const std::string path = dir.Write("179.log", l.Text());
@@ -130,7 +131,7 @@ TEST(CmuLogReaderBadInput, TooFewBeams) {
 }
 
 TEST(CmuLogReaderBadInput, TooManyBeams) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges.push_back("300");
   const std::string path = dir.Write("181.log", CmuLaserLine().Text() + l.Text());
@@ -138,7 +139,7 @@ TEST(CmuLogReaderBadInput, TooManyBeams) {
 }
 
 TEST(CmuLogReaderBadInput, NonNumericRange) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.ranges[4] = "12x";
   const std::string path = dir.Write("alpha.log", l.Text());
@@ -146,7 +147,7 @@ TEST(CmuLogReaderBadInput, NonNumericRange) {
 }
 
 TEST(CmuLogReaderBadInput, NonNumericPose) {
-  ScratchDir dir;
+  TempDir dir;
   std::string line = CmuLaserLine().Text();
   line.replace(line.find("0.500000"), 8, "north");
   const std::string path = dir.Write("theta.log", line);
@@ -154,7 +155,7 @@ TEST(CmuLogReaderBadInput, NonNumericPose) {
 }
 
 TEST(CmuLogReaderBadInput, NonNumericTimestamp) {
-  ScratchDir dir;
+  TempDir dir;
   std::string line = CmuLaserLine().Text();
   line.replace(line.rfind("1.000000"), 8, "1.0.0");
   const std::string path = dir.Write("ts.log", line);
@@ -162,37 +163,37 @@ TEST(CmuLogReaderBadInput, NonNumericTimestamp) {
 }
 
 TEST(CmuLogReaderBadInput, EmptyTraceWithOnlyOdometry) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("odom_only.log", kOdometryLine + kOdometryLine);
   ExpectInputError([&] { ReadCmuLog(path); }, path, 0, "L records");
 }
 
 TEST(CmuLogReaderBadInput, EmptyFile) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("empty.log", "");
   ExpectInputError([&] { ReadCmuLog(path); }, path, 0, "L records");
 }
 
 TEST(CmuLogReaderBadInput, UnknownRecordType) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("type.log", CmuLaserLine().Text() + "X 1 2 3 4\n");
   ExpectInputError([&] { ReadCmuLog(path); }, path, 2, "record type");
 }
 
 TEST(CmuLogReaderBadInput, TruncatedOdometryRecord) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("o_cut.log", "O 100 200\n" + CmuLaserLine().Text());
   ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "theta");
 }
 
 TEST(CmuLogReaderBadInput, NanInOdometryRecord) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("o_nan.log", CmuLaserLine().Text() + "O 100 NaN 0.5 2.0\n");
   ExpectInputError([&] { ReadCmuLog(path); }, path, 2, "y");
 }
 
 TEST(CmuLogReaderBadInput, TimeGoesBackwards) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine early, late;
   early.ts = 5.0;
   late.ts = 4.0;
@@ -203,7 +204,7 @@ TEST(CmuLogReaderBadInput, TimeGoesBackwards) {
 // A clock glitch of a real log (the Intel corrected log steps back 0.1 s)
 // is read as logged and counted, not refused (record_fields.h).
 TEST(CmuLogReader, SmallStepBackInTimeIsACountedGlitch) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine a, b, c, d;
   a.ts = 5.0;
   b.ts = 5.2;
@@ -227,7 +228,7 @@ TEST(CmuLogReader, SmallStepBackInTimeIsACountedGlitch) {
 // A log of another robot states its own mount in every record: it is
 // measured from the laser poses, as CARMEN's reader does, and read.
 TEST(CmuLogReader, AnotherRobotsMountIsMeasuredFromTheLaserPoses) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l, m;
   l.laser_offset_cm = m.laser_offset_cm = 20.0;
   m.x_cm = 110.0;
@@ -244,7 +245,7 @@ TEST(CmuLogReader, AnotherRobotsMountIsMeasuredFromTheLaserPoses) {
 }
 
 TEST(CmuLogReaderBadInput, MountInconsistentWithinTheFile) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l, m;
   m.laser_offset_cm = 30.0;  // 5 cm more than the first record's
   m.ts = 1.1;
@@ -256,7 +257,7 @@ TEST(CmuLogReaderBadInput, MountInconsistentWithinTheFile) {
 }
 
 TEST(CmuLogReaderBadInput, LaserOffTheHeadingAxis) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.laser_lateral_cm = 3.0;  // LaserGeometry models a forward offset only
   const std::string path = dir.Write("sideways.log", l.Text());
@@ -264,7 +265,7 @@ TEST(CmuLogReaderBadInput, LaserOffTheHeadingAxis) {
 }
 
 TEST(CmuLogReaderBadInput, RotatedLaser) {
-  ScratchDir dir;
+  TempDir dir;
   CmuLaserLine l;
   l.laser_theta_offset = 0.1;
   const std::string path = dir.Write("rot.log", l.Text());
@@ -272,7 +273,7 @@ TEST(CmuLogReaderBadInput, RotatedLaser) {
 }
 
 TEST(CmuLogReaderBadInput, MissingFile) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Path("absent.log");
   ExpectInputError([&] { ReadCmuLog(path); }, path, 0, "");
 }

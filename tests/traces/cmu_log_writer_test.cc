@@ -9,15 +9,16 @@
 #include <gtest/gtest.h>
 
 #include "common/text_fields.h"
-#include "test_data.h"
-#include "trace_test_util.h"
+#include "support/test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "traces/cmu_laser_geometry.h"
 #include "traces/cmu_log_reader.h"
 
 namespace rc {
 namespace {
 
-using test::ScratchDir;
+using test::TempDir;
 
 SensorTrace SimulatedTrace(int scans) {
   SensorTrace trace;
@@ -41,7 +42,7 @@ SensorTrace SimulatedTrace(int scans) {
 }
 
 TEST(CmuLogWriter, RoundTripKeepsRangesExactlyAndPosesToPrintedPrecision) {
-  ScratchDir dir;
+  TempDir dir;
   const SensorTrace original = SimulatedTrace(20);
   const std::string path = dir.Path("sim.log");
   CmuLogWriteOptions options;
@@ -67,7 +68,7 @@ TEST(CmuLogWriter, RoundTripKeepsRangesExactlyAndPosesToPrintedPrecision) {
 
 TEST(CmuLogWriter, RealLogWritesBackAsWholeCentimetres) {
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
-  ScratchDir dir;
+  TempDir dir;
   const std::string source = test::SharedDataPath("wean/robotdata1.log");
   const SensorTrace original = ReadCmuLog(source);
   const std::string path = dir.Path("copy.log");
@@ -91,7 +92,7 @@ TEST(CmuLogWriter, RealLogWritesBackAsWholeCentimetres) {
 }
 
 TEST(CmuLogWriter, LaserPoseFollowsTheTraceMount) {
-  ScratchDir dir;
+  TempDir dir;
   SensorTrace trace = SimulatedTrace(2);
   trace.geometry.offset_forward_m = 0.1;
   const std::string path = dir.Path("mount.log");
@@ -104,7 +105,7 @@ TEST(CmuLogWriter, LaserPoseFollowsTheTraceMount) {
 }
 
 TEST(CmuLogWriter, ShortRangeNoReturnStaysNoReturn) {
-  ScratchDir dir;
+  TempDir dir;
   SensorTrace trace = SimulatedTrace(1);
   trace.geometry.max_range_m = 8.0;
   trace.scans[0].ranges_m.assign(180, 3.0f);
@@ -117,7 +118,7 @@ TEST(CmuLogWriter, ShortRangeNoReturnStaysNoReturn) {
 }
 
 TEST(CmuLogWriter, RejectsValidReadingBeyondCmuRangeAndLeavesNoFile) {
-  ScratchDir dir;
+  TempDir dir;
   SensorTrace trace = SimulatedTrace(1);
   trace.geometry.max_range_m = 100.0;
   trace.scans[0].ranges_m[3] = 90.0f;  // a real echo a CMU reader would take for "no return"
@@ -126,7 +127,7 @@ TEST(CmuLogWriter, RejectsValidReadingBeyondCmuRangeAndLeavesNoFile) {
 }
 
 TEST(CmuLogWriter, RejectsNonCmuGeometry) {
-  ScratchDir dir;
+  TempDir dir;
   SensorTrace trace = SimulatedTrace(1);
   trace.geometry.beam_count = 361;
   trace.geometry.angle_increment_rad = kPi / 360;
@@ -136,7 +137,7 @@ TEST(CmuLogWriter, RejectsNonCmuGeometry) {
 }
 
 TEST(CmuLogWriter, RejectsNanRangeAndBackwardsTime) {
-  ScratchDir dir;
+  TempDir dir;
   SensorTrace nan_trace = SimulatedTrace(2);
   nan_trace.scans[1].ranges_m[0] = NAN;
   EXPECT_THROW(WriteCmuLog(nan_trace, dir.Path("nan.log")), std::invalid_argument);

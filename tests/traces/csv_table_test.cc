@@ -9,16 +9,17 @@
 
 #include <gtest/gtest.h>
 
-#include "trace_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 TEST(CsvTable, WritesTypedCellsAndReadsThemBack) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Path("timeline.csv");
   CsvTable table(path, {"iteration", "time_s", "est_x_m", "backend", "cycles"});
   table.AddRow({0, 0.5, 1.0 / 3.0, "simt", std::uint64_t{18446744073709551615ull}});
@@ -44,7 +45,7 @@ TEST(CsvTable, WritesTypedCellsAndReadsThemBack) {
 }
 
 TEST(CsvTable, SignificantDigitsOption) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Path("t.csv");
   CsvTableOptions options;
   options.significant_digits = 17;
@@ -55,7 +56,7 @@ TEST(CsvTable, SignificantDigitsOption) {
 }
 
 TEST(CsvTable, RejectsNanAndInfCellsNamingColumnAndRow) {
-  ScratchDir dir;
+  TempDir dir;
   CsvTable table(dir.Path("t.csv"), {"a_m", "b_m"});
   table.AddRow({1.0, 2.0});
   try {
@@ -72,7 +73,7 @@ TEST(CsvTable, RejectsNanAndInfCellsNamingColumnAndRow) {
 }
 
 TEST(CsvTable, RowMustSetEveryColumn) {
-  ScratchDir dir;
+  TempDir dir;
   CsvTable table(dir.Path("t.csv"), {"a_m", "b_m"});
   EXPECT_THROW(table.AddRow(table.NewRow().Set("a_m", 1.0)), std::invalid_argument);
   EXPECT_THROW(table.NewRow().Set("c_m", 1.0), std::invalid_argument);
@@ -80,7 +81,7 @@ TEST(CsvTable, RowMustSetEveryColumn) {
 }
 
 TEST(CsvTable, RejectsBadColumnNames) {
-  ScratchDir dir;
+  TempDir dir;
   EXPECT_THROW(CsvTable(dir.Path("a.csv"), {"x_m", "x_m"}), std::invalid_argument);
   EXPECT_THROW(CsvTable(dir.Path("b.csv"), {"x,m"}), std::invalid_argument);
   EXPECT_THROW(CsvTable(dir.Path("c.csv"), {""}), std::invalid_argument);
@@ -89,7 +90,7 @@ TEST(CsvTable, RejectsBadColumnNames) {
 }
 
 TEST(CsvTable, FailedRunLeavesNoFile) {
-  ScratchDir dir;
+  TempDir dir;
   {
     CsvTable table(dir.Path("t.csv"), {"a_m"});
     table.AddRow({1.0});
@@ -99,7 +100,7 @@ TEST(CsvTable, FailedRunLeavesNoFile) {
 }
 
 TEST(CsvTable, NoRowsAfterCommit) {
-  ScratchDir dir;
+  TempDir dir;
   CsvTable table(dir.Path("t.csv"), {"a_m"});
   table.Commit();
   EXPECT_THROW(table.AddRow({1.0}), std::logic_error);
@@ -108,7 +109,7 @@ TEST(CsvTable, NoRowsAfterCommit) {
 }
 
 TEST(ReadCsv, CrlfAndQuotedEmptyFields) {
-  ScratchDir dir;
+  TempDir dir;
   const CsvContents csv = ReadCsv(dir.Write("t.csv", "a,b\r\n\"\",2\r\n3,\"x\"\"y\"\r\n"));
   ASSERT_EQ(csv.rows.size(), 2u);
   EXPECT_EQ(csv.rows[0], (std::vector<std::string>{"", "2"}));
@@ -116,25 +117,25 @@ TEST(ReadCsv, CrlfAndQuotedEmptyFields) {
 }
 
 TEST(ReadCsvBadInput, RowWidthDiffersFromHeader) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("t.csv", "a,b\n1,2\n3\n");
   ExpectInputError([&] { ReadCsv(path); }, path, 3, "column count");
 }
 
 TEST(ReadCsvBadInput, UnterminatedQuote) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("t.csv", "a,b\n1,\"open\n");
   ExpectInputError([&] { ReadCsv(path); }, path, 2, "column 2");
 }
 
 TEST(ReadCsvBadInput, TextAfterClosingQuote) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("t.csv", "a\n\"x\"y\n");
   ExpectInputError([&] { ReadCsv(path); }, path, 2, "column 1");
 }
 
 TEST(ReadCsvBadInput, EmptyFile) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("t.csv", "");
   ExpectInputError([&] { ReadCsv(path); }, path, 0, "header");
 }
@@ -147,7 +148,7 @@ std::string FileText(const std::string& path) {
 }
 
 TEST(CsvTimeline, RowsAreInTheFileAsTheyComeUnderTheMarker) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Path("out/sub/t.csv");  // folders made on demand
   CsvTableOptions options;
   options.timeline = true;
@@ -166,7 +167,7 @@ TEST(CsvTimeline, RowsAreInTheFileAsTheyComeUnderTheMarker) {
 }
 
 TEST(CsvTimeline, HindsightColumnsAreAddedAtCommit) {
-  ScratchDir dir;
+  TempDir dir;
   CsvTableOptions options;
   options.timeline = true;
   options.hindsight_columns = {"oracle"};
@@ -183,7 +184,7 @@ TEST(CsvTimeline, HindsightColumnsAreAddedAtCommit) {
 }
 
 TEST(CsvTimeline, AFailedRunLeavesTheMarkedPrefix) {
-  ScratchDir dir;
+  TempDir dir;
   CsvTableOptions options;
   options.timeline = true;
   {
@@ -195,7 +196,7 @@ TEST(CsvTimeline, AFailedRunLeavesTheMarkedPrefix) {
 }
 
 TEST(ReadCsv, APrefixCutMidRowDropsTheCutRow) {
-  ScratchDir dir;
+  TempDir dir;
   const CsvContents t = ReadCsv(dir.Write("t.csv", std::string(kIncompleteMarker) + "\na,b\n1,2\n3,"));
   EXPECT_FALSE(t.complete);
   EXPECT_EQ(t.rows.size(), 1u);

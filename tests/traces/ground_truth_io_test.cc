@@ -7,13 +7,14 @@
 
 #include <gtest/gtest.h>
 
-#include "trace_test_util.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 SensorTrace TraceWithTimes(std::initializer_list<double> times) {
   SensorTrace trace;
@@ -29,7 +30,7 @@ SensorTrace TraceWithTimes(std::initializer_list<double> times) {
 }
 
 TEST(GroundTruthIo, WriteThenReadIsExact) {
-  ScratchDir dir;
+  TempDir dir;
   const std::vector<GroundTruthPose> poses = {
       {0.1, {1.0 / 3.0, -2.5e-7, kPi - 1e-12}, 0},
       {1234567890.123456, {40.0000000001, 1e-300, -3.0}, 0}};
@@ -52,63 +53,63 @@ TEST(GroundTruthIo, WriteThenReadIsExact) {
 }
 
 TEST(GroundTruthIo, WriterRejectsNonFinitePoseAndLeavesNoFile) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Path("truth.txt");
   EXPECT_THROW(WriteGroundTruth(path, {{0.0, {0.0, NAN, 0.0}, 0}}), std::invalid_argument);
   EXPECT_EQ(dir.FileCount(), 0);
 }
 
 TEST(GroundTruthIoBadInput, NanValue) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "# t x y theta\n0 1 2 3\n1 nan 2 3\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 3, "x");
 }
 
 TEST(GroundTruthIoBadInput, InfValue) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "0 1 2 -inf\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 1, "theta");
 }
 
 TEST(GroundTruthIoBadInput, TruncatedLine) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "0 1 2 3\n1 1 2\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 2, "theta");
 }
 
 TEST(GroundTruthIoBadInput, ExtraField) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "0 1 2 3 4\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 1, "field 5");
 }
 
 TEST(GroundTruthIoBadInput, NonNumericField) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "t0 1 2 3\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 1, "t");
 }
 
 TEST(GroundTruthIoBadInput, EmptyFile) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "# t_s x_m y_m theta_rad\n");
   ExpectInputError([&] { ReadGroundTruth(path); }, path, 0, "poses");
 }
 
 TEST(CheckGroundTruthMatches, AcceptsOnePosePerRecordAtTheSameTimes) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "# header\n0.5 1 2 3\n0.75 1 2 3\n");
   EXPECT_NO_THROW(CheckGroundTruthMatches(TraceWithTimes({0.5, 0.75}), ReadGroundTruth(path)));
 }
 
 TEST(CheckGroundTruthMatches, CountMismatch) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "0.5 1 2 3\n");
   const GroundTruth truth = ReadGroundTruth(path);
   ExpectInputError([&] { CheckGroundTruthMatches(TraceWithTimes({0.5, 0.75}), truth); }, path, 0, "poses");
 }
 
 TEST(CheckGroundTruthMatches, TimeMismatchNamesTheLine) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("gt.txt", "# header\n0.5 1 2 3\n0.8 1 2 3\n");
   const GroundTruth truth = ReadGroundTruth(path);
   ExpectInputError([&] { CheckGroundTruthMatches(TraceWithTimes({0.5, 0.75}), truth); }, path, 3, "t");

@@ -6,15 +6,16 @@
 
 #include <gtest/gtest.h>
 
-#include "test_data.h"
-#include "trace_test_util.h"
+#include "support/test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "traces/cmu_log_reader.h"
 
 namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 std::vector<std::string> GoodFields() {
   std::vector<std::string> f = {"100.000", "200.000", "0.500"};
@@ -29,7 +30,7 @@ std::string RowildLine(const std::vector<std::string>& fields = GoodFields()) {
 }
 
 TEST(RowildLogReader, ReadsRecordWithZeroTime) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f[3] = "66.0";
   f[4] = "0.0";  // a zero reading is valid (see record_fields.h)
@@ -51,7 +52,7 @@ TEST(RowildLogReader, ReadsRecordWithZeroTime) {
 }
 
 TEST(RowildLogReaderBadInput, NanRange) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f[3 + 36] = "NaN";
   const std::string path = dir.Write("nan.txt", RowildLine() + RowildLine(f));
@@ -59,7 +60,7 @@ TEST(RowildLogReaderBadInput, NanRange) {
 }
 
 TEST(RowildLogReaderBadInput, InfRange) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f[3 + 99] = "-inf";
   const std::string path = dir.Write("inf.txt", RowildLine(f));
@@ -67,7 +68,7 @@ TEST(RowildLogReaderBadInput, InfRange) {
 }
 
 TEST(RowildLogReaderBadInput, NegativeRange) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f[3] = "-0.5";
   const std::string path = dir.Write("neg.txt", RowildLine(f));
@@ -75,7 +76,7 @@ TEST(RowildLogReaderBadInput, NegativeRange) {
 }
 
 TEST(RowildLogReaderBadInput, TruncatedLine) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f.resize(2);  // the heading is missing
   const std::string path = dir.Write("cut.txt", RowildLine() + RowildLine() + RowildLine(f));
@@ -83,7 +84,7 @@ TEST(RowildLogReaderBadInput, TruncatedLine) {
 }
 
 TEST(RowildLogReaderBadInput, WrongBeamCount) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f.resize(182);  // 179 ranges
   const std::string path = dir.Write("179.txt", RowildLine(f));
@@ -94,7 +95,7 @@ TEST(RowildLogReaderBadInput, WrongBeamCount) {
 }
 
 TEST(RowildLogReaderBadInput, NonNumericField) {
-  ScratchDir dir;
+  TempDir dir;
   auto f = GoodFields();
   f[1] = "2OO.0";
   const std::string path = dir.Write("alpha.txt", RowildLine(f));
@@ -102,7 +103,7 @@ TEST(RowildLogReaderBadInput, NonNumericField) {
 }
 
 TEST(RowildLogReaderBadInput, EmptyTrace) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("empty.txt", "\n\n");
   ExpectInputError([&] { ReadRowildLog(path); }, path, 0, "laser records");
 }

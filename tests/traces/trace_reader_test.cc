@@ -4,14 +4,15 @@
 
 #include <gtest/gtest.h>
 
-#include "test_data.h"
-#include "trace_test_util.h"
+#include "support/test_data.h"
+#include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
 using test::ExpectInputError;
-using test::ScratchDir;
+using test::TempDir;
 
 std::string Repeat(const std::string& token, int n) {
   std::string out;
@@ -26,7 +27,7 @@ const std::string kFlaser361 =
     "FLASER 361" + Repeat("3.0", 361) + " 1 2 0 1 2 0 10.0 host 10.1\n";
 
 TEST(DetectTraceFormat, ByContentNotExtension) {
-  ScratchDir dir;
+  TempDir dir;
   EXPECT_EQ(DetectTraceFormat(dir.Write("a.log", "\nO 1 2 3 4\n" + kCmuLaser)), "cmu");
   EXPECT_EQ(DetectTraceFormat(dir.Write("b.txt", kRowild)), "rowild");
   EXPECT_EQ(DetectTraceFormat(dir.Write("c.clf", "# CARMEN Logfile\n" + kFlaser361)), "carmen");
@@ -35,7 +36,7 @@ TEST(DetectTraceFormat, ByContentNotExtension) {
 }
 
 TEST(DetectTraceFormat, UnknownContentIsAnError) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("map.dat", "\nrobot_specifications->resolution 10\n");
   ExpectInputError([&] { DetectTraceFormat(path); }, path, 2, "format");
   const std::string empty = dir.Write("empty.log", "\n");
@@ -43,13 +44,13 @@ TEST(DetectTraceFormat, UnknownContentIsAnError) {
 }
 
 TEST(DetectTraceFormat, RowildShapedLineWithText) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("bad.txt", "100 200 zero" + Repeat("300", 180) + "\n");
   ExpectInputError([&] { DetectTraceFormat(path); }, path, 1, "field 3");
 }
 
 TEST(ReadTrace, DispatchesOnDetectedFormat) {
-  ScratchDir dir;
+  TempDir dir;
   TraceReadOptions options;
   EXPECT_EQ(ReadTrace(dir.Write("a.log", kCmuLaser), options).format, "cmu");
   EXPECT_EQ(ReadTrace(dir.Write("b.txt", kRowild), options).format, "rowild");
@@ -59,7 +60,7 @@ TEST(ReadTrace, DispatchesOnDetectedFormat) {
 }
 
 TEST(ReadTrace, ExplicitFormatOverridesDetection) {
-  ScratchDir dir;
+  TempDir dir;
   TraceReadOptions options;
   options.format = "rowild";
   const std::string path = dir.Write("a.log", kCmuLaser);
@@ -67,7 +68,7 @@ TEST(ReadTrace, ExplicitFormatOverridesDetection) {
 }
 
 TEST(ReadTrace, WrongBeamCountForTheRun) {
-  ScratchDir dir;
+  TempDir dir;
   TraceReadOptions options;
   options.expected_beam_count = 180;
   const std::string path = dir.Write("wide.clf", "# log\n" + kFlaser361);
@@ -76,7 +77,7 @@ TEST(ReadTrace, WrongBeamCountForTheRun) {
 }
 
 TEST(ReadTrace, UnknownFormatNameIsAUsageError) {
-  ScratchDir dir;
+  TempDir dir;
   TraceReadOptions options;
   options.format = "bag";
   EXPECT_THROW(ReadTrace(dir.Write("a.log", kCmuLaser), options), UsageError);
@@ -104,7 +105,7 @@ std::string CmuLaser(double ts, double x_cm) {
 }
 
 TEST(OpenTraceStream, ServesTheRecordsReadTraceReturns) {
-  ScratchDir dir;
+  TempDir dir;
   std::string text;
   for (int k = 0; k < 5; ++k) text += "O 1 2 0 " + std::to_string(k) + "\n" + CmuLaser(k + 0.5, 100 + k);
   const std::string path = dir.Write("five.log", text);
@@ -133,7 +134,7 @@ TEST(OpenTraceStream, ServesTheRecordsReadTraceReturns) {
 // Every bad-input error comes when the stream is opened, before a run has
 // taken (or written) anything.
 TEST(OpenTraceStream, ValidatesTheWholeFileWhenOpened) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path =
       dir.Write("bad.log", CmuLaser(1, 100) + CmuLaser(2, 101) + "L 102 200 nan 127 200 0" + Repeat("300", 180) + " 3\n");
   ExpectInputError([&] { OpenTraceStream(path, {}); }, path, 3, "theta");
@@ -142,7 +143,7 @@ TEST(OpenTraceStream, ValidatesTheWholeFileWhenOpened) {
 }
 
 TEST(OpenTraceStream, AFileThatChangesWhileReadIsAnInputError) {
-  ScratchDir dir;
+  TempDir dir;
   const std::string path = dir.Write("grow.log", CmuLaser(1, 100) + CmuLaser(2, 101));
   std::unique_ptr<ScanSource> stream = OpenTraceStream(path, {});
   dir.Write("grow.log", CmuLaser(1, 100) + CmuLaser(2, 101) + CmuLaser(3, 102));
@@ -154,7 +155,7 @@ TEST(OpenTraceStream, AFileThatChangesWhileReadIsAnInputError) {
 }
 
 TEST(OpenTraceStream, LaserOffsetOverridesEveryFormat) {
-  ScratchDir dir;
+  TempDir dir;
   TraceReadOptions options;
   options.laser_offset_forward_m = 0.4;
   EXPECT_EQ(OpenTraceStream(dir.Write("a.log", kCmuLaser), options)->geometry().offset_forward_m, 0.4);
