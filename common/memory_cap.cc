@@ -1,9 +1,10 @@
 #include "common/memory_cap.h"
 
 #include <atomic>
-#include <cstdio>
 #include <limits>
 #include <unistd.h>
+
+#include <fmt/format.h>
 
 namespace rc {
 namespace {
@@ -32,12 +33,10 @@ std::uint64_t BytesFor(std::uint64_t count, std::uint64_t bytes_each) {
 }
 
 std::string DescribeBytes(std::uint64_t bytes) {
-  char text[64];
   const double b = static_cast<double>(bytes);
-  if (bytes >= (1ULL << 30)) std::snprintf(text, sizeof text, "%.2f GiB", b / (1ULL << 30));
-  else if (bytes >= (1ULL << 20)) std::snprintf(text, sizeof text, "%.1f MiB", b / (1ULL << 20));
-  else std::snprintf(text, sizeof text, "%llu bytes", static_cast<unsigned long long>(bytes));
-  return text;
+  if (bytes >= (1ULL << 30)) return fmt::format("{:.2f} GiB", b / (1ULL << 30));
+  if (bytes >= (1ULL << 20)) return fmt::format("{:.1f} MiB", b / (1ULL << 20));
+  return fmt::format("{} bytes", bytes);
 }
 
 std::string DescribeOverCap(std::uint64_t need_bytes) {

@@ -1,6 +1,7 @@
 #include "maps/cell_classes.h"
 
-#include <cstdio>
+
+#include <fmt/format.h>
 
 namespace rc {
 namespace {
@@ -15,9 +16,7 @@ std::string Grouped(std::size_t n) {
 }
 
 std::string Percent(std::size_t part, std::size_t whole) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f%%", whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
-  return text;
+  return fmt::format("{:.1f}%", whole ? 100.0 * static_cast<double>(part) / static_cast<double>(whole) : 0.0);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "maps/movingai_map_loader.h"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
+
+#include <fmt/format.h>
 
 #include "common/text_fields.h"
 #include "maps/grid_size_limits.h"
@@ -25,9 +26,7 @@ bool IsTerrainCharacter(char c, CellState* state) {
 
 std::string Printable(char c) {
   if (c >= 0x21 && c <= 0x7e) return std::string("'") + c + "'";
-  char hex[8];
-  std::snprintf(hex, sizeof(hex), "0x%02X", static_cast<unsigned char>(c));
-  return std::string(c == ' ' ? "' ' (space, " : "byte (") + hex + ")";
+  return fmt::format("{}0x{:02X})", c == ' ' ? "' ' (space, " : "byte (", static_cast<unsigned char>(c));
 }
 
 struct Header {

@@ -1,9 +1,10 @@
 #include "traces/cmu_log_writer.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "common/atomic_file.h"
 #include "common/input_error.h"
@@ -20,12 +21,9 @@ void RequireCmuGeometry(const SensorTrace& trace) {
   if (g.beam_count != cmu.beam_count ||
       std::abs(g.angle_min_rad - cmu.angle_min_rad) > kAngleTolerance_rad ||
       std::abs(g.angle_increment_rad - cmu.angle_increment_rad) > kAngleTolerance_rad) {
-    char text[200];
-    std::snprintf(text, sizeof text,
-                  "%d beams from %.6f rad every %.6f rad; a CMU log implies 180 beams from -pi/2 "
-                  "every pi/180",
-                  g.beam_count, g.angle_min_rad, g.angle_increment_rad);
-    throw UsageError("cannot write '" + trace.source_path + "' as a CMU log: its laser has " + text);
+    throw UsageError(fmt::format("cannot write '{}' as a CMU log: its laser has {} beams from {:.6f} rad every "
+                                 "{:.6f} rad; a CMU log implies 180 beams from -pi/2 every pi/180",
+                                 trace.source_path, g.beam_count, g.angle_min_rad, g.angle_increment_rad));
   }
 }
 
@@ -35,16 +33,11 @@ void RequireCmuGeometry(const SensorTrace& trace) {
 // fallback for values too small for 6 decimals.
 std::string FormatRangeCm(float range_m) {
   const double cm = MetresToCentimetres(range_m);
-  char text[48];
-  auto reads_back = [&] {
-    return static_cast<float>(CentimetresToMetres(std::strtod(text, nullptr))) == range_m;
-  };
   for (int decimals = 0; decimals <= 6; ++decimals) {
-    std::snprintf(text, sizeof text, "%.*f", decimals, cm);
-    if (reads_back()) return text;
+    std::string text = fmt::format("{:.{}f}", cm, decimals);
+    if (static_cast<float>(CentimetresToMetres(std::strtod(text.c_str(), nullptr))) == range_m) return text;
   }
-  std::snprintf(text, sizeof text, "%.9g", cm);
-  return text;
+  return fmt::format("{:.9g}", cm);
 }
 
 void CheckScan(const SensorTrace& trace, std::size_t k, double previous_time_s) {
@@ -82,28 +75,23 @@ void WriteCmuLog(const SensorTrace& trace, const std::string& path, const CmuLog
   const double offset_m = trace.geometry.offset_forward_m;
   const double cmu_max_m = CmuLaserGeometry().max_range_m;
   const std::string no_return = FormatRangeCm(static_cast<float>(CentimetresToMetres(kCmuNoReturnCm)));
-  char text[256];
   for (const LaserScan& scan : trace.scans) {
     const Pose2& p = scan.odometry;
     const double x_cm = MetresToCentimetres(p.x);
     const double y_cm = MetresToCentimetres(p.y);
     if (options.odometry_records) {
-      std::snprintf(text, sizeof text, "O %.6f %.6f %.6f %.6f\n", x_cm, y_cm, p.theta, scan.time_s);
-      out << text;
+      out << fmt::format("O {:.6f} {:.6f} {:.6f} {:.6f}\n", x_cm, y_cm, p.theta, scan.time_s);
     }
     const double xl_cm = MetresToCentimetres(p.x + offset_m * std::cos(p.theta));
     const double yl_cm = MetresToCentimetres(p.y + offset_m * std::sin(p.theta));
-    std::snprintf(text, sizeof text, "L %.6f %.6f %.6f %.6f %.6f %.6f", x_cm, y_cm, p.theta, xl_cm,
-                  yl_cm, p.theta);
-    out << text;
+    out << fmt::format("L {:.6f} {:.6f} {:.6f} {:.6f} {:.6f} {:.6f}", x_cm, y_cm, p.theta, xl_cm, yl_cm, p.theta);
     for (float r : scan.ranges_m) {
       // A no-return of a shorter-range trace must stay a no-return for a CMU
       // reader; readings already past 81.83 m (the SICK codes) are kept as is.
       const bool translate = r >= trace.geometry.max_range_m && r < cmu_max_m;
       out << ' ' << (translate ? no_return : FormatRangeCm(r));
     }
-    std::snprintf(text, sizeof text, " %.6f\n", scan.time_s);
-    out << text;
+    out << fmt::format(" {:.6f}\n", scan.time_s);
   }
   file.Commit();
 }

@@ -3,10 +3,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "common/input_error.h"
 
@@ -36,9 +37,7 @@ std::string CsvCell::Format(int significant_digits) const {
     std::string operator()(double v) const {
       if (!std::isfinite(v))
         throw std::invalid_argument(std::isnan(v) ? "NaN" : "infinite value");
-      char text[40];
-      std::snprintf(text, sizeof text, "%.*g", digits, v);
-      return text;
+      return fmt::format("{:.{}g}", v, digits);
     }
     std::string operator()(long long v) const { return std::to_string(v); }
     std::string operator()(unsigned long long v) const { return std::to_string(v); }

@@ -1,9 +1,10 @@
 #include "traces/ground_truth_io.h"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "common/atomic_file.h"
 #include "common/text_fields.h"
@@ -46,16 +47,13 @@ void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose
   AtomicFile file(path);
   std::ostream& out = file.stream();
   out << "# " << kColumns << "\n";
-  char text[128];
   for (std::size_t k = 0; k < poses.size(); ++k) {
     const GroundTruthPose& p = poses[k];
     if (!std::isfinite(p.time_s) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
         !std::isfinite(p.pose.theta))
       throw std::invalid_argument("ground-truth pose " + std::to_string(k) + " for '" + path +
                                   "' is not finite");
-    std::snprintf(text, sizeof text, "%.17g %.17g %.17g %.17g\n", p.time_s, p.pose.x, p.pose.y,
-                  p.pose.theta);
-    out << text;
+    out << fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", p.time_s, p.pose.x, p.pose.y, p.pose.theta);
   }
   file.Commit();
 }
@@ -71,10 +69,9 @@ void CheckGroundTruthMatches(ScanSource& scans, const GroundTruth& truth) {
   for (std::size_t k = 0; k < truth.poses.size() && scans.Next(scan); ++k) {
     const double t_truth = truth.poses[k].time_s;
     if (std::abs(t_truth - scan.time_s) > kTimeTolerance_s) {
-      char times[96];
-      std::snprintf(times, sizeof times, "%.6f s, but laser record %zu has %.6f s", t_truth, k + 1, scan.time_s);
-      const std::string text = "pose " + std::to_string(k + 1) + " has time " + times + " ('" +
-                               scans.source_path() + "' line " + std::to_string(scan.source_line) + ")";
+      const std::string text =
+          fmt::format("pose {} has time {:.6f} s, but laser record {} has {:.6f} s ('{}' line {})", k + 1, t_truth,
+                      k + 1, scan.time_s, scans.source_path(), scan.source_line);
       throw InputError(truth.source_path, truth.poses[k].source_line, "t", text);
     }
   }

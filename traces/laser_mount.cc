@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include <fmt/format.h>
 
 namespace rc {
 
@@ -34,23 +35,16 @@ void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured
                       double expected_forward_m, const LaserMountTolerance& tolerance,
                       const std::string& position_field, const std::string& heading_field,
                       const std::string& expected_source) {
-  char text[320];
   if (std::abs(measured.forward_m - expected_forward_m) > tolerance.position_m ||
-      std::abs(measured.lateral_m) > tolerance.position_m) {
-    std::snprintf(text, sizeof text,
-                  "laser pose puts the laser %.6f m ahead and %.6f m left of the robot; expected "
-                  "%.6f m ahead on the heading axis (%s; tolerance %.6f m)",
-                  measured.forward_m, measured.lateral_m, expected_forward_m, expected_source.c_str(),
-                  tolerance.position_m);
-    reader.Fail(position_field, text);
-  }
-  if (std::abs(measured.heading_rad) > tolerance.heading_rad) {
-    std::snprintf(text, sizeof text,
-                  "laser heading differs from the robot heading by %.6f rad (tolerance %.6f rad); "
-                  "a rotated laser mount is not modelled",
-                  measured.heading_rad, tolerance.heading_rad);
-    reader.Fail(heading_field, text);
-  }
+      std::abs(measured.lateral_m) > tolerance.position_m)
+    reader.Fail(position_field, fmt::format("laser pose puts the laser {:.6f} m ahead and {:.6f} m left of the robot; "
+                                            "expected {:.6f} m ahead on the heading axis ({}; tolerance {:.6f} m)",
+                                            measured.forward_m, measured.lateral_m, expected_forward_m,
+                                            expected_source, tolerance.position_m));
+  if (std::abs(measured.heading_rad) > tolerance.heading_rad)
+    reader.Fail(heading_field, fmt::format("laser heading differs from the robot heading by {:.6f} rad (tolerance "
+                                           "{:.6f} rad); a rotated laser mount is not modelled",
+                                           measured.heading_rad, tolerance.heading_rad));
 }
 
 double RoundMountOffset(double forward_m) {

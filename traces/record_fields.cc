@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
+
+#include <fmt/format.h>
 
 namespace rc {
 
@@ -37,12 +38,9 @@ void LaserTimeOrder::Check(const LineReader& reader, double time_s, const std::s
   if (has_previous_ && time_s < previous_s_) {
     const double step_s = previous_s_ - time_s;
     if (!(step_s < kMaxClockGlitchS)) {
-      char text[220];
-      std::snprintf(text, sizeof text,
-                    "time %.6f s is %.6f s earlier than %.6f s of the laser record on line %ld (a step back "
-                    "of %.1f s or more is not a clock glitch)",
-                    time_s, step_s, previous_s_, previous_line_, kMaxClockGlitchS);
-      reader.Fail(field, text);
+      reader.Fail(field, fmt::format("time {:.6f} s is {:.6f} s earlier than {:.6f} s of the laser record on line {} "
+                                     "(a step back of {:.1f} s or more is not a clock glitch)",
+                                     time_s, step_s, previous_s_, previous_line_, kMaxClockGlitchS));
     }
     if (glitches_.count == 0) glitches_.first_line = reader.line_number();
     ++glitches_.count;

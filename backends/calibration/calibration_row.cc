@@ -1,8 +1,10 @@
 #include "backends/calibration/calibration_row.h"
 
-#include <cstdarg>
-#include <cstdio>
 #include <ostream>
+
+#include <fmt/format.h>
+
+#include "traces/csv_table.h"
 
 namespace rc {
 namespace {
@@ -14,24 +16,8 @@ std::string Cell(const std::string& text) {
   return out;
 }
 
-// CSV fields are quoted when they hold a comma or a quote.
-std::string CsvField(const std::string& text) {
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-std::string Number(double value) {
-  if (std::isnan(value)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", value);
-  return buf;
-}
-
-std::string RangeFields(const std::optional<ValueRange>& range) {
-  return range ? Number(range->low) + "," + Number(range->high) : std::string(",");
-}
+// A measured value for the CSV, or an empty cell for "no number".
+CsvCell ValueCell(double value) { return std::isnan(value) ? CsvCell::Empty() : CsvCell(value); }
 
 }  // namespace
 
@@ -59,30 +45,19 @@ double Speedup(double baseline_seconds, double variant_seconds) { return baselin
 
 double PercentChange(double base, double variant) { return 100.0 * (variant - base) / base; }
 
-std::string FormatSentence(const char* format, ...) {
-  char buf[1000];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buf, sizeof buf, format, args);
-  va_end(args);
-  return buf;
-}
-
 std::string FormatValue(double value, CalibrationUnit unit, const std::optional<ValueRange>& range) {
   if (std::isnan(value)) return "-";
-  char buf[64];
+  std::string text;
   if (unit == CalibrationUnit::kSpeedup && value >= 1.0)
-    std::snprintf(buf, sizeof buf, "%.2fx faster", value);
+    text = fmt::format("{:.2f}x faster", value);
   else if (unit == CalibrationUnit::kSpeedup)
-    std::snprintf(buf, sizeof buf, "%.2fx (%.2fx slower)", value, 1.0 / value);
+    text = fmt::format("{:.2f}x ({:.2f}x slower)", value, 1.0 / value);
   else
-    std::snprintf(buf, sizeof buf, "%+.1f%%", value);
-  std::string text = buf;
-  if (range) {
-    const char* f = unit == CalibrationUnit::kSpeedup ? " (%.2f-%.2fx)" : " (%+.1f to %+.1f%%)";
-    std::snprintf(buf, sizeof buf, f, range->low, range->high);
-    text += buf;
-  }
+    text = fmt::format("{:+.1f}%", value);
+  if (range && unit == CalibrationUnit::kSpeedup)
+    text += fmt::format(" ({:.2f}-{:.2f}x)", range->low, range->high);
+  else if (range)
+    text += fmt::format(" ({:+.1f} to {:+.1f}%)", range->low, range->high);
   return text;
 }
 
@@ -109,12 +84,22 @@ void WriteCalibrationMarkdown(std::ostream& out, const CalibrationReport& report
   }
 }
 
-void WriteCalibrationCsv(std::ostream& out, const CalibrationReport& report) {
-  out << "result,scale,unit,workload,paper_value,artifact,ours,artifact_low,artifact_high,ours_low,ours_high\n";
-  for (const CalibrationRow& r : report.rows)
-    out << CsvField(r.result) << ',' << ToString(r.scale) << ',' << ToString(r.unit) << ',' << CsvField(r.workload)
-        << ',' << Number(r.paper_value) << ',' << Number(r.artifact) << ',' << Number(r.ours) << ','
-        << RangeFields(r.artifact_range) << ',' << RangeFields(r.ours_range) << '\n';
+void WriteCalibrationCsv(const std::string& path, const CalibrationReport& report) {
+  CsvTableOptions options;
+  options.significant_digits = 4;
+  CsvTable table(path,
+                 {"result", "scale", "unit", "workload", "paper_value", "artifact", "ours", "artifact_low",
+                  "artifact_high", "ours_low", "ours_high"},
+                 options);
+  const ValueRange none;
+  for (const CalibrationRow& r : report.rows) {
+    const ValueRange& artifact = r.artifact_range.value_or(none);
+    const ValueRange& ours = r.ours_range.value_or(none);
+    table.AddRow({r.result, ToString(r.scale), ToString(r.unit), r.workload, ValueCell(r.paper_value),
+                  ValueCell(r.artifact), ValueCell(r.ours), ValueCell(artifact.low), ValueCell(artifact.high),
+                  ValueCell(ours.low), ValueCell(ours.high)});
+  }
+  table.Commit();
 }
 
 }  // namespace rc

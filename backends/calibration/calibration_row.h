@@ -75,9 +75,6 @@ double Speedup(double baseline_seconds, double variant_seconds);
 // Signed percent change of `variant` against `base`.
 double PercentChange(double base, double variant);
 
-// printf-style text (up to 1000 characters).
-std::string FormatSentence(const char* format, ...) __attribute__((format(printf, 1, 2)));
-
 // "13.3x faster" style text of a value in a unit ("-" for NaN), with the
 // range in parentheses when given.
 std::string FormatValue(double value, CalibrationUnit unit, const std::optional<ValueRange>& range = std::nullopt);
@@ -85,8 +82,10 @@ std::string FormatValue(double value, CalibrationUnit unit, const std::optional<
 // The Markdown report: the workload notes, then per scale a table
 // | result | workload | paper | artifact preset | ours | why ours differs |.
 void WriteCalibrationMarkdown(std::ostream& out, const CalibrationReport& report);
-// The plot's input: result,scale,unit,workload,paper_value,artifact,ours,
-// artifact_low,artifact_high,ours_low,ours_high (empty for NaN or no range).
-void WriteCalibrationCsv(std::ostream& out, const CalibrationReport& report);
+// The plot's input, written to `path` atomically (traces/csv_table.h):
+// result,scale,unit,workload,paper_value,artifact,ours,artifact_low,
+// artifact_high,ours_low,ours_high (4 significant digits; empty for NaN or
+// no range). Throws OutputError when the file cannot be written.
+void WriteCalibrationCsv(const std::string& path, const CalibrationReport& report);
 
 }  // namespace rc

@@ -1,8 +1,9 @@
 #include "backends/calibration/calibration_workloads.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
+
+#include <fmt/format.h>
 
 #include <Eigen/Geometry>
 
@@ -80,18 +81,11 @@ SactSceneWorkload SceneWorkload(MpinetSceneKind kind, const std::vector<std::vec
   return w;
 }
 
-std::string Format(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, format, a, b, c, d);
-  return buf;
-}
-
 }  // namespace
 
 std::string SactSceneWorkload::Size() const {
-  return Format("%.0f queries x %.1f nodes; %.0f-node octree", double(sact.query_count()),
-               summary.nodes_per_query_mean, double(octree_nodes)) +
-         Format(" (%.0f box nodes, %.3g m voxels)", double(box_nodes), resolution_m);
+  return fmt::format("{} queries x {:.1f} nodes; {}-node octree ({} box nodes, {:.3g} m voxels)", sact.query_count(),
+                     summary.nodes_per_query_mean, octree_nodes, box_nodes, resolution_m);
 }
 
 bool CalibrationOptions::IsValid(std::string* error) const {
@@ -139,7 +133,7 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
     w.scenes.push_back(SceneWorkload(kind, poses, o));
     const SactSceneWorkload& s = w.scenes.back();
     w.notes.push_back(std::string("SACT, ") + ToString(kind) + " scene (OctoMap, our boxes): " + s.Size() + "; " +
-                      Format("%.0f of %.0f queries collide; ", double(s.summary.collisions), double(s.summary.queries)) +
+                      fmt::format("{} of {} queries collide; ", s.summary.collisions, s.summary.queries) +
                       links_source + " aimed across the scene and jittered, double precision, depth-first.");
   }
 
@@ -172,9 +166,9 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   w.notes.push_back(
       std::string("Small batch, DeliBot: ") +
       (have_wean ? "Wean map (" + wean + ")" : "generated office map (no " + wean + ")") +
-      Format(", %.0f x %.0f cells; one update of %.0f particles uniform in free space x %.0f beams", w.ray_grid.size_x(),
-             w.ray_grid.size_y(), o.particles, o.beams) +
-      Format(", max range %.3g m, beam-model leaf.", o.max_range_m));
+      fmt::format(", {} x {} cells; one update of {} particles uniform in free space x {} beams, max range {:.3g} m, "
+                  "beam-model leaf.",
+                  w.ray_grid.size_x(), w.ray_grid.size_y(), o.particles, o.beams, o.max_range_m));
 
   // Small batch: SACT against the shelf's median-split tree, in float.
   std::vector<Obbd> obbs = have_robot ? links : RandomWorkspaceObbs(o);
@@ -193,10 +187,9 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
       std::string("Small batch, SACT: ") +
       (have_robot ? "mpnet_master robot-link OBBs (" + robot_path + ")"
                   : "seeded random workspace OBBs (no " + robot_path + ")") +
-      Format(", %.0f queries (%.0f collide), against the shelf scene (%.0f boxes, ", double(obbs.size()),
-             double(summary.collisions), double(scene.size())) +
-      Format("%.0f-node median-split tree, 32-byte float nodes), depth-first; %.2f nodes per query.",
-             double(tree.nodes().size()), summary.nodes_per_query_mean));
+      fmt::format(", {} queries ({} collide), against the shelf scene ({} boxes, {}-node median-split tree, 32-byte "
+                  "float nodes), depth-first; {:.2f} nodes per query.",
+                  obbs.size(), summary.collisions, scene.size(), tree.nodes().size(), summary.nodes_per_query_mean));
   return w;
 }
 

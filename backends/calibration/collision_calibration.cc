@@ -2,6 +2,8 @@
 
 #include <functional>
 
+#include <fmt/format.h>
+
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/sact_datapath_variants.h"
 #include "backends/calibration/why_sentences.h"
@@ -133,10 +135,10 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
          return ColumnValue{
              Speedup(c.simt.seconds(), c.robo.seconds()),
              share >= kLaunchShareWorthNaming
-                 ? FormatSentence("The %.0f-cycle launch (kernel launch + program and decode configuration) is %.0f%% "
+                 ? fmt::format("The {:.0f}-cycle launch (kernel launch + program and decode configuration) is {:.0f}% "
                                   "of RoboCore's time for this batch, so the ratio moves toward 1.",
                                   launch, 100.0 * share)
-                 : FormatSentence("The %.0f-cycle launch is %.1f%% of RoboCore's time for this batch, so including "
+                 : fmt::format("The {:.0f}-cycle launch is {:.1f}% of RoboCore's time for this batch, so including "
                                   "it changes the ratio little.",
                                   launch, 100.0 * share),
              Tags({&c.robo})};
@@ -145,7 +147,7 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                    CalibrationUnit::kSpeedup, [](const SactColumn& c) {
                      return ColumnValue{
                          Speedup(c.tta.kernel_seconds(), c.tta_cr.kernel_seconds()),
-                         FormatSentence("Conditional return cuts executed micro-ops from %.3g to %.3g (%+.0f%%). ",
+                         fmt::format("Conditional return cuts executed micro-ops from {:.3g} to {:.3g} ({:+.0f}%). ",
                                         c.tta.micro_ops(), c.tta_cr.micro_ops(),
                                         PercentChange(c.tta.micro_ops(), c.tta_cr.micro_ops())) +
                              CompareSides(c.tta_cr, c.tta),
@@ -155,9 +157,9 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                    CalibrationUnit::kSpeedup, [](const SactColumn& c) {
                      return ColumnValue{
                          Speedup(c.tta_cr.kernel_seconds(), c.robo.kernel_seconds()),
-                         FormatSentence("The chained SACT units replace each axis's TTA+ expansion (%.3g micro-ops, "
-                                        "%.3g hops) by one native micro-op with CTRL-folded exits (%.3g micro-ops, "
-                                        "%.3g hops). ",
+                         fmt::format("The chained SACT units replace each axis's TTA+ expansion ({:.3g} micro-ops, "
+                                        "{:.3g} hops) by one native micro-op with CTRL-folded exits ({:.3g} micro-ops, "
+                                        "{:.3g} hops). ",
                                         c.tta_cr.micro_ops(), double(c.tta_cr.total().interconnect_hops),
                                         c.robo.micro_ops(), double(c.robo.total().interconnect_hops)) +
                              CompareSides(c.robo, c.tta_cr),
@@ -167,7 +169,7 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                    CalibrationUnit::kSpeedup, [](const SactColumn& c) {
                      return ColumnValue{
                          Speedup(c.tta.kernel_seconds(), c.tta_p.kernel_seconds()),
-                         FormatSentence("Predicated-off micro-ops (%.3g) take %d cycle(s) in their unit instead of "
+                         fmt::format("Predicated-off micro-ops ({:.3g}) take {} cycle(s) in their unit instead of "
                                         "their latency (artifact rt_op_unit::cycle). ",
                                         double(c.tta_p.total().predicated_off_micro_ops), c.predicated_op_cycles) +
                              CompareSides(c.tta_p, c.tta),
@@ -180,9 +182,9 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
          const double simt_memory = c.simt_memory_joules / c.simt.total().energy_joules;
          return ColumnValue{
              PercentChange(c.simt.total().energy_joules, c.robo.total().energy_joules),
-             FormatSentence("Both fetch the same nodes (%.3g sectors); memory is %.0f%% of RoboCore's energy and "
-                            "%.0f%% of the CUDA cores', whose rest is instruction fetch and register accesses per "
-                            "instruction, RoboCore's packet-buffer accesses per micro-op; %s (Horowitz 45 nm; "
+             fmt::format("Both fetch the same nodes ({:.3g} sectors); memory is {:.0f}% of RoboCore's energy and "
+                            "{:.0f}% of the CUDA cores', whose rest is instruction fetch and register accesses per "
+                            "instruction, RoboCore's packet-buffer accesses per micro-op; {} (Horowitz 45 nm; "
                             "leakage not modelled).",
                             double(c.robo.total().memory.sector_requests), 100.0 * robo_memory, 100.0 * simt_memory,
                             robo_memory >= 0.5 ? "RoboCore's energy is mostly memory traffic, which no datapath saves"
@@ -195,23 +197,23 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
          const double overlap = c.overlaps / c.nodes;
          std::string mechanism =
              overlap >= 0.5
-                 ? FormatSentence("%.0f%% of our node tests overlap, and an overlapping test runs every axis (a query "
+                 ? fmt::format("{:.0f}% of our node tests overlap, and an overlapping test runs every axis (a query "
                                   "descends only through boxes it overlaps and stops at its first colliding leaf)",
                                   100.0 * overlap)
-                 : FormatSentence("%.0f%% of our node tests separate, at axis %.1f of 15 on average, and %.0f%% "
+                 : fmt::format("{:.0f}% of our node tests separate, at axis {:.1f} of 15 on average, and {:.0f}% "
                                   "overlap and run every axis",
                                   100.0 * (1.0 - overlap), c.separated ? 1.0 + c.exit_axis_sum / c.separated : 0.0,
                                   100.0 * overlap);
          return ColumnValue{
              PercentChange(c.without_exit, c.with_exit),
-             FormatSentence("%.0f vs %.0f computation cycles per query: ", c.with_exit / c.queries,
+             fmt::format("{:.0f} vs {:.0f} computation cycles per query: ", c.with_exit / c.queries,
                             c.without_exit / c.queries) +
                  mechanism + ".",
              ""};
        }});
   for (double factor : {0.5, 2.0}) {
     specs.push_back(
-        {FormatSentence("SACT unit latency x%g, RoboCore total time", factor) + suffix, workload, "small change",
+        {fmt::format("SACT unit latency x{:g}, RoboCore total time", factor) + suffix, workload, "small change",
          kNoPaperNumber, CalibrationUnit::kPercentChange, [factor](const SactColumn& c) {
            const SideEvidence& scaled = factor < 1 ? c.half : c.twice;
            return ColumnValue{PercentChange(c.robo.kernel_seconds(), scaled.kernel_seconds()),
@@ -222,8 +224,8 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                    "-41% latency (3.7x area)", -41.0, CalibrationUnit::kPercentChange, [](const SactColumn& c) {
                      return ColumnValue{
                          PercentChange(c.robo.kernel_seconds(), c.parallel.kernel_seconds()),
-                         FormatSentence("Our smallest model (sact_datapath_variants.h): all 15 axes in one round "
-                                        "after PRE, so a query computes for %.0f cycles instead of %.0f; ",
+                         fmt::format("Our smallest model (sact_datapath_variants.h): all 15 axes in one round "
+                                        "after PRE, so a query computes for {:.0f} cycles instead of {:.0f}; ",
                                         c.parallel_cycles / c.queries, c.with_exit / c.queries) +
                              BoundClause(c.parallel) + ".",
                          Tags({&c.parallel})};
@@ -232,8 +234,8 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                    CalibrationUnit::kSpeedup, [](const SactColumn& c) {
                      return ColumnValue{
                          Speedup(c.robo.kernel_seconds(), c.doubled.kernel_seconds()),
-                         FormatSentence("Modelled as two axes of a stage per round (sact_datapath_variants.h): %.0f "
-                                        "instead of %.0f computation cycles per query; ",
+                         fmt::format("Modelled as two axes of a stage per round (sact_datapath_variants.h): {:.0f} "
+                                        "instead of {:.0f} computation cycles per query; ",
                                         c.doubled_cycles / c.queries, c.with_exit / c.queries) +
                              BoundClause(c.doubled) + ".",
                          Tags({&c.doubled})};
@@ -243,9 +245,9 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
        CalibrationUnit::kSpeedup, [](const SactColumn& c) {
          return ColumnValue{
              Speedup(c.simt.kernel_seconds(), c.spheres.kernel_seconds()),
-             FormatSentence("One bounding sphere per OBB, 9 micro-ops per node on the generic OP units (%.2f nodes "
-                            "per sphere against %.2f per OBB); the spheres report %.0f false collisions in %.0f "
-                            "queries (%.1f%%), measured against the SACT's answers. ",
+             fmt::format("One bounding sphere per OBB, 9 micro-ops per node on the generic OP units ({:.2f} nodes "
+                            "per sphere against {:.2f} per OBB); the spheres report {:.0f} false collisions in {:.0f} "
+                            "queries ({:.1f}%), measured against the SACT's answers. ",
                             c.sphere_nodes / c.sphere_queries, c.nodes / c.queries, c.false_collisions, c.queries,
                             100.0 * c.false_collisions / c.queries) +
                  CompareSides(c.spheres, c.simt),
@@ -291,13 +293,13 @@ std::vector<CalibrationRow> CollisionRows(const CalibrationWorkloads& w, const B
       Merge(all_ours, o);
     }
     const std::string workload =
-        FormatSentence("%zu scenes, %.0f queries x %.1f nodes; %u-%u-node octrees", w.scenes.size(),
+        fmt::format("{} scenes, {:.0f} queries x {:.1f} nodes; {}-{}-node octrees", w.scenes.size(),
                        all_ours.queries, all_ours.nodes / all_ours.queries, fewest, most);
     AddRows(rows, Specs(" (all scenes)", workload), CalibrationScale::kPaperScale, all_artifact, all_ours);
   }
   const SactInput small{&w.sact, &w.spheres, w.sphere_false_collisions};
   const std::string workload =
-      FormatSentence("%zu queries x %.1f nodes; %.0f-node binary tree", w.sact.query_count(),
+      fmt::format("{} queries x {:.1f} nodes; {:.0f}-node binary tree", w.sact.query_count(),
                      double(w.sact.total_nodes()) / double(w.sact.query_count()),
                      double(w.sact.regions.front().elements));
   const SactColumn small_ours = PriceSact({small}, ours.backend);

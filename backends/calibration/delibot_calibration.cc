@@ -1,5 +1,7 @@
 #include "backends/calibration/delibot_calibration.h"
 
+#include <fmt/format.h>
+
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/why_sentences.h"
 #include "robocore/shipped_programs.h"
@@ -70,7 +72,7 @@ DelibotColumn PriceRun(const DelibotRunWorkload& run, const CalibrationOptions& 
 }
 
 std::string ProgramClause(const DelibotColumn& c, const std::string& method) {
-  return FormatSentence("Our %s step runs %d micro-ops per cell (%d CMP) on %u-byte cells. ", method.c_str(),
+  return fmt::format("Our {} step runs {} micro-ops per cell ({} CMP) on {}-byte cells. ", method.c_str(),
                         c.mix.micro_ops, c.mix.compares, c.cell_bytes);
 }
 
@@ -80,14 +82,14 @@ void AddPair(std::vector<CalibrationRow>& rows, const std::string& what, const s
   auto vs_cuda = [&](const DelibotColumn& c) {
     return ColumnValue{Speedup(c.simt.seconds(), c.robo.seconds()),
                        ProgramClause(c, method) + CompareSides(c.robo, c.simt),
-                       FormatSentence("%d micro-ops per %u-byte cell; ", c.mix.micro_ops, c.cell_bytes) +
+                       fmt::format("{} micro-ops per {}-byte cell; ", c.mix.micro_ops, c.cell_bytes) +
                            LimitTag(c.robo) + "; " + LimitTag(c.simt)};
   };
   auto vs_tta = [&](const DelibotColumn& c) {
     const std::string work =
         c.robo_cycles > 0
-            ? FormatSentence("%.0f computation cycles per ray against TTA+'s %.0f", c.robo_cycles, c.tta_cycles)
-            : FormatSentence("%.3g micro-ops executed against TTA+'s %.3g", c.robo.micro_ops(), c.tta.micro_ops());
+            ? fmt::format("{:.0f} computation cycles per ray against TTA+'s {:.0f}", c.robo_cycles, c.tta_cycles)
+            : fmt::format("{:.3g} micro-ops executed against TTA+'s {:.3g}", c.robo.micro_ops(), c.tta.micro_ops());
     return ColumnValue{Speedup(c.tta.seconds(), c.robo.seconds()),
                        "A ray program has no SACT micro-ops, so RoboCore differs from plain TTA+ only by conditional "
                        "return, which ends just a ray's last pass while its RETURN_IFs run in every pass (" +
@@ -121,7 +123,7 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
     const DelibotColumn o = PriceRun(run, w.options, ours);
     const DelibotColumn a = &artifact == &ours ? o : PriceRun(run, w.options, artifact);
     const std::string workload =
-        FormatSentence("%ld updates of %.0f rays x %.1f nodes (%ld records, %d particles x %d beams)", o.updates,
+        fmt::format("{} updates of {:.0f} rays x {:.1f} nodes ({} records, {} particles x {} beams)", o.updates,
                        o.queries / double(o.updates), o.nodes / o.queries, o.records, w.options.run_particles,
                        (180 + w.options.run_beam_step - 1) / w.options.run_beam_step);
     AddPair(rows, "DeliBot MCL, whole run (" + run.name + ", march)", "march", CalibrationScale::kPaperScale,
@@ -137,7 +139,7 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
     const DelibotColumn o = PriceFirstUpdate(w, method, ours);
     const DelibotColumn a = &artifact == &ours ? o : PriceFirstUpdate(w, method, artifact);
     const std::string workload =
-        FormatSentence("1 update of %.0f rays x %.1f nodes", o.queries, o.nodes / o.queries);
+        fmt::format("1 update of {:.0f} rays x {:.1f} nodes", o.queries, o.nodes / o.queries);
     AddPair(rows, std::string("DeliBot MCL (") + ToString(method) + ")", ToString(method),
             CalibrationScale::kSmallBatch, workload, a, o);
   }

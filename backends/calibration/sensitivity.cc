@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <stdexcept>
 
 #include "common/input_error.h"
+#include "traces/csv_table.h"
 
 namespace rc {
 namespace {
@@ -22,20 +22,6 @@ bool NamedByTheIssue(const std::string& key) {
                         "decode_config_cycles_per_layout", "precision", "isa"})
     if (last == k) return true;
   return false;
-}
-
-std::string Number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-// CSV field, quoted when it holds a comma or a quote.
-std::string Csv(const std::string& text) {
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 bool Flips(const SweptResult& r, double baseline, double measured) {
@@ -92,11 +78,14 @@ Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& me
   return s;
 }
 
-void WriteSensitivityCsv(std::ostream& out, const Sensitivity& s) {
-  out << "ratio,parameter,value,result\n";
+void WriteSensitivityCsv(const std::string& path, const Sensitivity& s) {
+  CsvTableOptions options;
+  options.significant_digits = 6;
+  CsvTable table(path, {"ratio", "parameter", "value", "result"}, options);
   for (const SensitivityPoint& p : s.points)
-    out << Csv(s.results[p.result].name) << ',' << Csv(p.parameter) << ',' << Csv(p.value) << ','
-        << (std::isnan(p.measured) ? std::string() : Number(p.measured)) << '\n';
+    table.AddRow({s.results[p.result].name, p.parameter, p.value,
+                  std::isnan(p.measured) ? CsvCell::Empty() : CsvCell(p.measured)});
+  table.Commit();
 }
 
 void WriteFlipTable(std::ostream& out, const Sensitivity& s) {

@@ -67,7 +67,10 @@ Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& me
 // Whether the parameter is in the quick subset.
 bool InQuickSubset(const ParameterVariants& parameter);
 
-void WriteSensitivityCsv(std::ostream& out, const Sensitivity& sensitivity);
+// Every swept point as a CSV row, written to `path` atomically
+// (traces/csv_table.h): ratio,parameter,value,result (6 significant digits;
+// empty when the point could not be measured).
+void WriteSensitivityCsv(const std::string& path, const Sensitivity& sensitivity);
 // A Markdown table of every (result, parameter) whose variants flip the
 // result, with the baseline and the flipping value and result; and a line
 // per result saying whether anything flips it.

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 #include "backends/calibration/calibration_row.h"
 
 namespace rc {
@@ -24,7 +26,7 @@ const char* Is(const std::string& who) { return who.back() == 's' ? "are" : "is"
 
 std::string Share(const SideEvidence& side) {
   if (side.launches() <= 1 || side.bound_share() >= 0.995) return "";
-  return FormatSentence(" for %.0f%% of its kernel cycles", 100.0 * side.bound_share());
+  return fmt::format(" for {:.0f}% of its kernel cycles", 100.0 * side.bound_share());
 }
 
 }  // namespace
@@ -125,41 +127,41 @@ std::string BoundClause(const SideEvidence& side) {
   switch (kind) {
     case BoundKind::kLatency:
       if (side.simt())
-        return FormatSentence(
-            "%s %s latency-bound%s: the resident warps' dependent chains (instruction latencies and the "
-            "slowest lane's fetches) set the time, not issue (%.3g warp instructions, SIMT efficiency %.2f)",
+        return fmt::format(
+            "{} {} latency-bound{}: the resident warps' dependent chains (instruction latencies and the "
+            "slowest lane's fetches) set the time, not issue ({:.3g} warp instructions, SIMT efficiency {:.2f})",
             who.c_str(), Is(who), share.c_str(), double(side.total().warp_instructions), side.simt_efficiency());
-      return FormatSentence(
-          "%s %s latency-bound%s: each query's chain of micro-op latencies and node fetches (%.3g micro-ops, "
-          "%.0f%% L1 hits) passes through the warp buffer, which no other bound outlasts",
+      return fmt::format(
+          "{} {} latency-bound{}: each query's chain of micro-op latencies and node fetches ({:.3g} micro-ops, "
+          "{:.0f}% L1 hits) passes through the warp buffer, which no other bound outlasts",
           who.c_str(), Is(who), share.c_str(), side.micro_ops(), 100.0 * side.l1_hit_rate());
     case BoundKind::kIssue:
-      return FormatSentence("%s busiest SM is issue-bound%s: %.3g warp instructions at one per scheduler per "
-                            "cycle, with %.0f%% of lanes active (SIMT efficiency %.2f)",
+      return fmt::format("{} busiest SM is issue-bound{}: {:.3g} warp instructions at one per scheduler per "
+                            "cycle, with {:.0f}% of lanes active (SIMT efficiency {:.2f})",
                             Possessive(who).c_str(), share.c_str(), double(side.total().warp_instructions),
                             100.0 * side.simt_efficiency(), side.simt_efficiency());
     case BoundKind::kPipe:
-      return FormatSentence("%s busiest SM is bound by its %s%s (%.3g warp instructions; a class's initiation "
-                            "interval holds the pipe%s)",
+      return fmt::format("{} busiest SM is bound by its {}{} ({:.3g} warp instructions; a class's initiation "
+                            "interval holds the pipe{})",
                             Possessive(who).c_str(), side.bound().c_str(), share.c_str(),
                             double(side.total().warp_instructions),
                             side.bound() == "SFU pipe" ? ", and FP64 and divisions issue to the SFU pipe" : "");
     case BoundKind::kL1:
-      return FormatSentence("%s %s bound by L1 bandwidth%s: %.3g sector requests (%.0f%% hits) at a fixed number "
+      return fmt::format("{} {} bound by L1 bandwidth{}: {:.3g} sector requests ({:.0f}% hits) at a fixed number "
                             "per cycle",
                             who.c_str(), Is(who), share.c_str(),
                             double(side.total().memory.sector_requests), 100.0 * side.l1_hit_rate());
     case BoundKind::kDram:
-      return FormatSentence("%s %s bound by DRAM bandwidth%s: %.3g DRAM sector accesses", who.c_str(),
+      return fmt::format("{} {} bound by DRAM bandwidth{}: {:.3g} DRAM sector accesses", who.c_str(),
                             Is(who), share.c_str(), double(side.total().memory.dram_accesses));
     case BoundKind::kOpUnit:
-      return FormatSentence("%s busiest unit is its %s OP unit%s: one per intersection unit set, taking a "
-                            "micro-op per initiation interval (%.3g micro-ops, %.3g interconnect hops)",
+      return fmt::format("{} busiest unit is its {} OP unit{}: one per intersection unit set, taking a "
+                            "micro-op per initiation interval ({:.3g} micro-ops, {:.3g} interconnect hops)",
                             Possessive(who).c_str(), UnitName(side.bound()).c_str(), share.c_str(), side.micro_ops(),
                             double(side.total().interconnect_hops));
     case BoundKind::kThreadIntake:
-      return FormatSentence("%s %s bound by thread intake%s: the unit sets take a few threads per cycle and each "
-                            "query does little work (%.3g micro-ops for %.3g queries)",
+      return fmt::format("{} {} bound by thread intake{}: the unit sets take a few threads per cycle and each "
+                            "query does little work ({:.3g} micro-ops for {:.3g} queries)",
                             who.c_str(), Is(who), share.c_str(), side.micro_ops(), double(side.total().queries));
   }
   return "";
@@ -169,7 +171,7 @@ std::string CompareSides(const SideEvidence& a, const SideEvidence& b) {
   std::string text = BoundClause(a) + "; " + BoundClause(b);
   for (const SideEvidence* side : {&a, &b})
     if (side->launch_share() >= kLaunchShareWorthNaming)
-      text += FormatSentence("; the launch is %.0f%% of %s time", 100.0 * side->launch_share(),
+      text += fmt::format("; the launch is {:.0f}% of {} time", 100.0 * side->launch_share(),
                              Possessive(side->label()).c_str());
   return text + ".";
 }

@@ -1,8 +1,9 @@
 #include "backends/scheduler/scheduler_cli.h"
 
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "backends/backend.h"
 #include "common/input_error.h"
@@ -82,35 +83,33 @@ std::string Join(const std::vector<std::string>& names) {
 
 void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerOptions& options, double clock_hz,
                         const std::string& what, const std::string& counter) {
-  char line[320];
-  auto emit = [&](const char* fmt, auto... args) {
-    std::snprintf(line, sizeof line, fmt, args...);
-    out << line << "\n";
+  auto emit = [&out](const char* format, const auto&... args) {
+    out << fmt::format(fmt::runtime(format), args...) << '\n';
   };
   const std::string policy = ToString(options.policy);
-  emit("modelled time (every %s priced on every backend; %s policy; %s):", what.c_str(), policy.c_str(),
+  emit("modelled time (every {} priced on every backend; {} policy; {}):", what.c_str(), policy.c_str(),
        l.replay_sms > 0 ? ("memory replayed on " + std::to_string(l.replay_sms) + " SM(s), the rest estimated").c_str()
                         : "memory replayed on every SM");
   for (std::size_t b = 0; b < l.backends.size(); ++b)
-    emit("  static %-12s %14.0f cycles  %9.4f s%s", l.backends[b].c_str(), l.static_total_cycles[b],
+    emit("  static {:<12} {:14.0f} cycles  {:9.4f} s{}", l.backends[b].c_str(), l.static_total_cycles[b],
          l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
-  emit("  %-19s %14.0f cycles  %9.4f s  (%ld %s, %.0f cycles each)", policy.c_str(), l.policy_total_cycles,
+  emit("  {:<19} {:14.0f} cycles  {:9.4f} s  ({} {}, {:.0f} cycles each)", policy.c_str(), l.policy_total_cycles,
        l.policy_total_cycles / clock_hz, l.switches, l.switches == 1 ? "switch" : "switches", l.switch_cost_cycles);
   const std::string over = l.oracle_candidates.size() == l.backends.size() ? std::string("all backends")
                                                                            : "{" + Join(l.oracle_candidates) + "}";
-  emit("  oracle %-12s %14.0f cycles  %9.4f s  (hindsight over %s)", "", l.oracle_total_cycles,
+  emit("  oracle {:<12} {:14.0f} cycles  {:9.4f} s  (hindsight over {})", "", l.oracle_total_cycles,
        l.oracle_total_cycles / clock_hz, over.c_str());
   if (options.policy.kind == SchedulerKind::kThreshold)
-    emit("  threshold %.1f %s (%s)", l.threshold, counter.c_str(),
+    emit("  threshold {:.1f} {} ({})", l.threshold, counter.c_str(),
          options.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"));
   if (std::isnan(l.oracle_agreement_percent)) {
-    emit("  gap to oracle %.2f%%", l.gap_to_oracle_percent);
+    emit("  gap to oracle {:.2f}%", l.gap_to_oracle_percent);
     return;
   }
   // "launch" -> "launches", "update" -> "updates".
   const std::string whats = what + (what.size() >= 2 && what.compare(what.size() - 2, 2, "ch") == 0 ? "es" : "s");
-  emit("  gap to oracle %.2f%%; the oracle's choice in %.1f%% of priced %s (%.1f%% counting one within %.0f%% of "
-       "its cycles); followed %ld of its %ld lasting changes (>= %d %s)",
+  emit("  gap to oracle {:.2f}%; the oracle's choice in {:.1f}% of priced {} ({:.1f}% counting one within {:.0f}% of "
+       "its cycles); followed {} of its {} lasting changes (>= {} {})",
        l.gap_to_oracle_percent, l.oracle_agreement_percent, whats.c_str(), l.oracle_equivalent_percent,
        LedgerSummary::kEquivalentPercent, l.oracle_lasting_changes_followed, l.oracle_lasting_changes,
        LedgerSummary::kLastingIterations, whats.c_str());

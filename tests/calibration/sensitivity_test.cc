@@ -1,6 +1,8 @@
 // The sensitivity sweep (backends/calibration/sensitivity.h) on a measure
 // whose answers are known: which parameters it moves, which variants flip a
 // result, the CSV and flip table it writes, and the quick subset.
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -8,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "backends/calibration/sensitivity.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
@@ -44,19 +47,26 @@ TEST(Sensitivity, FindsTheVariantsThatFlipAResult) {
   EXPECT_EQ(ranges[0].low_parameter, "robocore.warp_buffer_warps=2");
 }
 
+// The CSV that WriteSensitivityCsv writes, as text.
+std::string SensitivityCsvText(const Sensitivity& s) {
+  const test::TempDir dir;
+  WriteSensitivityCsv(dir.Path("sensitivity.csv"), s);
+  std::ifstream in(dir.Path("sensitivity.csv"));
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 TEST(Sensitivity, WritesOneCsvRowPerResultAndVariant) {
   const Sensitivity s = SweepParameters(BackendParameters{}, FakeMeasure);
-  std::ostringstream csv;
-  WriteSensitivityCsv(csv, s);
-  std::istringstream lines(csv.str());
+  const std::string csv = SensitivityCsvText(s);
+  std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
   EXPECT_EQ(line, "ratio,parameter,value,result");
   std::size_t rows = 0;
   while (std::getline(lines, line)) ++rows;
   EXPECT_EQ(rows, s.points.size());
-  EXPECT_NE(csv.str().find("speedup,,default,1.5"), std::string::npos);
-  EXPECT_NE(csv.str().find("speedup,robocore.warp_buffer_warps,2,0.75"), std::string::npos);
+  EXPECT_NE(csv.find("speedup,,default,1.5"), std::string::npos);
+  EXPECT_NE(csv.find("speedup,robocore.warp_buffer_warps,2,0.75"), std::string::npos);
 }
 
 TEST(Sensitivity, TheQuickSubsetCoversTheParametersTheIssueNames) {
@@ -65,15 +75,14 @@ TEST(Sensitivity, TheQuickSubsetCoversTheParametersTheIssueNames) {
   const Sensitivity s = SweepParameters(BackendParameters{}, FakeMeasure, quick);
   const Sensitivity all = SweepParameters(BackendParameters{}, FakeMeasure);
   EXPECT_LT(s.parameters_swept, all.parameters_swept);
-  std::ostringstream csv;
-  WriteSensitivityCsv(csv, s);
+  const std::string csv = SensitivityCsvText(s);
   for (const char* key : {"robocore.pre_process_initiation_cycles", "robocore.warp_buffer_warps",
                           "robocore.sector_requests_per_cycle", "simt.l1_sectors_per_cycle",
                           "robocore.op_units_per_kind_per_set", "gpu.kernel_launch_cycles",
                           "robocore.program_config_cycles_per_micro_op", "simt.precision", "simt.isa",
                           "gpu.warps_per_block"})
-    EXPECT_NE(csv.str().find(std::string(",") + key + ","), std::string::npos) << key;
-  EXPECT_EQ(csv.str().find(",gpu.sms,"), std::string::npos) << "the paper's SM count is not an assumption";
+    EXPECT_NE(csv.find(std::string(",") + key + ","), std::string::npos) << key;
+  EXPECT_EQ(csv.find(",gpu.sms,"), std::string::npos) << "the paper's SM count is not an assumption";
 }
 
 TEST(Sensitivity, AnArtifactValueIsTriedBesideTheHalfAndDouble) {
@@ -82,9 +91,8 @@ TEST(Sensitivity, AnArtifactValueIsTriedBesideTheHalfAndDouble) {
   SensitivityOptions options;
   options.artifact = &artifact;
   const Sensitivity s = SweepParameters(BackendParameters{}, FakeMeasure, options);
-  std::ostringstream csv;
-  WriteSensitivityCsv(csv, s);
-  EXPECT_NE(csv.str().find("speedup,robocore.warp_buffer_warps,5,1.875"), std::string::npos) << csv.str();
+  const std::string csv = SensitivityCsvText(s);
+  EXPECT_NE(csv.find("speedup,robocore.warp_buffer_warps,5,1.875"), std::string::npos) << csv;
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include <fmt/format.h>
 
 #include "traces/csv_table.h"
 
@@ -98,10 +99,8 @@ void WriteCarribotTimeline(const std::string& path, const std::vector<CarribotQu
 void PrintCarribotPricing(std::ostream& out, const CarribotResult& result, const CarribotSettings& s) {
   if (!result.priced) return;
   const LedgerSummary& l = result.pricing;
-  char line[256];
-  auto emit = [&](const char* fmt, auto... args) {
-    std::snprintf(line, sizeof line, fmt, args...);
-    out << line << "\n";
+  auto emit = [&out](const char* format, const auto&... args) {
+    out << fmt::format(fmt::runtime(format), args...) << '\n';
   };
   KernelWork total = result.setup_kernel;
   for (const CarribotRow& r : result.rows) {
@@ -109,13 +108,13 @@ void PrintCarribotPricing(std::ostream& out, const CarribotResult& result, const
     total.queries += r.kernel.queries;
     total.node_visits += r.kernel.node_visits;
   }
-  emit("collision kernel        %llu launches, %llu OBB queries, %.1f nodes per query",
+  emit("collision kernel        {} launches, {} OBB queries, {:.1f} nodes per query",
        static_cast<unsigned long long>(total.launches), static_cast<unsigned long long>(total.queries),
        total.NodesPerQuery());
   PrintLedgerSummary(out, l, s.ledger, s.backend_params.gpu.core_clock_hz, "launch", "tree nodes per kernel query");
   double host_s = result.setup_wall_s;
   for (const CarribotRow& r : result.rows) host_s += r.result.wall_s;
-  emit("pricing host time       %.3f s (%.2fx the planner's own)", result.pricing_wall_s,
+  emit("pricing host time       {:.3f} s ({:.2f}x the planner's own)", result.pricing_wall_s,
        host_s > 0 ? result.pricing_wall_s / host_s : 0.0);
 }
 

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
@@ -234,17 +235,15 @@ void WriteJsonFile(const std::string& path, const nlohmann::json& json) {
 
 void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const DelibotSettings& s) {
   const DelibotSummary& m = result.summary;
-  char line[256];
-  auto emit = [&](const char* fmt, auto... args) {
-    std::snprintf(line, sizeof line, fmt, args...);
-    out << line << "\n";
+  auto emit = [&out](const char* format, const auto&... args) {
+    out << fmt::format(fmt::runtime(format), args...) << '\n';
   };
   if (s.mcl.injection_check_updates > 0)
-    emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected, %ld refused "
+    emit("records                 {} ({} sensor updates, {} resamples, {} particles injected, {} refused "
          "by the injection check)",
          m.records, m.sensor_updates, m.resamples, m.injected, m.injection_rejected);
   else
-    emit("records                 %ld (%ld sensor updates, %ld resamples, %ld particles injected)", m.records,
+    emit("records                 {} ({} sensor updates, {} resamples, {} particles injected)", m.records,
          m.sensor_updates, m.resamples, m.injected);
   if (s.sensor_model == SensorModelKind::kLikelihoodThenBeam && result.work_counted) {
     // Which model scored which records: only the beam model casts rays.
@@ -256,34 +255,34 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
       if (r.tracking_stage) nodes += r.nodes;
     }
     if (from >= 0)
-      emit("sensor model            likelihood field up to record %ld (%llu end-point look-ups), beam model from "
-           "record %ld on (one hypothesis alive for %d updates)",
+      emit("sensor model            likelihood field up to record {} ({} end-point look-ups), beam model from "
+           "record {} on (one hypothesis alive for {} updates)",
            from - 1, lookups, from, s.mcl.tracking_after_single_updates);
     else
-      emit("sensor model            likelihood field throughout (%llu end-point look-ups): never one hypothesis "
-           "alive for %d updates, so no ray was cast",
+      emit("sensor model            likelihood field throughout ({} end-point look-ups): never one hypothesis "
+           "alive for {} updates, so no ray was cast",
            lookups, s.mcl.tracking_after_single_updates);
-    emit("rays                    %llu cast by the beam model, %.1f nodes per ray", rays,
+    emit("rays                    {} cast by the beam model, {:.1f} nodes per ray", rays,
          rays ? static_cast<double>(nodes) / rays : 0.0);
-    emit("host time               %.3f s total, %.2f ms per update", m.wall_s,
+    emit("host time               {:.3f} s total, {:.2f} ms per update", m.wall_s,
          m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0);
   } else if (result.work_counted) {
-    emit("rays                    %llu, %.1f nodes per ray", static_cast<unsigned long long>(m.rays),
+    emit("rays                    {}, {:.1f} nodes per ray", static_cast<unsigned long long>(m.rays),
          m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0);
-    emit("host time               %.3f s total, %.2f ms per update, %.2f M rays/s", m.wall_s,
+    emit("host time               {:.3f} s total, {:.2f} ms per update, {:.2f} M rays/s", m.wall_s,
          m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0, m.wall_s > 0 ? m.rays / m.wall_s / 1e6 : 0.0);
   } else {
-    emit("host time               %.3f s total, %.2f ms per update", m.wall_s,
+    emit("host time               {:.3f} s total, {:.2f} ms per update", m.wall_s,
          m.sensor_updates ? 1e3 * m.wall_s / m.sensor_updates : 0.0);
   }
   const bool gt = !result.rows.empty() && result.rows.front().has_ground_truth;
   if (m.convergence_iteration >= 0 && (m.converged || gt)) {
-    emit("converged at record     %ld (%s)", m.convergence_iteration,
+    emit("converged at record     {} ({})", m.convergence_iteration,
          m.converged ? "still localized at the end" : "LOST by the end: error above the thresholds");
   } else if (m.convergence_iteration >= 0) {
     // Without ground truth a failed end test is not proof of being lost.
-    emit("converged at record     %ld (not confirmed at the end: last 10 updates' median mode weight %.2f, "
-         "consistency %.2f; %s)",
+    emit("converged at record     {} (not confirmed at the end: last 10 updates' median mode weight {:.2f}, "
+         "consistency {:.2f}; {})",
          m.convergence_iteration, m.end_mode_weight, m.end_consistency,
          m.standing_claim_iteration < 0 ? "its claim was withdrawn and none stands"
          : m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
@@ -296,10 +295,10 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   if (gt) {
     const char* rivals = s.mcl.hypothesis_floor.min_particles > 0 ? ", no rival hypothesis" : "";
     if (m.self_convergence_iteration >= 0)
-      emit("filter's own claim      record %ld (mode weight >= %.2f and consistency >= %.2f%s for 10 updates)",
+      emit("filter's own claim      record {} (mode weight >= {:.2f} and consistency >= {:.2f}{} for 10 updates)",
            m.self_convergence_iteration, s.converged_mode_weight, s.converged_consistency, rivals);
     else
-      emit("filter's own claim      never (mode weight >= %.2f and consistency >= %.2f%s for 10 updates)",
+      emit("filter's own claim      never (mode weight >= {:.2f} and consistency >= {:.2f}{} for 10 updates)",
            s.converged_mode_weight, s.converged_consistency, rivals);
   }
   // A claim the filter later contradicted (a jump, injected particles) is
@@ -309,28 +308,28 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
                                      ? "the claim standing at the end is from record " +
                                            std::to_string(m.standing_claim_iteration)
                                      : std::string("no claim stands at the end");
-    emit("claims withdrawn        %ld (the estimate jumped > %.1f m or random particles were injected after a "
-         "claim); %s",
+    emit("claims withdrawn        {} (the estimate jumped > {:.1f} m or random particles were injected after a "
+         "claim); {}",
          m.claims_withdrawn, s.jump_threshold_m, standing.c_str());
   }
   if (m.convergence_iteration >= 0) {
-    emit("scan consistency        %.3f median after convergence (beams within %.1f sigma of the map)",
+    emit("scan consistency        {:.3f} median after convergence (beams within {:.1f} sigma of the map)",
          m.median_consistency, s.consistency_sigmas);
-    emit("jumps after convergence %ld (estimate moved > %.1f m between two records)", m.jumps_after_convergence,
+    emit("jumps after convergence {} (estimate moved > {:.1f} m between two records)", m.jumps_after_convergence,
          s.jump_threshold_m);
   }
   if (!result.rows.empty() && result.rows.front().has_ground_truth) {
     if (m.convergence_iteration >= 0)
-      emit("error after convergence %.3f m median, %.3f m p95, %.4f rad median heading", m.median_err_xy_m,
+      emit("error after convergence {:.3f} m median, {:.3f} m p95, {:.4f} rad median heading", m.median_err_xy_m,
            m.p95_err_xy_m, m.median_err_theta_rad);
     else
       emit("error after convergence none (never converged)");
-    emit("final error             %.3f m, %.4f rad", m.final_err_xy_m, m.final_err_theta_rad);
+    emit("final error             {:.3f} m, {:.4f} rad", m.final_err_xy_m, m.final_err_theta_rad);
   }
   if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");
   if (!result.priced) return;
   PrintLedgerSummary(out, result.pricing, s.ledger, s.backend_params.gpu.core_clock_hz, "update", "nodes per ray");
-  emit("pricing host time       %.3f s (%.2fx the filter's own)", result.pricing_wall_s,
+  emit("pricing host time       {:.3f} s ({:.2f}x the filter's own)", result.pricing_wall_s,
        m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
 }
 

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <deque>
 #include <limits>
 #include <queue>
 #include <stdexcept>
 #include <utility>
+
+#include <fmt/format.h>
 
 #include "common/random_stream.h"
 #include "maps/distance_field.h"
@@ -28,11 +29,7 @@ bool SamePoint(const RoutePoint& a, const RoutePoint& b) {
   return a.x_m == b.x_m && a.y_m == b.y_m;
 }
 
-std::string Metres(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.3f m", v);
-  return buffer;
-}
+std::string Metres(double v) { return fmt::format("{:.3f} m", v); }
 
 }  // namespace
 

@@ -94,7 +94,7 @@ void RunSensitivity(const CalibrateCli& cli, const BackendPreset& artifact, cons
       },
       options);
   const std::string csv = cli.out_dir + "/sensitivity.csv", flips = cli.out_dir + "/flips.md";
-  WriteFile(csv, [&](std::ostream& out) { WriteSensitivityCsv(out, s); });
+  WriteSensitivityCsv(csv, s);
   WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, s); });
   std::cout << s.parameters_swept << " parameters swept, " << s.points.size() - s.results.size() << " variants priced, "
             << s.skipped.size() << " refused by the parameter checks\n";
@@ -119,7 +119,7 @@ void Run(const CalibrateCli& cli) {
   const std::string md = cli.out_dir + "/calibration.md";
   const std::string csv = cli.out_dir + "/calibration.csv";
   WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
-  WriteFile(csv, [&](std::ostream& out) { WriteCalibrationCsv(out, report); });
+  WriteCalibrationCsv(csv, report);
   WriteCalibrationMarkdown(std::cout, report);
   std::cout << "\nreport  " << md << "\ndata    " << csv << "\n";
   Plot(cli.plot_script.empty() ? SourceScript("plot_calibration.py") : cli.plot_script, csv,

@@ -34,6 +34,7 @@
 #include "robocore/collision/sphere_robot.h"
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
+#include "traces/csv_table.h"
 #include "common/exit_codes.h"
 #include "workloads/rcbench/commands.h"
 
@@ -58,14 +59,12 @@ std::string ExitName(int exit) {
 }
 
 void WriteOutput(const std::string& path, const std::vector<CollisionResult>& results) {
-  AtomicFile file(path);
-  std::ostream& out = file.stream();
-  out << "index,collides,nodes_visited,exit_axis\n";
+  CsvTable table(path, {"index", "collides", "nodes_visited", "exit_axis"});
   for (std::size_t i = 0; i < results.size(); ++i) {
     const CollisionResult& q = results[i];
-    out << i << ',' << (q.collides ? 1 : 0) << ',' << q.nodes_visited << ',' << int{q.exit_axis} << '\n';
+    table.AddRow({i, q.collides ? 1 : 0, q.nodes_visited, int{q.exit_axis}});
   }
-  file.Commit();
+  table.Commit();
 }
 
 // The sphere robot's answer per OBB: collides if any of its spheres does;
@@ -106,34 +105,46 @@ std::vector<BatchCost> PriceOnEveryBackend(const KernelRecord& record, const Bac
 void WriteTimeline(const std::string& path, const CollisionSummary& s, const CollisionBatch& batch,
                    const std::vector<BatchCost>& costs, const SphereRobotReport& spheres,
                    const std::vector<BatchCost>& sphere_costs, const std::string& backend) {
-  AtomicFile file(path);
-  std::ostream& out = file.stream();
-  out << "section,key,value\n" << std::setprecision(10);
-  out << "summary,backend," << backend << '\n';
-  out << "summary,queries," << s.queries << "\nsummary,collisions," << s.collisions
-      << "\nsummary,node_visits," << s.node_visits << "\nsummary,nodes_per_query_mean," << s.nodes_per_query_mean
-      << "\nsummary,nodes_per_query_max," << s.nodes_max << "\nsummary,tree_nodes," << batch.node_count
-      << "\nsummary,node_bytes," << batch.node_bytes << "\n";
+  CsvTableOptions options;
+  options.significant_digits = 10;
+  CsvTable table(path, {"section", "key", "value"}, options);
+  auto add = [&table](const char* section, const std::string& key, CsvCell value) {
+    table.AddRow({section, key, std::move(value)});
+  };
+  add("summary", "backend", backend);
+  add("summary", "queries", s.queries);
+  add("summary", "collisions", s.collisions);
+  add("summary", "node_visits", s.node_visits);
+  add("summary", "nodes_per_query_mean", s.nodes_per_query_mean);
+  add("summary", "nodes_per_query_max", s.nodes_max);
+  add("summary", "tree_nodes", batch.node_count);
+  add("summary", "node_bytes", batch.node_bytes);
   for (const NodesHistogramBin& b : s.nodes_histogram)
-    out << "nodes_per_query_histogram," << b.lo << '-' << b.hi << ',' << b.queries << '\n';
+    add("nodes_per_query_histogram", std::to_string(b.lo) + '-' + std::to_string(b.hi), b.queries);
   for (int slot = 0; slot < kExitSlots; ++slot)
-    out << "node_test_exit," << ExitName(ExitOfSlot(slot)) << ',' << s.node_test_exits[slot] << '\n';
+    add("node_test_exit", ExitName(ExitOfSlot(slot)), s.node_test_exits[slot]);
   for (int slot = 0; slot < kExitSlots; ++slot)
-    out << "query_last_exit," << ExitName(ExitOfSlot(slot)) << ',' << s.query_last_exits[slot] << '\n';
-  out << "stages,sphere_pretest," << s.sphere_pretests << "\nstages,pre_process," << s.pre_process
-      << "\nstages,box_normal," << s.box_normal << "\nstages,edge_edge," << s.edge_edge
-      << "\nstages,sphere_decided," << s.sphere_decided << '\n';
-  for (const BatchCost& c : costs)
-    out << "cycles," << c.backend << ',' << c.cycles << "\nenergy_j," << c.backend << ',' << c.energy_joules << '\n';
-  out << "sphere_robot,spheres_per_obb," << spheres.spheres_per_obb << "\nsphere_robot,collisions,"
-      << spheres.sphere_collisions << "\nsphere_robot,false_collisions," << spheres.false_collisions
-      << "\nsphere_robot,false_collision_rate," << spheres.false_collision_rate()
-      << "\nsphere_robot,missed_collisions," << spheres.missed_collisions << "\nsphere_robot,node_visits,"
-      << spheres.sphere_nodes << '\n';
-  for (const BatchCost& c : sphere_costs)
-    out << "cycles_spheres," << c.backend << ',' << c.cycles << "\nenergy_j_spheres," << c.backend << ','
-        << c.energy_joules << '\n';
-  file.Commit();
+    add("query_last_exit", ExitName(ExitOfSlot(slot)), s.query_last_exits[slot]);
+  add("stages", "sphere_pretest", s.sphere_pretests);
+  add("stages", "pre_process", s.pre_process);
+  add("stages", "box_normal", s.box_normal);
+  add("stages", "edge_edge", s.edge_edge);
+  add("stages", "sphere_decided", s.sphere_decided);
+  for (const BatchCost& c : costs) {
+    add("cycles", c.backend, c.cycles);
+    add("energy_j", c.backend, c.energy_joules);
+  }
+  add("sphere_robot", "spheres_per_obb", spheres.spheres_per_obb);
+  add("sphere_robot", "collisions", spheres.sphere_collisions);
+  add("sphere_robot", "false_collisions", spheres.false_collisions);
+  add("sphere_robot", "false_collision_rate", spheres.false_collision_rate());
+  add("sphere_robot", "missed_collisions", spheres.missed_collisions);
+  add("sphere_robot", "node_visits", spheres.sphere_nodes);
+  for (const BatchCost& c : sphere_costs) {
+    add("cycles_spheres", c.backend, c.cycles);
+    add("energy_j_spheres", c.backend, c.energy_joules);
+  }
+  table.Commit();
 }
 
 // `ran` marks the backend that ran the batch (--backend).
