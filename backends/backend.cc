@@ -21,20 +21,15 @@ std::unique_ptr<Backend> Backend::Create(const std::string& name, const BackendP
   if (name == "simt") return std::make_unique<SimtBackend>(params);
   if (name == "ttaplus") return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kNone);
   if (name == "ttaplus-p") return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kPredication);
-  if (name == "ttaplus-cr")
-    return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kConditionalReturn);
+  if (name == "ttaplus-cr") return std::make_unique<TtaPlusBackend>(params, EarlyExitMode::kConditionalReturn);
   if (name == "robocore") return std::make_unique<RoboCoreBackend>(params);
   throw std::invalid_argument("unknown backend '" + name +
                               "' (expected cpu, simt, ttaplus, ttaplus-p, ttaplus-cr or robocore)");
 }
 
-std::vector<std::string> Backend::Names() {
-  return {"cpu", "simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"};
-}
+std::vector<std::string> Backend::Names() { return {"cpu", "simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"}; }
 
-std::vector<std::string> Backend::ModelledNames() {
-  return {"simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"};
-}
+std::vector<std::string> Backend::ModelledNames() { return {"simt", "ttaplus", "ttaplus-p", "ttaplus-cr", "robocore"}; }
 
 BatchCost Backend::Price(const KernelRecord& record) const {
   PricingContext context(record);
@@ -47,8 +42,7 @@ BatchCost Backend::Price(const KernelRecord& record, PricingContext& context) co
   return DoPrice(record, context);
 }
 
-BatchCost Backend::Run(const RayCastScene& scene, const RayBatch& batch,
-                       std::vector<RayHit>& hits) const {
+BatchCost Backend::Run(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits) const {
   const auto start = std::chrono::steady_clock::now();
   KernelRecord record;
   CastRayBatchRecorded(scene, batch, hits, record);
@@ -60,8 +54,7 @@ BatchCost Backend::Run(const RayCastScene& scene, const RayBatch& batch,
 
 template <typename Scalar>
 BatchCost Backend::RunCollisions(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
-                                 std::vector<CollisionResult>& results,
-                                 const CollisionOptions<Scalar>& options) const {
+                                 std::vector<CollisionResult>& results, const CollisionOptions<Scalar>& options) const {
   const auto start = std::chrono::steady_clock::now();
   KernelRecord record;
   RoboCoreContext().CheckCollisions(obbs, tree, results, record, options);
@@ -98,8 +91,7 @@ BatchCost& BatchCost::operator+=(const BatchCost& more) {
   return *this;
 }
 
-std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends,
-                                const KernelRecord& record) {
+std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, const KernelRecord& record) {
   // The backends price in parallel: those sharing a memory replay wait for
   // the one that runs it, the others replay at the same time. Each
   // backend's price does not depend on the order.
@@ -125,21 +117,18 @@ void PrintBatchCost(std::ostream& out, const BatchCost& c) {
     out << ", host " << c.host_seconds << " s (no cost model)\n";
     return;
   }
-  out << "\n  cycles " << c.cycles << " (launch " << c.launch_cycles << ") = " << c.seconds
-      << " s at " << c.clock_hz / 1e6 << " MHz, bound: " << c.bound << "\n  energy "
-      << c.energy_joules << " J";
+  out << "\n  cycles " << c.cycles << " (launch " << c.launch_cycles << ") = " << c.seconds << " s at "
+      << c.clock_hz / 1e6 << " MHz, bound: " << c.bound << "\n  energy " << c.energy_joules << " J";
   if (c.simt_efficiency == c.simt_efficiency) out << ", SIMT efficiency " << c.simt_efficiency;
   out << "\n  sectors " << c.memory.sector_requests << ", L1 hits " << c.memory.l1_hits << ", L2 "
-      << c.memory.l2_accesses << " (hits " << c.memory.l2_hits << "), DRAM "
-      << c.memory.dram_accesses << "\n  L1 model " << c.l1_model << "; L2 model " << c.l2_model
-      << "\n  micro-ops:";
+      << c.memory.l2_accesses << " (hits " << c.memory.l2_hits << "), DRAM " << c.memory.dram_accesses
+      << "\n  L1 model " << c.l1_model << "; L2 model " << c.l2_model << "\n  micro-ops:";
   for (int i = 0; i < kOpcodeCount; ++i)
     if (c.micro_ops[i]) out << ' ' << MnemonicOf(static_cast<Opcode>(i)) << '=' << c.micro_ops[i];
-  out << "\n  hops " << c.interconnect_hops << ", predicated off " << c.predicated_off_micro_ops
-      << ", CTRL exits " << c.ctrl_exits << ", nodes counted " << c.nodes_counted;
+  out << "\n  hops " << c.interconnect_hops << ", predicated off " << c.predicated_off_micro_ops << ", CTRL exits "
+      << c.ctrl_exits << ", nodes counted " << c.nodes_counted;
   if (c.warp_instructions)
-    out << ", warp instructions " << c.warp_instructions << ", thread instructions "
-        << c.thread_instructions;
+    out << ", warp instructions " << c.warp_instructions << ", thread instructions " << c.thread_instructions;
   out << "\n";
 }
 

@@ -33,11 +33,11 @@ struct BackendSpecs {
   std::string name;
   std::string description;
   bool has_cost_model = false;
-  bool has_rt_unit = false;      // TTA+ / RoboCore intersection units
-  bool has_sact_units = false;   // RoboCore's chained SACT units
+  bool has_rt_unit = false;                         // TTA+ / RoboCore intersection units
+  bool has_sact_units = false;                      // RoboCore's chained SACT units
   EarlyExitMode early_exit = EarlyExitMode::kNone;  // meaningful with has_rt_unit
   std::vector<StepProgramKind> step_programs;       // the kernels it prices
-  double clock_hz = 0;           // the modelled clock its cycles count (0: none)
+  double clock_hz = 0;                              // the modelled clock its cycles count (0: none)
   int sms = 0;
 };
 
@@ -45,25 +45,25 @@ struct BackendSpecs {
 // launch; energy is dynamic energy only.
 struct BatchCost {
   std::string backend;
-  bool modelled = false;          // false for the cpu reference
-  double host_seconds = 0;        // wall time of Run's functional work (0 from Price)
+  bool modelled = false;    // false for the cpu reference
+  double host_seconds = 0;  // wall time of Run's functional work (0 from Price)
   std::uint64_t queries = 0;
   std::uint64_t nodes = 0;
   std::uint64_t cycles = 0;
   std::uint64_t launch_cycles = 0;
   double clock_hz = 0;
-  double seconds = 0;             // cycles / clock_hz
+  double seconds = 0;  // cycles / clock_hz
   double energy_joules = 0;
   double simt_efficiency = std::numeric_limits<double>::quiet_NaN();  // SIMT only
-  MemoryCounters memory;          // 32-byte sector requests, L1/L2/DRAM
-  std::array<std::uint64_t, kOpcodeCount> micro_ops{};  // executed, by type
+  MemoryCounters memory;                                              // 32-byte sector requests, L1/L2/DRAM
+  std::array<std::uint64_t, kOpcodeCount> micro_ops{};                // executed, by type
   std::uint64_t predicated_off_micro_ops = 0;
   std::uint64_t interconnect_hops = 0;
   std::uint64_t ctrl_exits = 0;           // RoboCore: CTRL axis checks
   std::uint64_t warp_instructions = 0;    // SIMT
   std::uint64_t thread_instructions = 0;  // SIMT
   std::uint64_t nodes_counted = 0;        // PUSH counter of nodes visited
-  std::string bound;              // what limited the busiest SM
+  std::string bound;                      // what limited the busiest SM
   std::string l1_model;
   std::string l2_model;
 
@@ -80,8 +80,8 @@ class Backend {
   virtual ~Backend() = default;
   // Throws std::invalid_argument for an unknown name or invalid parameters.
   static std::unique_ptr<Backend> Create(const std::string& name, const BackendParameters& params);
-  static std::vector<std::string> Names();           // all, cpu first
-  static std::vector<std::string> ModelledNames();   // all but cpu
+  static std::vector<std::string> Names();          // all, cpu first
+  static std::vector<std::string> ModelledNames();  // all but cpu
 
   virtual const BackendSpecs& specs() const = 0;
 
@@ -91,8 +91,7 @@ class Backend {
   BatchCost Price(const KernelRecord& record, PricingContext& context) const;
 
   // Runs the batch: functional hits (identical to CastRayBatch) and cost.
-  virtual BatchCost Run(const RayCastScene& scene, const RayBatch& batch,
-                        std::vector<RayHit>& hits) const;
+  virtual BatchCost Run(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits) const;
 
   // Runs a collision batch (robot-link OBBs against a box tree) through the
   // RoboCore API's CheckCollisions: functional results identical to
@@ -101,15 +100,13 @@ class Backend {
   // CheckCollisions does.
   template <typename Scalar>
   BatchCost RunCollisions(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
-                          std::vector<CollisionResult>& results,
-                          const CollisionOptions<Scalar>& options = {}) const;
+                          std::vector<CollisionResult>& results, const CollisionOptions<Scalar>& options = {}) const;
 
  protected:
   virtual BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const = 0;
 };
 
 // Prices one record on several backends, sharing their common work.
-std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends,
-                                const KernelRecord& record);
+std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, const KernelRecord& record);
 
 }  // namespace rc

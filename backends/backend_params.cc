@@ -69,8 +69,7 @@ struct RangeCheck {
 
 // Flattens nested JSON objects into dotted keys: {"gpu": {"sms": 8}} ->
 // "gpu.sms" = 8.
-void Flatten(const nlohmann::json& j, const std::string& prefix,
-             std::map<std::string, nlohmann::json>& out) {
+void Flatten(const nlohmann::json& j, const std::string& prefix, std::map<std::string, nlohmann::json>& out) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
     if (it.value().is_object())
@@ -97,8 +96,7 @@ struct Overrider {
   void operator()(const std::string& name, double& field, const ParameterSpec&) {
     const auto it = values->find(prefix + "." + name);
     if (it == values->end()) return;
-    if (!it->second.is_number())
-      throw InputError(*file, 0, it->first, "expected a number, got " + it->second.dump());
+    if (!it->second.is_number()) throw InputError(*file, 0, it->first, "expected a number, got " + it->second.dump());
     field = it->second.get<double>();
     values->erase(it);
   }
@@ -125,8 +123,8 @@ bool Fail(std::string* error, const std::string& what) {
 }  // namespace
 
 int GpuParams::DramExtraCycles() const {
-  return static_cast<int>(std::lround((dram_latency_dram_cycles + dram_cas_dram_cycles) *
-                                      core_clock_hz / dram_clock_hz));
+  return static_cast<int>(
+      std::lround((dram_latency_dram_cycles + dram_cas_dram_cycles) * core_clock_hz / dram_clock_hz));
 }
 
 double GpuParams::DramBytesPerCoreCycle() const {
@@ -219,9 +217,7 @@ DatapathConfig RoboCoreParams::Datapath() const {
   c.kind = DatapathKind::kRoboCore;
   c.exit_mode = EarlyExitMode::kConditionalReturn;
   c.latencies = unit.latencies;
-  auto scale = [&](int& cycles) {
-    cycles = std::max(1, static_cast<int>(std::lround(cycles * sact_latency_scale)));
-  };
+  auto scale = [&](int& cycles) { cycles = std::max(1, static_cast<int>(std::lround(cycles * sact_latency_scale))); };
   scale(c.latencies.pre_process_cycles);
   scale(c.latencies.box_normal_cycles);
   scale(c.latencies.edge_edge_cycles);
@@ -297,7 +293,8 @@ void ApplyOverrides(BackendParameters& p, std::map<std::string, nlohmann::json> 
 struct VariantLister {
   std::string prefix;
   std::vector<ParameterVariants>* out;
-  void Add(const std::string& name, const ParameterSpec& spec, const std::string& value, std::vector<std::string> alts) {
+  void Add(const std::string& name, const ParameterSpec& spec, const std::string& value,
+           std::vector<std::string> alts) {
     out->push_back({prefix + "." + name, spec, value, std::move(alts)});
   }
   template <class T>

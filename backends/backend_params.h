@@ -37,44 +37,44 @@ namespace rc {
 // the precision; CMP and logic: other; PUSH: int; RCP: sfu; RETURN,
 // RETURN_IF: branch), a LOAD one load plus instructions_per_load - 1 int
 // (address), and each loop pass loop_branch_instructions branches.
-#define RC_SIMT_PARAMETERS(X)                                                                                     \
-  X(int, schedulers_per_sm, 4, "count", 1, 16, "artifact: -gpgpu_num_sched_per_core 4")                           \
-  X(int, issue_per_scheduler_per_cycle, 1, "warp instructions", 1, 4, "artifact: -gpgpu_max_insn_issue_per_warp 1") \
-  X(SimtPrecision, precision, SimtPrecision::kHost, "host | fp32 | fp64", 0, 0,                                   \
-    "host: the kernel that ran (ray casting, ball query, MoveBot/CarriBot collision: double; rcbench collide "     \
-    "--precision float: float)")                                                                                    \
-  X(SimtIsa, isa, SimtIsa::kPtx, "ptx | sass", 0, 0,                                                               \
-    "ptx: the artifact simulates PTX (-gpgpu_ptx_convert_to_ptxplus 0); sass: what sm_75 hardware issues")         \
-  X(SimtBeamLeaf, beam_leaf, SimtBeamLeaf::kMaxLog, "maxlog | exact", 0, 0,                                       \
-    "maxlog: programs/beam_leaf.asm, the leaf every RT backend prices; exact: the host's BeamLogDensity (exp, log)") \
-  X(int, fp32_latency_cycles, 4, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_fp 4,13,4,5,39 (ADD)")    \
-  X(int, fp32_initiation_cycles, 2, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_fp 2,2,2,2,4 (ADD)") \
-  X(int, fp64_latency_cycles, 8, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_dp 8,19,8,8,330 (ADD)")   \
-  X(int, fp64_initiation_cycles, 4, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_dp 4,4,4,4,130 (ADD)") \
-  X(int, int_latency_cycles, 4, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_int 4,13,4,5,145,32 (ADD)") \
-  X(int, int_initiation_cycles, 2, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_int 2,2,2,2,8,4 (ADD)") \
-  X(int, fp32_div_latency_cycles, 39, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_fp (DIV 39)")         \
-  X(int, fp32_div_initiation_cycles, 4, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_fp (DIV 4)")     \
-  X(int, fp64_div_latency_cycles, 330, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_dp (DIV 330)")       \
-  X(int, fp64_div_initiation_cycles, 130, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_dp (DIV 130)") \
-  X(int, int_div_latency_cycles, 145, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_int (DIV 145)")       \
-  X(int, int_div_initiation_cycles, 8, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_int (DIV 8)")     \
-  X(int, sfu_latency_cycles, 100, "core cycles", 0, 5000,                                                          \
-    "artifact: -ptx_opcode_latency_sfu 100 (rcp, sqrt, rsqrt, ex2, lg2, sin, cos)")                                 \
-  X(int, sfu_initiation_cycles, 8, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_sfu 8")               \
-  X(int, other_latency_cycles, 1, "core cycles", 0, 100,                                                           \
-    "artifact: GPGPU-Sim's default latency 1 (mov, setp, selp, cvt, logic, branches)")                             \
-  X(int, other_initiation_cycles, 1, "core cycles", 1, 100, "artifact: GPGPU-Sim's default initiation 1")          \
-  X(int, fp64_units_per_scheduler, 0, "count (0: on the SFU unit)", 0, 16,                                         \
-    "artifact: -gpgpu_pipeline_widths DP 0, no -gpgpu_num_dp_units: DP ops issue to the SFU unit")                 \
+#define RC_SIMT_PARAMETERS(X)                                                                                          \
+  X(int, schedulers_per_sm, 4, "count", 1, 16, "artifact: -gpgpu_num_sched_per_core 4")                                \
+  X(int, issue_per_scheduler_per_cycle, 1, "warp instructions", 1, 4, "artifact: -gpgpu_max_insn_issue_per_warp 1")    \
+  X(SimtPrecision, precision, SimtPrecision::kHost, "host | fp32 | fp64", 0, 0,                                        \
+    "host: the kernel that ran (ray casting, ball query, MoveBot/CarriBot collision: double; rcbench collide "         \
+    "--precision float: float)")                                                                                       \
+  X(SimtIsa, isa, SimtIsa::kPtx, "ptx | sass", 0, 0,                                                                   \
+    "ptx: the artifact simulates PTX (-gpgpu_ptx_convert_to_ptxplus 0); sass: what sm_75 hardware issues")             \
+  X(SimtBeamLeaf, beam_leaf, SimtBeamLeaf::kMaxLog, "maxlog | exact", 0, 0,                                            \
+    "maxlog: programs/beam_leaf.asm, the leaf every RT backend prices; exact: the host's BeamLogDensity (exp, log)")   \
+  X(int, fp32_latency_cycles, 4, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_fp 4,13,4,5,39 (ADD)")         \
+  X(int, fp32_initiation_cycles, 2, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_fp 2,2,2,2,4 (ADD)")     \
+  X(int, fp64_latency_cycles, 8, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_dp 8,19,8,8,330 (ADD)")        \
+  X(int, fp64_initiation_cycles, 4, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_dp 4,4,4,4,130 (ADD)")   \
+  X(int, int_latency_cycles, 4, "core cycles", 0, 1000, "artifact: -ptx_opcode_latency_int 4,13,4,5,145,32 (ADD)")     \
+  X(int, int_initiation_cycles, 2, "core cycles", 1, 1000, "artifact: -ptx_opcode_initiation_int 2,2,2,2,8,4 (ADD)")   \
+  X(int, fp32_div_latency_cycles, 39, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_fp (DIV 39)")             \
+  X(int, fp32_div_initiation_cycles, 4, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_fp (DIV 4)")         \
+  X(int, fp64_div_latency_cycles, 330, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_dp (DIV 330)")           \
+  X(int, fp64_div_initiation_cycles, 130, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_dp (DIV 130)")     \
+  X(int, int_div_latency_cycles, 145, "core cycles", 0, 5000, "artifact: -ptx_opcode_latency_int (DIV 145)")           \
+  X(int, int_div_initiation_cycles, 8, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_int (DIV 8)")         \
+  X(int, sfu_latency_cycles, 100, "core cycles", 0, 5000,                                                              \
+    "artifact: -ptx_opcode_latency_sfu 100 (rcp, sqrt, rsqrt, ex2, lg2, sin, cos)")                                    \
+  X(int, sfu_initiation_cycles, 8, "core cycles", 1, 5000, "artifact: -ptx_opcode_initiation_sfu 8")                   \
+  X(int, other_latency_cycles, 1, "core cycles", 0, 100,                                                               \
+    "artifact: GPGPU-Sim's default latency 1 (mov, setp, selp, cvt, logic, branches)")                                 \
+  X(int, other_initiation_cycles, 1, "core cycles", 1, 100, "artifact: GPGPU-Sim's default initiation 1")              \
+  X(int, fp64_units_per_scheduler, 0, "count (0: on the SFU unit)", 0, 16,                                             \
+    "artifact: -gpgpu_pipeline_widths DP 0, no -gpgpu_num_dp_units: DP ops issue to the SFU unit")                     \
   X(int, l1_sectors_per_cycle, 4, "sectors per SM", 1, 64, "assumption: one per L1 bank (artifact -gpgpu_l1_banks 4)") \
-  X(int, registers_per_thread, 0, "registers (0: compiled)", 0, 255,                                               \
-    "ptxas -v of the compiled kernel (backends/simt_instruction_table.json)")                                       \
-  X(int, fallback_registers_per_thread, 32, "registers", 1, 255,                                                   \
-    "assumption (programs with no compiled kernel): a small traversal kernel")                                      \
-  X(int, loop_branch_instructions, 2, "instructions per loop pass", 0, 64,                                         \
-    "assumption (fallback): ISETP + BRA back edge")                                                                 \
-  X(int, instructions_per_load, 6, "instructions per node fetch", 1, 64,                                           \
+  X(int, registers_per_thread, 0, "registers (0: compiled)", 0, 255,                                                   \
+    "ptxas -v of the compiled kernel (backends/simt_instruction_table.json)")                                          \
+  X(int, fallback_registers_per_thread, 32, "registers", 1, 255,                                                       \
+    "assumption (programs with no compiled kernel): a small traversal kernel")                                         \
+  X(int, loop_branch_instructions, 2, "instructions per loop pass", 0, 64,                                             \
+    "assumption (fallback): ISETP + BRA back edge")                                                                    \
+  X(int, instructions_per_load, 6, "instructions per node fetch", 1, 64,                                               \
     "assumption (fallback): 2 FMUL, 2 F2I.FLOOR, IMAD, LDG")
 
 struct SimtParams {
@@ -102,8 +102,8 @@ struct SimtParams {
 };
 
 // The named values of the SIMT choices, as written in JSON and printed.
-const char* ToString(SimtPrecision p);  // "host", "fp32", "fp64"
-const char* ToString(SimtIsa isa);      // "ptx", "sass"
+const char* ToString(SimtPrecision p);    // "host", "fp32", "fp64"
+const char* ToString(SimtIsa isa);        // "ptx", "sass"
 const char* ToString(SimtBeamLeaf leaf);  // "none", "maxlog", "exact"
 bool ParseChoice(const std::string& text, SimtPrecision* out);
 bool ParseChoice(const std::string& text, SimtIsa* out);
@@ -113,13 +113,13 @@ bool ParseChoice(const std::string& text, SimtBeamLeaf* out);  // maxlog | exact
 #define RC_RT_UNIT_PARAMETERS(X)                                                                                   \
   X(int, warp_buffer_warps, 4, "warps", 1, 64, "paper; artifact -gpgpu_rt_max_warps 4")                            \
   X(int, intersection_unit_sets, 4, "count", 1, 64, "paper; artifact -gpgpu_rt_func_units 4")                      \
-  X(int, op_units_per_kind_per_set, 1, "count", 1, 32,                                                              \
-    "artifact: -gpgpu_rt_n_func_units 32,1,1,...: one OP unit of each kind (32 decode) per intersection unit set")  \
+  X(int, op_units_per_kind_per_set, 1, "count", 1, 32,                                                             \
+    "artifact: -gpgpu_rt_n_func_units 32,1,1,...: one OP unit of each kind (32 decode) per intersection unit set") \
   X(int, threads_accepted_per_cycle_per_set, 2, "threads", 1, 32, "artifact: -gpgpu_rt_func_bw 2")                 \
   X(int, sector_requests_per_cycle, 1, "32-byte requests", 1, 32, "artifact, as read (REFERENCE.md section 2)")    \
   X(int, interconnect_hop_cycles, 1, "core cycles", 0, 64, "artifact: -gpgpu_rt_interconnect 1,1")                 \
   X(int, predicated_op_cycles, 1, "core cycles", 1, 64,                                                            \
-    "artifact: rt_op_unit::cycle, predicated-off threads take 1 cycle")                                             \
+    "artifact: rt_op_unit::cycle, predicated-off threads take 1 cycle")                                            \
   X(int, program_config_cycles_per_micro_op, 1, "core cycles", 0, 64,                                              \
     "assumption: one micro-op per cycle into every unit's program store, at every launch")
 
@@ -139,7 +139,9 @@ struct TtaPlusParams {
   RtUnitParams unit;
   DatapathConfig Datapath(EarlyExitMode mode) const;
   template <class Self, class Visitor>
-  static void Fields(Self& s, Visitor& v) { RtUnitParams::Fields(s.unit, v); }
+  static void Fields(Self& s, Visitor& v) {
+    RtUnitParams::Fields(s.unit, v);
+  }
 };
 
 // RoboCore: TTA+ plus the chained SACT units with CTRL early exit. The paper
@@ -147,16 +149,18 @@ struct TtaPlusParams {
 // packet every ceil(latency / 4) cycles: 4 for Pre-Process (14), 3 for
 // Box-Normal and Edge x Edge (12). The artifact's clusters take one every
 // cycle (-gpgpu_rt_init_cycles 1 for clusterA-C).
-#define RC_ROBOCORE_PARAMETERS(X)                                                                                  \
-  X(int, pre_process_initiation_cycles, 4, "core cycles", 1, 64,                                                   \
-    "paper: four-stage pipelines, ceil(14 / 4); artifact: 1")                                                       \
-  X(int, box_normal_initiation_cycles, 3, "core cycles", 1, 64, "paper: four-stage pipelines, ceil(12 / 4); artifact: 1") \
-  X(int, edge_edge_initiation_cycles, 3, "core cycles", 1, 64, "paper: four-stage pipelines, ceil(12 / 4); artifact: 1") \
-  X(double, sact_latency_scale, 1.0, "factor", 0.1, 10,                                                            \
-    "sweep knob on the three SACT units' latencies (paper: x0.5 to x2); 1 = paper")                                 \
-  X(int, ctrl_exit_cycles, 0, "core cycles", 0, 64,                                                                \
-    "assumption: overlaps the last stage (artifact full test 194 = 14 + 6*12 + 9*12)")                              \
-  X(int, decode_config_cycles_per_layout, 1, "core cycles", 0, 1000,                                               \
+#define RC_ROBOCORE_PARAMETERS(X)                                                      \
+  X(int, pre_process_initiation_cycles, 4, "core cycles", 1, 64,                       \
+    "paper: four-stage pipelines, ceil(14 / 4); artifact: 1")                          \
+  X(int, box_normal_initiation_cycles, 3, "core cycles", 1, 64,                        \
+    "paper: four-stage pipelines, ceil(12 / 4); artifact: 1")                          \
+  X(int, edge_edge_initiation_cycles, 3, "core cycles", 1, 64,                         \
+    "paper: four-stage pipelines, ceil(12 / 4); artifact: 1")                          \
+  X(double, sact_latency_scale, 1.0, "factor", 0.1, 10,                                \
+    "sweep knob on the three SACT units' latencies (paper: x0.5 to x2); 1 = paper")    \
+  X(int, ctrl_exit_cycles, 0, "core cycles", 0, 64,                                    \
+    "assumption: overlaps the last stage (artifact full test 194 = 14 + 6*12 + 9*12)") \
+  X(int, decode_config_cycles_per_layout, 1, "core cycles", 0, 1000,                   \
     "assumption: one layout register write per node kind, at every launch")
 
 struct RoboCoreParams {

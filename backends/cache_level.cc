@@ -4,8 +4,7 @@
 
 namespace rc {
 
-CacheLevel::CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::uint64_t capacity_lines,
-                       int ways)
+CacheLevel::CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::uint64_t capacity_lines, int ways)
     : per_line_shift_(per_line_shift), sector_mask_((1u << per_line_shift) - 1) {
   if (footprint_lines <= capacity_lines) {
     mode_ = Mode::kCold;
@@ -64,8 +63,8 @@ namespace {
 // Keeps, of the history entries from `tail` on, each resident line's last
 // access, in order and renumbered (which keeps the LRU order). Returns the
 // new size; the tail becomes 0.
-std::uint32_t CompactHistory(std::uint32_t* history, std::uint32_t size, std::uint32_t tail,
-                             const std::uint8_t* mask, std::uint32_t* last) {
+std::uint32_t CompactHistory(std::uint32_t* history, std::uint32_t size, std::uint32_t tail, const std::uint8_t* mask,
+                             std::uint32_t* last) {
   std::uint32_t kept = 0;
   for (std::uint32_t t = tail; t < size; ++t) {
     const std::uint32_t line = history[t];
@@ -79,8 +78,7 @@ std::uint32_t CompactHistory(std::uint32_t* history, std::uint32_t size, std::ui
 
 }  // namespace
 
-std::size_t CacheLevel::AccessFullyAssociative(const std::uint32_t* sectors, std::size_t n,
-                                               std::uint32_t* misses) {
+std::size_t CacheLevel::AccessFullyAssociative(const std::uint32_t* sectors, std::size_t n, std::uint32_t* misses) {
   std::uint8_t* mask = mask_.data();
   std::uint32_t* last = last_.data();
   std::uint32_t* history = history_.data();

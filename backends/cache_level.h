@@ -56,7 +56,7 @@ class CacheLevel {
   std::vector<std::uint64_t> valid_;
   // fully associative
   std::uint64_t capacity_ = 0, resident_ = 0;
-  std::uint32_t tail_ = 0;                 // history entries before it are dead
+  std::uint32_t tail_ = 0;  // history entries before it are dead
   std::uint32_t history_size_ = 0;
   std::uint32_t mru_ = ~std::uint32_t{0};  // the line of the last history entry
   std::vector<std::uint8_t> mask_;         // per line: its resident sectors, 0 if absent

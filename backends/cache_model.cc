@@ -14,8 +14,7 @@ int Log2(int power_of_two) {
 
 }  // namespace
 
-CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_begin,
-                               std::uint64_t footprint_end)
+CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_begin, std::uint64_t footprint_end)
     : begin_(footprint_begin), sector_shift_(Log2(gpu.sector_bytes)), line_shift_(Log2(gpu.line_bytes)) {
   if (footprint_end < footprint_begin) throw std::invalid_argument("CacheHierarchy: empty footprint");
   if (((footprint_end - footprint_begin) >> sector_shift_) >= (std::uint64_t{1} << 31))

@@ -8,8 +8,7 @@ CpuBackend::CpuBackend() {
   specs_.name = "cpu";
   specs_.description = "host reference (OpenMP); no cost model, host wall time only";
   specs_.has_cost_model = false;
-  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                          StepProgramKind::kRmStep};
+  specs_.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep, StepProgramKind::kRmStep};
 }
 
 BatchCost CpuBackend::DoPrice(const KernelRecord& record, PricingContext&) const {
@@ -21,8 +20,7 @@ BatchCost CpuBackend::DoPrice(const KernelRecord& record, PricingContext&) const
   return cost;
 }
 
-BatchCost CpuBackend::Run(const RayCastScene& scene, const RayBatch& batch,
-                          std::vector<RayHit>& hits) const {
+BatchCost CpuBackend::Run(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits) const {
   const auto start = std::chrono::steady_clock::now();
   CastRayBatch(scene, batch, hits);
   BatchCost cost;

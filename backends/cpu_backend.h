@@ -10,8 +10,7 @@ class CpuBackend final : public Backend {
  public:
   CpuBackend();
   const BackendSpecs& specs() const override { return specs_; }
-  BatchCost Run(const RayCastScene& scene, const RayBatch& batch,
-                std::vector<RayHit>& hits) const override;
+  BatchCost Run(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits) const override;
 
  protected:
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;

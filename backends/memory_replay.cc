@@ -4,8 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 
 #include "backends/cache_model.h"
 
@@ -36,10 +36,16 @@ struct SmMisses {
 // wave except the L1 misses.
 class SmReplay {
  public:
-  SmReplay(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
-           CacheHierarchy& caches, int sm, const std::vector<std::uint32_t>& steps, SmMisses& out)
-      : record_(record), gpu_(gpu), coalesced_(pattern.coalesced), l1_(caches.L1(sm)),
-        begin_(caches.begin()), sector_shift_(caches.sector_shift()), steps_(steps), out_(out) {
+  SmReplay(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern, CacheHierarchy& caches,
+           int sm, const std::vector<std::uint32_t>& steps, SmMisses& out)
+      : record_(record),
+        gpu_(gpu),
+        coalesced_(pattern.coalesced),
+        l1_(caches.L1(sm)),
+        begin_(caches.begin()),
+        sector_shift_(caches.sector_shift()),
+        steps_(steps),
+        out_(out) {
     const std::uint32_t b = record.node_bytes;
     one_sector_nodes_ = b > 0 && (b & (b - 1)) == 0 && b <= static_cast<std::uint32_t>(gpu.sector_bytes);
     for (const MemoryRegion& r : record.regions) one_sector_nodes_ = one_sector_nodes_ && r.base % b == 0;
@@ -231,9 +237,7 @@ class SmReplay {
   }
 
   // Sectors a node of `bytes` may span at any alignment.
-  std::uint64_t SpanOf(std::uint64_t bytes) const {
-    return (bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1;
-  }
+  std::uint64_t SpanOf(std::uint64_t bytes) const { return (bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1; }
 
   void AddMiss(std::uint32_t sector, std::uint32_t owner, bool group_end) {
     out_.sector.push_back(sector);
@@ -276,9 +280,9 @@ class SmReplay {
 // approximate in what the addresses decide; the error against exact
 // replay is measured in tests/backends/sampled_pricing_test.cc.
 void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
-                       const std::vector<std::vector<std::uint32_t>>& sm_warps,
-                       const std::vector<std::uint32_t>& steps, const std::vector<int>& replayed,
-                       std::uint64_t l1_latency, bool l2_holds_footprint, MemoryProfile& profile) {
+                       const std::vector<std::vector<std::uint32_t>>& sm_warps, const std::vector<std::uint32_t>& steps,
+                       const std::vector<int>& replayed, std::uint64_t l1_latency, bool l2_holds_footprint,
+                       MemoryProfile& profile) {
   const std::size_t n = record.query_count();
   const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
   std::vector<bool> sampled_sm(gpu.sms, false);
@@ -289,7 +293,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   auto units_of_warp = [&](std::uint32_t w) -> std::uint64_t {
     if (pattern.coalesced) return steps[w];
     std::uint64_t u = 0;
-    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q) u += units_of_query(q);
+    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
+      u += units_of_query(q);
     return u;
   };
   auto extra_of_query = [&](std::size_t q) { return owner_cycles[q] - l1_latency * record.nodes(q); };
@@ -334,8 +339,10 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   std::vector<std::size_t> mine, theirs;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
     out.clear();
-    for (std::size_t q = std::size_t{warp} * lanes; q < std::min(n, (std::size_t{warp} + 1) * lanes); ++q) out.push_back(q);
-    std::stable_sort(out.begin(), out.end(), [&](std::size_t a, std::size_t b) { return record.nodes(a) < record.nodes(b); });
+    for (std::size_t q = std::size_t{warp} * lanes; q < std::min(n, (std::size_t{warp} + 1) * lanes); ++q)
+      out.push_back(q);
+    std::stable_sort(out.begin(), out.end(),
+                     [&](std::size_t a, std::size_t b) { return record.nodes(a) < record.nodes(b); });
   };
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (sampled_sm[sm]) continue;
@@ -356,14 +363,16 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       for (std::size_t i = 0; i < mine.size(); ++i) {
         const std::size_t q = mine[i];
         const bool paired = i < theirs.size() && record.nodes(theirs[i]) > 0;
-        add(owner_cycles[q], (paired ? rate(extra_of_query(theirs[i]), record.nodes(theirs[i])) : mean_extra) *
-                                 record.nodes(q));
+        add(owner_cycles[q],
+            (paired ? rate(extra_of_query(theirs[i]), record.nodes(theirs[i])) : mean_extra) * record.nodes(q));
       }
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(sampled_units);
   MemoryCounters& c = profile.totals;
-  auto scaled = [&](std::uint64_t v) { return static_cast<std::uint64_t>(std::llround(static_cast<double>(v) * scale)); };
+  auto scaled = [&](std::uint64_t v) {
+    return static_cast<std::uint64_t>(std::llround(static_cast<double>(v) * scale));
+  };
   c.sector_requests = 0;
   for (std::uint64_t r : profile.sm_sector_requests) c.sector_requests += r;
   c.l2_accesses = std::min(scaled(c.l2_accesses), c.sector_requests);
@@ -375,10 +384,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
 
 std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
   std::ostringstream key;
-  key << g.sms << ' ' << g.warp_size << ' ' << g.warps_per_block << ' ' << g.sector_bytes << ' '
-      << g.line_bytes << ' ' << g.l1_bytes << ' ' << g.l1_latency_cycles << ' ' << g.l2_bytes << ' '
-      << g.l2_ways << ' ' << g.l2_latency_cycles << ' ' << g.DramExtraCycles() << " | "
-      << p.warps_per_wave << ' ' << p.coalesced;
+  key << g.sms << ' ' << g.warp_size << ' ' << g.warps_per_block << ' ' << g.sector_bytes << ' ' << g.line_bytes << ' '
+      << g.l1_bytes << ' ' << g.l1_latency_cycles << ' ' << g.l2_bytes << ' ' << g.l2_ways << ' ' << g.l2_latency_cycles
+      << ' ' << g.DramExtraCycles() << " | " << p.warps_per_wave << ' ' << p.coalesced;
   return key.str();
 }
 
@@ -394,8 +402,7 @@ MemoryCounters& MemoryCounters::operator+=(const MemoryCounters& more) {
 }
 
 int SmOfWarp(std::size_t warp, const GpuParams& gpu) {
-  return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) %
-                          static_cast<std::size_t>(gpu.sms));
+  return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) % static_cast<std::size_t>(gpu.sms));
 }
 
 std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
@@ -410,14 +417,12 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
 // independent and the L2 order is fixed, so the result does not depend on
 // the thread count. A sampled record replays its sampled SMs only, and
 // EstimateUnsampled fills in the rest.
-MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
-                           const AccessPattern& pattern) {
+MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern) {
   const AddressSample& sample = record.address_sample;
   if (record.sampled() && !sample.SamePlacement(gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes))
     throw std::logic_error("ReplayMemory: the record's address sample was taken for another placement of warps on SMs");
   MemoryProfile profile;
-  CacheHierarchy caches(gpu, record.footprint_begin(),
-                        std::max(record.footprint_end(), record.footprint_begin()));
+  CacheHierarchy caches(gpu, record.footprint_begin(), std::max(record.footprint_end(), record.footprint_begin()));
   profile.l1_model = caches.l1_model();
   profile.l2_model = caches.l2_model();
   const std::uint64_t latency[3] = {static_cast<std::uint64_t>(caches.LatencyCycles(MemoryLevel::kL1)),
@@ -451,7 +456,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
     const int sm = replayed[i];
     SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
     const std::vector<std::uint32_t>& list = sm_warps[sm];
-    for (std::size_t lo = 0; lo < list.size(); lo += wave) replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
+    for (std::size_t lo = 0; lo < list.size(); lo += wave)
+      replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
   }
 
   std::size_t rounds = 0;
@@ -493,7 +499,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
       const std::uint64_t units = pattern.coalesced ? steps[w] : 0;
       std::uint64_t lane_units = 0;
       if (!pattern.coalesced)
-        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q) lane_units += record.nodes(q);
+        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
+          lane_units += record.nodes(q);
       const std::uint64_t u = pattern.coalesced ? units : lane_units;
       all_units += u;
       if (sample.KeepsSm(SmOfWarp(w, gpu))) sampled_units += u;
@@ -528,7 +535,8 @@ namespace {
 // Finds or starts the computation of `key` in `pending` (under `mutex`);
 // the caller that starts it computes it outside the lock, the others wait.
 template <class T, class Compute>
-std::shared_ptr<const T> Once(std::mutex& mutex, std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& pending,
+std::shared_ptr<const T> Once(std::mutex& mutex,
+                              std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& pending,
                               const std::string& key, Compute compute) {
   std::promise<std::shared_ptr<const T>> promise;
   std::shared_future<std::shared_ptr<const T>> future;
@@ -556,8 +564,7 @@ std::shared_ptr<const T> Once(std::mutex& mutex, std::map<std::string, std::shar
 
 }  // namespace
 
-std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu,
-                                                           const AccessPattern& pattern) {
+std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu, const AccessPattern& pattern) {
   return Once(mutex_, profiles_, MemoryKey(gpu, pattern), [&] { return ReplayMemory(record_, gpu, pattern); });
 }
 

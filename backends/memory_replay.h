@@ -42,9 +42,9 @@ struct AccessPattern {
 struct MemoryCounters {
   std::uint64_t sector_requests = 0;  // requests to L1, 32 bytes each
   std::uint64_t l1_hits = 0;
-  std::uint64_t l2_accesses = 0;      // L1 misses
+  std::uint64_t l2_accesses = 0;  // L1 misses
   std::uint64_t l2_hits = 0;
-  std::uint64_t dram_accesses = 0;    // L2 misses, one sector each
+  std::uint64_t dram_accesses = 0;  // L2 misses, one sector each
   MemoryCounters& operator+=(const MemoryCounters& more);
 };
 
@@ -63,8 +63,7 @@ struct MemoryProfile {
 int SmOfWarp(std::size_t warp, const GpuParams& gpu);
 std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu);
 
-MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu,
-                           const AccessPattern& pattern);
+MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern);
 
 // Per query, how many of its loop passes ended at each exit: pairs of
 // (variant, passes) in CSR form, variant 0 = no exit, 1 + j = RETURN_IF j.

@@ -7,8 +7,8 @@ BackendSpecs ModelledBackendSpecs(const std::string& name, const std::string& de
   specs.name = name;
   specs.description = description;
   specs.has_cost_model = true;
-  specs.step_programs = {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep,
-                         StepProgramKind::kRmStep, StepProgramKind::kSactTest,
+  specs.step_programs = {StepProgramKind::kGridMarch,     StepProgramKind::kDdaStep,
+                         StepProgramKind::kRmStep,        StepProgramKind::kSactTest,
                          StepProgramKind::kBallQueryPRay, StepProgramKind::kBallQueryPSphere};
   specs.clock_hz = gpu.core_clock_hz;
   specs.sms = gpu.sms;

@@ -48,8 +48,8 @@ std::uint64_t ProgramStoreMicroOps(const KernelRecord& record, const DatapathCon
   return n;
 }
 
-BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
-                        const RtUnitPricing& pricing, const std::string& backend_name) {
+BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing,
+                        const std::string& backend_name) {
   const GpuParams& gpu = *pricing.gpu;
   const RtUnitParams& unit = *pricing.unit;
   const EnergyParams& energy = *pricing.energy;
@@ -101,8 +101,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
     Tally t;
     t.Add(timing.once(), sm_threads[sm], energy);
     for (int v = 0; v < variants; ++v)
-      t.Add(timing.loop.Cost(v == 0 ? kNoExit : static_cast<std::uint8_t>(v - 1)),
-            sm_variant_passes[sm][v], energy);
+      t.Add(timing.loop.Cost(v == 0 ? kNoExit : static_cast<std::uint8_t>(v - 1)), sm_variant_passes[sm][v], energy);
     // The bounds of this unit; the largest sets its time.
     std::uint64_t cycles = Makespan(sm_warp_cycles[sm], unit.warp_buffer_warps);
     std::string bound = "latency (warp buffer)";
@@ -137,14 +136,13 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
   cost.interconnect_hops = total.hops;
   cost.ctrl_exits = total.ctrl;
   cost.nodes_counted = total.pushes;
-  cost.energy_joules =
-      total.arithmetic_joules +
-      Sram8kbJoules(total.micro_ops * energy.rt_packet_accesses_per_micro_op +
-                        total.hops * energy.rt_packet_accesses_per_hop +
-                        total.predicated * energy.rt_packet_accesses_per_predicated_op +
-                        static_cast<double>(n) * energy.rt_warp_buffer_accesses_per_thread,
-                    energy) +
-      MemoryEnergyJoules(memory->totals, gpu, energy);
+  cost.energy_joules = total.arithmetic_joules +
+                       Sram8kbJoules(total.micro_ops * energy.rt_packet_accesses_per_micro_op +
+                                         total.hops * energy.rt_packet_accesses_per_hop +
+                                         total.predicated * energy.rt_packet_accesses_per_predicated_op +
+                                         static_cast<double>(n) * energy.rt_warp_buffer_accesses_per_thread,
+                                     energy) +
+                       MemoryEnergyJoules(memory->totals, gpu, energy);
   return cost;
 }
 

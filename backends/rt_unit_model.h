@@ -38,8 +38,8 @@ struct RtUnitPricing {
   std::uint64_t launch_cycles = 0;
 };
 
-BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context,
-                        const RtUnitPricing& pricing, const std::string& backend_name);
+BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing,
+                        const std::string& backend_name);
 
 // Access pattern of the RT units: per-thread requests, warp-buffer waves.
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit);

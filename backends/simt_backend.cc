@@ -98,8 +98,8 @@ SimtClassCounts SimtBackend::FallbackInstructions(const std::vector<MicroOp>& op
 
 SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const {
   SimtInstructionMix mix;
-  mix.fp64 = simt_.precision == SimtPrecision::kHost ? record.scalar_bytes != 4
-                                                     : simt_.precision == SimtPrecision::kFp64;
+  mix.fp64 =
+      simt_.precision == SimtPrecision::kHost ? record.scalar_bytes != 4 : simt_.precision == SimtPrecision::kFp64;
   const char* precision = mix.fp64 ? "fp64" : "fp32";
   // The RT units' cost description may be a shipped variant (the artifact's
   // march); the CUDA cores run the same kernel, compiled.
@@ -107,10 +107,9 @@ SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const
   const bool beam_leaf = record.leaf_kind == LeafProgramKind::kBeamModel && record.leaf &&
                          record.leaf == ShippedLeafProgram(LeafProgramKind::kBeamModel);
   const SimtInstructionTable& table = SimtInstructionTable::Shipped();
-  const CompiledKernel* kernel =
-      shipped_program ? table.Find(ShippedProgramFile(record.step_kind), mix.fp64,
-                                   beam_leaf ? simt_.beam_leaf : SimtBeamLeaf::kNone)
-                      : nullptr;
+  const CompiledKernel* kernel = shipped_program ? table.Find(ShippedProgramFile(record.step_kind), mix.fp64,
+                                                              beam_leaf ? simt_.beam_leaf : SimtBeamLeaf::kNone)
+                                                 : nullptr;
   const bool leaf_compiled = kernel && (beam_leaf || !record.leaf);
   if (!kernel && shipped_program && beam_leaf)  // a program compiled without the leaf: the leaf falls back
     kernel = table.Find(ShippedProgramFile(record.step_kind), mix.fp64, SimtBeamLeaf::kNone);
@@ -130,8 +129,8 @@ SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const
     mix.once += FallbackInstructions(program.section(ProgramSection::kEpilogue), false, mix.fp64);
     mix.pass = FallbackInstructions(program.section(ProgramSection::kLoop), true, mix.fp64);
     mix.registers = simt_.fallback_registers_per_thread;
-    mix.source = std::string("per-op fallback (") + precision + "): program '" + program.name() +
-                 "' has no compiled kernel";
+    mix.source =
+        std::string("per-op fallback (") + precision + "): program '" + program.name() + "' has no compiled kernel";
   }
   if (record.leaf && !leaf_compiled) {
     mix.once += FallbackInstructions(record.leaf->section(ProgramSection::kEpilogue), false, mix.fp64);
@@ -157,9 +156,8 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
   };
   const MicroProgram& program = *record.program;
   SectionWork once = work_of(program.section(ProgramSection::kPrologue));
-  for (const std::vector<MicroOp>* ops :
-       {&program.section(ProgramSection::kEpilogue),
-        record.leaf ? &record.leaf->section(ProgramSection::kEpilogue) : nullptr}) {
+  for (const std::vector<MicroOp>* ops : {&program.section(ProgramSection::kEpilogue),
+                                          record.leaf ? &record.leaf->section(ProgramSection::kEpilogue) : nullptr}) {
     if (!ops) continue;
     const SectionWork w = work_of(*ops);
     for (int i = 0; i < kOpcodeCount; ++i) once.micro_ops[i] += w.micro_ops[i];
@@ -222,19 +220,17 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
   FinishKernelCycles(cost, static_cast<std::uint64_t>(gpu_.kernel_launch_cycles), busiest, gpu_);
   cost.warp_instructions = warp_instructions;
   cost.thread_instructions = thread_instructions;
-  cost.simt_efficiency =
-      warp_instructions == 0 ? 1.0
+  cost.simt_efficiency = warp_instructions == 0
+                             ? 1.0
                              : static_cast<double>(thread_instructions) /
                                    (static_cast<double>(gpu_.warp_size) * static_cast<double>(warp_instructions));
-  for (int i = 0; i < kOpcodeCount; ++i)
-    cost.micro_ops[i] = n * once.micro_ops[i] + cost.nodes * pass.micro_ops[i];
+  for (int i = 0; i < kOpcodeCount; ++i) cost.micro_ops[i] = n * once.micro_ops[i] + cost.nodes * pass.micro_ops[i];
   cost.nodes_counted = cost.micro_ops[static_cast<int>(Opcode::kPush)];
   cost.energy_joules =
       static_cast<double>(n) * once.arithmetic_joules + static_cast<double>(cost.nodes) * pass.arithmetic_joules +
       Sram32kbJoules(static_cast<double>(warp_instructions) * energy_.simt_icache_accesses_per_warp_instruction,
                      energy_) +
-      Sram8kbJoules(static_cast<double>(thread_instructions) *
-                        energy_.simt_register_accesses_per_thread_instruction,
+      Sram8kbJoules(static_cast<double>(thread_instructions) * energy_.simt_register_accesses_per_thread_instruction,
                     energy_) +
       MemoryEnergyJoules(memory->totals, gpu_, energy_);
   return cost;

@@ -11,8 +11,8 @@ const char* EmbeddedSimtInstructionTable();
 
 namespace {
 
-constexpr const char* kClassNames[kSimtClassCount] = {"fp32",     "fp64", "int",  "fp32_div", "fp64_div", "int_div",
-                                                      "sfu",      "load", "store", "branch",  "other"};
+constexpr const char* kClassNames[kSimtClassCount] = {"fp32", "fp64", "int",   "fp32_div", "fp64_div", "int_div",
+                                                      "sfu",  "load", "store", "branch",   "other"};
 
 using Json = nlohmann::json;
 
@@ -136,8 +136,7 @@ bool SimtInstructionTable::has_sass() const {
   return !entries_.empty();
 }
 
-const CompiledKernel* SimtInstructionTable::Find(const std::string& program_file, bool fp64,
-                                                 SimtBeamLeaf leaf) const {
+const CompiledKernel* SimtInstructionTable::Find(const std::string& program_file, bool fp64, SimtBeamLeaf leaf) const {
   for (const Entry& e : entries_)
     if (e.program_file == program_file && e.fp64 == fp64 && e.leaf == leaf) return &e.kernel;
   return nullptr;

@@ -60,8 +60,8 @@ struct CompiledSections {
 
 // One compiled entry point.
 struct CompiledKernel {
-  std::string name;       // e.g. "rc_march_fp64"
-  int registers = 0;      // per thread, ptxas -v
+  std::string name;   // e.g. "rc_march_fp64"
+  int registers = 0;  // per thread, ptxas -v
   CompiledSections ptx;
   CompiledSections sass;
   bool has_sass = false;

@@ -8,9 +8,7 @@ namespace rc {
 TtaPlusBackend::TtaPlusBackend(const BackendParameters& params, EarlyExitMode mode)
     : gpu_(params.gpu), ttaplus_(params.ttaplus), energy_(params.energy), mode_(mode) {
   switch (mode) {
-    case EarlyExitMode::kNone:
-      specs_ = ModelledBackendSpecs("ttaplus", "TTA+ units, no early exit", gpu_);
-      break;
+    case EarlyExitMode::kNone: specs_ = ModelledBackendSpecs("ttaplus", "TTA+ units, no early exit", gpu_); break;
     case EarlyExitMode::kPredication:
       specs_ = ModelledBackendSpecs("ttaplus-p", "TTA+ units, early exit by predication", gpu_);
       break;
@@ -28,10 +26,9 @@ BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& co
   pricing.gpu = &gpu_;
   pricing.energy = &energy_;
   pricing.datapath = ttaplus_.Datapath(mode_);
-  pricing.launch_cycles =
-      static_cast<std::uint64_t>(gpu_.kernel_launch_cycles) +
-      ProgramStoreMicroOps(record, pricing.datapath) *
-          static_cast<std::uint64_t>(ttaplus_.unit.program_config_cycles_per_micro_op);
+  pricing.launch_cycles = static_cast<std::uint64_t>(gpu_.kernel_launch_cycles) +
+                          ProgramStoreMicroOps(record, pricing.datapath) *
+                              static_cast<std::uint64_t>(ttaplus_.unit.program_config_cycles_per_micro_op);
   return PriceOnRtUnit(record, context, pricing, specs_.name);
 }
 

@@ -40,8 +40,7 @@ constexpr int kParticles = 500;
 constexpr int kBeams = 180;
 constexpr double kMaxRangeM = 10.0;
 
-const RayCastMethod kMethods[] = {RayCastMethod::kMarch, RayCastMethod::kDda,
-                                  RayCastMethod::kRayMarching};
+const RayCastMethod kMethods[] = {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching};
 
 struct Workload {
   OccupancyGrid grid;
@@ -62,8 +61,7 @@ const Workload* LoadWorkload() {
       const double x = s.Uniform(0, w->grid.extent_x_m()), y = s.Uniform(0, w->grid.extent_y_m());
       if (!w->grid.IsFreePoint(x, y)) continue;
       const double heading = s.Uniform(-kPi, kPi);
-      for (int k = 0; k < kBeams; ++k)
-        w->batch.queries.push_back({x, y, heading - kPi / 2 + kPi * k / (kBeams - 1)});
+      for (int k = 0; k < kBeams; ++k) w->batch.queries.push_back({x, y, heading - kPi / 2 + kPi * k / (kBeams - 1)});
       ++placed;
     }
     std::vector<RayHit> hits;

@@ -32,14 +32,16 @@ constexpr int kStates = 10000;
 constexpr int kQueries = 1000;
 
 struct Data {
-  std::shared_ptr<ompl::base::RealVectorStateSpace> space = std::make_shared<ompl::base::RealVectorStateSpace>(kDimension);
+  std::shared_ptr<ompl::base::RealVectorStateSpace> space =
+      std::make_shared<ompl::base::RealVectorStateSpace>(kDimension);
   std::vector<State> states, queries;
   Data() {
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> u(-M_PI / 2, M_PI / 2);  // joint limits, rad
     auto make = [&] {
       State s = space->allocState();
-      for (unsigned i = 0; i < kDimension; ++i) s->as<ompl::base::RealVectorStateSpace::StateType>()->values[i] = u(rng);
+      for (unsigned i = 0; i < kDimension; ++i)
+        s->as<ompl::base::RealVectorStateSpace::StateType>()->values[i] = u(rng);
       return s;
     };
     for (int i = 0; i < kStates; ++i) states.push_back(make());

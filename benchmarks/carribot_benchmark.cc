@@ -46,8 +46,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "maps/movingai_map_loader.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "maps/movingai_map_loader.h"
 #include "workloads/carribot/carribot_run.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/grid_upscaling.h"
@@ -183,8 +183,12 @@ void BM_IntelRoWildQueryDefaultPath(benchmark::State& state) {
     settings.planner.footprint = RectangleFootprint{4 * cell, 10 * cell, 8, FootprintCheckMode::kPrecomputed};
     // RoWild's corner (227, 33) -> (59, 217) times the scale, plus (5, 2)
     // cells to the car's centre (rcbench carribot --offset 5,2).
-    const CarribotQuery query{0, std::nullopt, {227 * scale + 5, 33 * scale + 2, 0},
-                              {59 * scale + 5, 217 * scale + 2, 0}, std::nullopt, "RoWild's Intel query"};
+    const CarribotQuery query{0,
+                              std::nullopt,
+                              {227 * scale + 5, 33 * scale + 2, 0},
+                              {59 * scale + 5, 217 * scale + 2, 0},
+                              std::nullopt,
+                              "RoWild's Intel query"};
     run = RunCarribot(grid, {query}, settings, true);
   }
   if (run.rows.empty() || !run.rows.front().result.found()) {
@@ -218,8 +222,9 @@ const bool kRegistered = [] {
     const int last = data->buckets.rbegin()->first;
     for (const int bucket : {0, last / 4, last / 2, 3 * last / 4, last}) {
       if (data->buckets.count(bucket) == 0) continue;
-      benchmark::RegisterBenchmark(("BM_MovingAiBucket/" + std::string(map_name) + "/" + std::to_string(bucket)).c_str(),
-                                   BM_MovingAiBucket, std::string(map_name), bucket)
+      benchmark::RegisterBenchmark(
+          ("BM_MovingAiBucket/" + std::string(map_name) + "/" + std::to_string(bucket)).c_str(), BM_MovingAiBucket,
+          std::string(map_name), bucket)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
     }

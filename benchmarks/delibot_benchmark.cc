@@ -108,7 +108,8 @@ void BM_DelibotRoWildWork(benchmark::State& state, RayCastMethod caster) {
   }
   omp_set_num_threads(saved_threads);
   Report(state, last, cpu_s);
-  state.SetLabel(ToString(caster) + ", " + std::to_string(particles) + " particles x 180 beams x 200 updates, 1 thread");
+  state.SetLabel(ToString(caster) + ", " + std::to_string(particles) +
+                 " particles x 180 beams x 200 updates, 1 thread");
 }
 
 void BM_DelibotThreads(benchmark::State& state) {
@@ -135,14 +136,28 @@ void BM_DelibotThreads(benchmark::State& state) {
 }
 
 BENCHMARK_CAPTURE(BM_DelibotRoWildWork, rm, RayCastMethod::kRayMarching)
-    ->Arg(500)->Arg(2000)->Iterations(1)->Unit(benchmark::kSecond);
+    ->Arg(500)
+    ->Arg(2000)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DelibotRoWildWork, dda, RayCastMethod::kDda)
-    ->Arg(500)->Arg(2000)->Iterations(1)->Unit(benchmark::kSecond);
+    ->Arg(500)
+    ->Arg(2000)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(BM_DelibotRoWildWork, march, RayCastMethod::kMarch)
-    ->Arg(500)->Arg(2000)->Iterations(1)->Unit(benchmark::kSecond);
+    ->Arg(500)
+    ->Arg(2000)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 BENCHMARK(BM_DelibotThreads)
-    ->Args({2000, 1})->Args({2000, 2})->Args({8000, 1})->Args({8000, 2})
-    ->Iterations(1)->UseRealTime()->Unit(benchmark::kSecond);
+    ->Args({2000, 1})
+    ->Args({2000, 2})
+    ->Args({8000, 1})
+    ->Args({8000, 2})
+    ->Iterations(1)
+    ->UseRealTime()
+    ->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace rc

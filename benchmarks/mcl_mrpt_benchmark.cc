@@ -102,9 +102,15 @@ void BM_MclTracking(benchmark::State& state, DelibotEngine engine) {
 }
 
 BENCHMARK_CAPTURE(BM_MclTracking, ours, DelibotEngine::kOurs)
-    ->Arg(1000)->Arg(5000)->Iterations(1)->Unit(benchmark::kMillisecond);
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_MclTracking, mrpt, DelibotEngine::kMrpt)
-    ->Arg(1000)->Arg(5000)->Iterations(1)->Unit(benchmark::kMillisecond);
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace rc

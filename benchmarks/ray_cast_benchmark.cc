@@ -95,8 +95,8 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
     }
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * queries.size()));
-  state.counters["queries_per_s"] = benchmark::Counter(static_cast<double>(state.iterations() * queries.size()),
-                                                       benchmark::Counter::kIsRate);
+  state.counters["queries_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * queries.size()), benchmark::Counter::kIsRate);
   state.counters["nodes_per_query"] =
       static_cast<double>(nodes) / static_cast<double>(state.iterations() * queries.size());
   state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;

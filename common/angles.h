@@ -24,9 +24,7 @@ class CircularMean {
   }
   double Mean() const { return std::atan2(sum_sin_, sum_cos_); }
   // Mean resultant length in [0, 1]: 1 = all headings equal.
-  double Resultant() const {
-    return total_weight_ > 0 ? std::hypot(sum_cos_, sum_sin_) / total_weight_ : 0.0;
-  }
+  double Resultant() const { return total_weight_ > 0 ? std::hypot(sum_cos_, sum_sin_) / total_weight_ : 0.0; }
 
  private:
   double sum_cos_ = 0.0;

@@ -16,8 +16,7 @@ void CreateParentFolders(const std::string& path) {
   if (parent.empty()) return;
   std::error_code error;
   std::filesystem::create_directories(parent, error);
-  if (error)
-    throw OutputError(path, "cannot create the output folder '" + parent.string() + "': " + error.message());
+  if (error) throw OutputError(path, "cannot create the output folder '" + parent.string() + "': " + error.message());
 }
 
 AtomicFile::AtomicFile(std::string path)

@@ -13,7 +13,8 @@ const std::vector<ExitCodeEntry>& ExitCodeTable() {
       {ExitCode::kInputError,
        "bad input: a file cannot be read or written, or holds a malformed or impossible value "
        "(the message names file, line and field), or the input makes the run impossible"},
-      {ExitCode::kUsage, "bad command line: an unknown option, a value out of range, or a size that cannot fit in memory"},
+      {ExitCode::kUsage,
+       "bad command line: an unknown option, a value out of range, or a size that cannot fit in memory"},
       {ExitCode::kNoPath, "no path was found (outputs are still written)"},
       {ExitCode::kInternalError, "internal error (a bug; please report it with the command line)"},
   };

@@ -22,8 +22,7 @@ class InputError : public std::runtime_error {
   const std::string& field() const { return field_; }
 
  private:
-  static std::string Format(const std::string& file, long line, const std::string& field,
-                            const std::string& problem) {
+  static std::string Format(const std::string& file, long line, const std::string& field, const std::string& problem) {
     std::string where = file;
     if (line > 0) where += ":" + std::to_string(line);
     if (!field.empty()) where += ": field '" + field + "'";
@@ -46,8 +45,7 @@ class UsageError : public std::runtime_error {
 // bug; the message names the path.
 class OutputError : public std::runtime_error {
  public:
-  OutputError(const std::string& path, const std::string& problem)
-      : std::runtime_error(path + ": " + problem) {}
+  OutputError(const std::string& path, const std::string& problem) : std::runtime_error(path + ": " + problem) {}
 };
 
 }  // namespace rc

@@ -28,8 +28,7 @@ enum class StreamPurpose : std::uint64_t {
 
 class RandomStream {
  public:
-  RandomStream(std::uint64_t seed, StreamPurpose purpose, std::uint64_t iteration,
-               std::uint64_t index) {
+  RandomStream(std::uint64_t seed, StreamPurpose purpose, std::uint64_t iteration, std::uint64_t index) {
     std::uint64_t h = Mix(seed ^ 0x9E3779B97F4A7C15ULL);
     h = Mix(h ^ static_cast<std::uint64_t>(purpose));
     h = Mix(h ^ (iteration * 0xD1B54A32D192ED03ULL));

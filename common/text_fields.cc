@@ -32,8 +32,7 @@ std::vector<std::string_view> SplitFields(std::string_view line, bool comma_sepa
   return out;
 }
 
-LineReader::LineReader(std::istream& in, std::string file_name)
-    : in_(in), file_(std::move(file_name)) {}
+LineReader::LineReader(std::istream& in, std::string file_name) : in_(in), file_(std::move(file_name)) {}
 
 bool LineReader::Next(std::string& line) {
   if (!std::getline(in_, line)) return false;
@@ -54,18 +53,16 @@ double LineReader::ParseDouble(std::string_view token, const std::string& field)
   return value;
 }
 
-long LineReader::ParseInt(std::string_view token, const std::string& field, long min_value,
-                          long max_value) const {
+long LineReader::ParseInt(std::string_view token, const std::string& field, long min_value, long max_value) const {
   if (token.empty()) Fail(field, "empty value where an integer was expected");
   std::string text(token);
   char* end = nullptr;
   errno = 0;
   long value = std::strtol(text.c_str(), &end, 10);
-  if (end != text.c_str() + text.size() || errno == ERANGE)
-    Fail(field, "'" + text + "' is not an integer");
+  if (end != text.c_str() + text.size() || errno == ERANGE) Fail(field, "'" + text + "' is not an integer");
   if (value < min_value || value > max_value)
-    Fail(field, std::to_string(value) + " is outside [" + std::to_string(min_value) + ", " +
-                    std::to_string(max_value) + "]");
+    Fail(field,
+         std::to_string(value) + " is outside [" + std::to_string(min_value) + ", " + std::to_string(max_value) + "]");
   return value;
 }
 

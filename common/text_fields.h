@@ -28,8 +28,7 @@ class LineReader {
   // Parses a finite double; throws InputError naming the field otherwise.
   double ParseDouble(std::string_view token, const std::string& field) const;
   // Parses an integer in [min_value, max_value].
-  long ParseInt(std::string_view token, const std::string& field, long min_value,
-                long max_value) const;
+  long ParseInt(std::string_view token, const std::string& field, long min_value, long max_value) const;
   [[noreturn]] void Fail(const std::string& field, const std::string& problem) const;
 
  private:

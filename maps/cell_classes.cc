@@ -1,6 +1,5 @@
 #include "maps/cell_classes.h"
 
-
 #include <fmt/format.h>
 
 namespace rc {
@@ -27,8 +26,8 @@ std::string CellClassCounts::Describe() const {
   auto part = [&](const char* name, CellClass c) {
     return std::string(name) + " " + Grouped(Of(c)) + " (" + Percent(Of(c), total) + ")";
   };
-  std::string text = part("free", CellClass::kFree) + ", " + part("occupied", CellClass::kOccupied) + ", unknown: " +
-                     "between thresholds " + Grouped(Of(CellClass::kBetweenThresholds)) + " (" +
+  std::string text = part("free", CellClass::kFree) + ", " + part("occupied", CellClass::kOccupied) +
+                     ", unknown: " + "between thresholds " + Grouped(Of(CellClass::kBetweenThresholds)) + " (" +
                      Percent(Of(CellClass::kBetweenThresholds), total) + " of all, " +
                      Percent(Of(CellClass::kBetweenThresholds), observed) + " of observed)";
   return text + ", " + part("never observed", CellClass::kUnobserved);
@@ -37,7 +36,9 @@ std::string CellClassCounts::Describe() const {
 CellClassCounts CountStates(const OccupancyGrid& grid) {
   CellClassCounts counts;
   for (CellState s : grid.cells())
-    counts.Add(s == CellState::kFree ? CellClass::kFree : s == CellState::kOccupied ? CellClass::kOccupied : CellClass::kUnobserved);
+    counts.Add(s == CellState::kFree       ? CellClass::kFree
+               : s == CellState::kOccupied ? CellClass::kOccupied
+                                           : CellClass::kUnobserved);
   return counts;
 }
 

@@ -42,8 +42,7 @@ OccupancyGrid LoadCmuMap(const std::string& path, const CmuMapOptions& options, 
   }
   if (size_x < 0) throw InputError(path, reader.line_number(), "global_map[0]", "missing map size line");
   auto resolution_it = spec.find("resolution");
-  if (resolution_it == spec.end())
-    throw InputError(path, 0, "robot_specifications->resolution", "missing");
+  if (resolution_it == spec.end()) throw InputError(path, 0, "robot_specifications->resolution", "missing");
   const double resolution_cm = resolution_it->second.value;
   if (!(resolution_cm > 0.0))
     throw InputError(path, resolution_it->second.line, "robot_specifications->resolution", "must be positive (cm)");
@@ -54,13 +53,12 @@ OccupancyGrid LoadCmuMap(const std::string& path, const CmuMapOptions& options, 
     const long cells = axis[0] == 'x' ? size_x : size_y;
     if (std::abs(it->second.value - cells * resolution_cm) > 0.5 * resolution_cm)
       throw InputError(path, it->second.line, std::string("robot_specifications->global_mapsize_") + axis,
-                       "extent " + std::to_string(it->second.value) + " cm disagrees with " +
-                           std::to_string(cells) + " cells of " + std::to_string(resolution_cm) + " cm");
+                       "extent " + std::to_string(it->second.value) + " cm disagrees with " + std::to_string(cells) +
+                           " cells of " + std::to_string(resolution_cm) + " cm");
   }
 
   CheckMapSize(path, size_line, "global_map[0]", size_x, size_y);
-  OccupancyGrid grid(static_cast<int>(size_x), static_cast<int>(size_y), resolution_cm / 100.0,
-                     CellState::kUnknown);
+  OccupancyGrid grid(static_cast<int>(size_x), static_cast<int>(size_y), resolution_cm / 100.0, CellState::kUnknown);
   ReadProbabilityRows(reader, options.convention, options.thresholds, &grid, counts);
   RequireNoTrailingData(reader);
   return grid;

@@ -23,7 +23,6 @@ struct CmuMapOptions {
 // Throws InputError (file, line, field) on any malformed or truncated input,
 // and for a declared size beyond the limits of grid_size_limits.h before
 // allocating it. Adds each cell's class to *counts when given.
-OccupancyGrid LoadCmuMap(const std::string& path, const CmuMapOptions& options = {},
-                         CellClassCounts* counts = nullptr);
+OccupancyGrid LoadCmuMap(const std::string& path, const CmuMapOptions& options = {}, CellClassCounts* counts = nullptr);
 
 }  // namespace rc

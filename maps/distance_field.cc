@@ -31,8 +31,7 @@ DistanceField DistanceField::Build(const OccupancyGrid& grid, DistanceTarget tar
   }
   field.distances_m_.resize(grid.cell_count());
   if (!any_target) {
-    std::fill(field.distances_m_.begin(), field.distances_m_.end(),
-              std::numeric_limits<float>::infinity());
+    std::fill(field.distances_m_.begin(), field.distances_m_.end(), std::numeric_limits<float>::infinity());
     return field;
   }
   cv::Mat distance_cells;

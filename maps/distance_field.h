@@ -31,9 +31,7 @@ class DistanceField {
   // Distance in metres at cell (ix, iy), x-major like the grid. If the grid
   // has no target cell at all, every value is +inf (kOccupied and kFree;
   // with kBlocking the map border is always a target).
-  float At(int ix, int iy) const {
-    return distances_m_[static_cast<std::size_t>(ix) * size_y_ + iy];
-  }
+  float At(int ix, int iy) const { return distances_m_[static_cast<std::size_t>(ix) * size_y_ + iy]; }
   const std::vector<float>& values() const { return distances_m_; }
   std::size_t memory_bytes() const { return distances_m_.size() * sizeof(float); }
 

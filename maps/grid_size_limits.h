@@ -22,19 +22,18 @@ constexpr long long kMaxMapCells = 1LL << 28;
 // kMaxMapCellsPerSide, size_x * size_y <= kMaxMapCells, and the grid's cells
 // fit the memory cap (common/memory_cap.h). Loaders call it before they
 // allocate the grid.
-inline void CheckMapSize(const std::string& file, long line, const std::string& field, long size_x,
-                         long size_y) {
+inline void CheckMapSize(const std::string& file, long line, const std::string& field, long size_x, long size_y) {
   if (size_x < 1 || size_y < 1 || size_x > kMaxMapCellsPerSide || size_y > kMaxMapCellsPerSide)
     throw InputError(file, line, field,
                      "map size " + std::to_string(size_x) + " x " + std::to_string(size_y) +
-                         " cells is impossible (each side must be in [1, " +
-                         std::to_string(kMaxMapCellsPerSide) + "])");
+                         " cells is impossible (each side must be in [1, " + std::to_string(kMaxMapCellsPerSide) +
+                         "])");
   if (static_cast<long long>(size_x) * size_y > kMaxMapCells)
     throw InputError(file, line, field,
                      "map size " + std::to_string(size_x) + " x " + std::to_string(size_y) +
                          " cells exceeds the limit of " + std::to_string(kMaxMapCells) + " cells");
-  const std::uint64_t need = BytesFor(static_cast<std::uint64_t>(size_x) * static_cast<std::uint64_t>(size_y),
-                                      sizeof(CellState));
+  const std::uint64_t need =
+      BytesFor(static_cast<std::uint64_t>(size_x) * static_cast<std::uint64_t>(size_y), sizeof(CellState));
   if (need > MemoryCapBytes())
     throw InputError(file, line, field,
                      "map size " + std::to_string(size_x) + " x " + std::to_string(size_y) + " cells " +

@@ -37,10 +37,10 @@ OccupancyGrid GenerateHallMap(const HallMapOptions& options) {
   OccupancyGrid grid(size_x, size_y, options.resolution_m, CellState::kFree);
 
   std::vector<MetricRect> obstacles = {
-      {0.0, 0.0, kHallWidthM, kWallM},                              // south wall
-      {0.0, kHallHeightM - kWallM, kHallWidthM, kHallHeightM},      // north wall
-      {0.0, 0.0, kWallM, kHallHeightM},                             // west wall
-      {kHallWidthM - kWallM, 0.0, kHallWidthM, kHallHeightM},       // east wall
+      {0.0, 0.0, kHallWidthM, kWallM},                          // south wall
+      {0.0, kHallHeightM - kWallM, kHallWidthM, kHallHeightM},  // north wall
+      {0.0, 0.0, kWallM, kHallHeightM},                         // west wall
+      {kHallWidthM - kWallM, 0.0, kHallWidthM, kHallHeightM},   // east wall
   };
   for (int row = 0; row < 4; ++row) {  // racks: y = 6, 14, 22, 30 m
     const double y0 = 6.0 + 8.0 * row;
@@ -63,7 +63,8 @@ OccupancyGrid GenerateHallMap(const HallMapOptions& options) {
     const double y0 = rng.Uniform(kWallM + kPalletClearanceM, kHallHeightM - kWallM - kPalletClearanceM - h);
     const MetricRect pallet{x0, y0, x0 + w, y0 + h};
     bool clear = true;
-    for (const MetricRect& o : obstacles) clear = clear && !Overlaps(Inflate(pallet, kPalletClearanceM, kPalletClearanceM), o);
+    for (const MetricRect& o : obstacles)
+      clear = clear && !Overlaps(Inflate(pallet, kPalletClearanceM, kPalletClearanceM), o);
     if (!clear) continue;
     FillRect(pallet, CellState::kOccupied, &grid);
     obstacles.push_back(pallet);

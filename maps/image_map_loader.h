@@ -22,7 +22,6 @@ struct ImageMapOptions {
 // thresholds (they come from the command line, not the file), and
 // InputError naming the image for a missing or undecodable image.
 // Adds each cell's class to *counts when given.
-OccupancyGrid LoadImageMap(const std::string& path, const ImageMapOptions& options,
-                           CellClassCounts* counts = nullptr);
+OccupancyGrid LoadImageMap(const std::string& path, const ImageMapOptions& options, CellClassCounts* counts = nullptr);
 
 }  // namespace rc

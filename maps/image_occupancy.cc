@@ -24,13 +24,11 @@ std::string PixelField(int row, int column) {
 }
 
 // Raw mode: the mean must be an exact occupancy percentage or 255.
-CellClass ClassifyRawPixel(double v, const PixelThresholds& t, const std::string& image_path,
-                           int row, int column) {
+CellClass ClassifyRawPixel(double v, const PixelThresholds& t, const std::string& image_path, int row, int column) {
   if (v == kRawUnknown) return CellClass::kUnobserved;
   if (v != std::floor(v) || v > 100.0)
-    throw InputError(
-        image_path, 0, PixelField(row, column),
-        "raw-mode value " + Text(v) + " is not an occupancy percentage (0..100) or 255 (unknown)");
+    throw InputError(image_path, 0, PixelField(row, column),
+                     "raw-mode value " + Text(v) + " is not an occupancy percentage (0..100) or 255 (unknown)");
   const double p = v / 100.0;
   if (p > t.occupied_thresh) return CellClass::kOccupied;
   if (p < t.free_thresh) return CellClass::kFree;
@@ -68,15 +66,15 @@ bool CheckPixelThresholds(const PixelThresholds& t, std::string* field, std::str
   if (!std::isfinite(t.free_thresh) || t.free_thresh < 0.0 || t.free_thresh > 1.0)
     return fail("free_thresh", "must be a number in [0, 1], got " + Text(t.free_thresh));
   if (t.free_thresh >= t.occupied_thresh)
-    return fail("free_thresh", "must be below occupied_thresh (" + Text(t.free_thresh) +
-                                   " >= " + Text(t.occupied_thresh) + ")");
+    return fail("free_thresh",
+                "must be below occupied_thresh (" + Text(t.free_thresh) + " >= " + Text(t.occupied_thresh) + ")");
   return true;
 }
 
 CellState ClassifyPixelMean(double v, const PixelThresholds& t) { return StateOf(ClassifyPixelMeanClass(v, t)); }
 
-OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
-                            const PixelThresholds& thresholds, ImageMapMode mode, CellClassCounts* counts) {
+OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, const PixelThresholds& thresholds,
+                            ImageMapMode mode, CellClassCounts* counts) {
   // Checked first: OpenCV would also print its own warning for a missing file.
   if (!std::ifstream(image_path)) throw InputError(image_path, 0, "", "cannot open image file");
   // A corrupt file can make a decoder throw (cv::Exception) instead of
@@ -88,17 +86,15 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
     throw InputError(image_path, 0, "", std::string("cannot decode the image (corrupt): ") + e.what());
   }
   if (image.empty())
-    throw InputError(image_path, 0, "",
-                     "cannot decode the image (not an image format OpenCV knows, or corrupt)");
+    throw InputError(image_path, 0, "", "cannot decode the image (not an image format OpenCV knows, or corrupt)");
   if (image.depth() != CV_8U)
     throw InputError(image_path, 0, "",
-                     "only 8-bit images are supported (this one has " +
-                         std::to_string(8 * image.elemSize1()) + "-bit channels)");
+                     "only 8-bit images are supported (this one has " + std::to_string(8 * image.elemSize1()) +
+                         "-bit channels)");
   const int channels = image.channels();
   if (channels != 1 && channels != 3 && channels != 4)
-    throw InputError(
-        image_path, 0, "",
-        "unsupported channel count " + std::to_string(channels) + " (expected 1, 3 or 4)");
+    throw InputError(image_path, 0, "",
+                     "unsupported channel count " + std::to_string(channels) + " (expected 1, 3 or 4)");
   CheckMapSize(image_path, 0, "", image.cols, image.rows);
 
   // Alpha is the last channel of a 4-channel image (BGRA).
@@ -112,9 +108,8 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
       int sum = 0;
       for (int k = 0; k < averaged; ++k) sum += pixel[k];
       const double mean = sum / static_cast<double>(averaged);
-      const CellClass c = mode == ImageMapMode::kRaw
-                              ? ClassifyRawPixel(mean, thresholds, image_path, row, column)
-                              : ClassifyPixelMeanClass(mean, thresholds);
+      const CellClass c = mode == ImageMapMode::kRaw ? ClassifyRawPixel(mean, thresholds, image_path, row, column)
+                                                     : ClassifyPixelMeanClass(mean, thresholds);
       if (counts) counts->Add(c);
       grid.Set(column, iy, StateOf(c));
     }

@@ -64,8 +64,7 @@ CellState ClassifyPixelMean(double v, const PixelThresholds& t);
 // naming the offending pixel's row and column. Thresholds must be valid.
 // Adds each cell's class to *counts when given (raw 255 is never observed;
 // every other unknown pixel lies between the thresholds).
-OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m,
-                            const PixelThresholds& thresholds, ImageMapMode mode,
-                            CellClassCounts* counts = nullptr);
+OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, const PixelThresholds& thresholds,
+                            ImageMapMode mode, CellClassCounts* counts = nullptr);
 
 }  // namespace rc

@@ -64,11 +64,10 @@ std::string Number(double v) {
 }
 
 std::string DescribeProbability(ValueConvention c, const ProbabilityThresholds& t) {
-  const std::string meaning =
-      c == ValueConvention::kProbabilityFree
-          ? "values are P(free) (the Wean data's real convention), P(occupied) = 1 - value"
-          : "values are P(occupied) (the format note's and RoWild's reading, which inverts the "
-            "Wean data)";
+  const std::string meaning = c == ValueConvention::kProbabilityFree
+                                  ? "values are P(free) (the Wean data's real convention), P(occupied) = 1 - value"
+                                  : "values are P(occupied) (the format note's and RoWild's reading, which inverts the "
+                                    "Wean data)";
   return meaning + "; occupied if P(occupied) >= " + Number(t.occupied_thresh) +
          ", free if <= " + Number(t.free_thresh) + ", unknown between and for -1";
 }
@@ -76,13 +75,12 @@ std::string DescribeProbability(ValueConvention c, const ProbabilityThresholds& 
 std::string DescribePixels(const PixelThresholds& t, ImageMapMode mode) {
   std::string text = "map_server " + ToString(mode) +
                      " rule: p = " + (t.negate ? "v / 255 (negate)" : "(255 - v) / 255") +
-                     " for channel mean v; occupied if p > " + Number(t.occupied_thresh) +
-                     ", free if p < " + Number(t.free_thresh) + ", else unknown";
+                     " for channel mean v; occupied if p > " + Number(t.occupied_thresh) + ", free if p < " +
+                     Number(t.free_thresh) + ", else unknown";
   if (mode == ImageMapMode::kScale) text += " (scale mode's partial values become unknown)";
   if (mode == ImageMapMode::kRaw)
-    text = "map_server raw values: v = occupancy percent, occupied if v/100 > " +
-           Number(t.occupied_thresh) + ", free if v/100 < " + Number(t.free_thresh) +
-           ", 255 unknown";
+    text = "map_server raw values: v = occupancy percent, occupied if v/100 > " + Number(t.occupied_thresh) +
+           ", free if v/100 < " + Number(t.free_thresh) + ", 255 unknown";
   return text;
 }
 
@@ -102,10 +100,8 @@ LoadedMap LoadMap(const std::string& path, const MapLoadOptions& options) {
   LoadedMap out;
   out.format = format;
   if (format == "cmu" || format == "rowild") {
-    RejectOption(options.resolution_m.has_value(), "resolution",
-                 format + " (the file declares it)");
-    const ValueConvention convention =
-        options.convention.value_or(ValueConvention::kProbabilityFree);
+    RejectOption(options.resolution_m.has_value(), "resolution", format + " (the file declares it)");
+    const ValueConvention convention = options.convention.value_or(ValueConvention::kProbabilityFree);
     const ProbabilityThresholds thresholds = ThresholdsFrom(options);
     if (format == "cmu") {
       CmuMapOptions o;
@@ -136,23 +132,21 @@ LoadedMap LoadMap(const std::string& path, const MapLoadOptions& options) {
     o.resolution_m = options.resolution_m.value_or(o.resolution_m);
     out.grid = LoadMovingAiMap(path, o);
     out.cell_classes = CountStates(out.grid);
-    out.value_convention = "MovingAI terrain: '.' 'G' free; '@' 'O' 'T' 'S' 'W' occupied; " +
-                           Number(o.resolution_m) + " m per cell";
+    out.value_convention =
+        "MovingAI terrain: '.' 'G' free; '@' 'O' 'T' 'S' 'W' occupied; " + Number(o.resolution_m) + " m per cell";
   } else if (format == "image") {
     RejectOption(options.convention.has_value(), "value convention", "image");
-    if (!options.resolution_m)
-      throw UsageError("an image map needs a resolution (m per cell); the image has no scale");
+    if (!options.resolution_m) throw UsageError("an image map needs a resolution (m per cell); the image has no scale");
     ImageMapOptions o;
     o.resolution_m = *options.resolution_m;
     const ProbabilityThresholds thresholds = ThresholdsFrom(options);
     o.thresholds.occupied_thresh = thresholds.occupied_thresh;
     o.thresholds.free_thresh = thresholds.free_thresh;
     out.grid = LoadImageMap(path, o, &out.cell_classes);
-    out.value_convention = DescribePixels(o.thresholds, ImageMapMode::kTrinary) + ", " +
-                           Number(o.resolution_m) + " m per cell";
+    out.value_convention =
+        DescribePixels(o.thresholds, ImageMapMode::kTrinary) + ", " + Number(o.resolution_m) + " m per cell";
   } else {
-    throw UsageError("unknown map format '" + format +
-                     "' (expected auto, cmu, rowild, ros, movingai or image)");
+    throw UsageError("unknown map format '" + format + "' (expected auto, cmu, rowild, ros, movingai or image)");
   }
   return out;
 }

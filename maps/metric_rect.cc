@@ -8,8 +8,8 @@ namespace rc {
 CellRange CellsOf(const MetricRect& r, const OccupancyGrid& grid) {
   const double res = grid.resolution_m();
   auto first = [res](double v) { return static_cast<int>(std::ceil(v / res - 0.5)); };
-  return {std::max(0, first(r.x0_m)), std::max(0, first(r.y0_m)),
-          std::min(grid.size_x(), first(r.x1_m)), std::min(grid.size_y(), first(r.y1_m))};
+  return {std::max(0, first(r.x0_m)), std::max(0, first(r.y0_m)), std::min(grid.size_x(), first(r.x1_m)),
+          std::min(grid.size_y(), first(r.y1_m))};
 }
 
 void FillRect(const MetricRect& r, CellState s, OccupancyGrid* grid) {

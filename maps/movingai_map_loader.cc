@@ -54,16 +54,15 @@ Header ReadHeader(LineReader& reader) {
     if (key == "type") {
       if (h.has_type) reader.Fail(key, "appears twice");
       if (fields[1] != "octile")
-        reader.Fail(key,
-                    "'" + std::string(fields[1]) + "' is not 'octile', the only MovingAI map type");
+        reader.Fail(key, "'" + std::string(fields[1]) + "' is not 'octile', the only MovingAI map type");
       h.has_type = true;
     } else if (key == "height" || key == "width") {
       long& value = key == "height" ? h.height : h.width;
       if (value >= 0) reader.Fail(key, "appears twice");
       value = reader.ParseInt(fields[1], key, 1, kMaxMapCellsPerSide);
     } else {
-      reader.Fail("header", "unknown header line '" + line +
-                                "' (is this a MovingAI .map? expected type, height, width, map)");
+      reader.Fail("header",
+                  "unknown header line '" + line + "' (is this a MovingAI .map? expected type, height, width, map)");
     }
   }
   throw InputError(reader.file(), reader.line_number() + 1, "map",
@@ -82,25 +81,23 @@ OccupancyGrid LoadMovingAiMap(const std::string& path, const MovingAiMapOptions&
   const Header header = ReadHeader(reader);
   CheckMapSize(path, reader.line_number(), "map", header.width, header.height);
 
-  OccupancyGrid grid(static_cast<int>(header.width), static_cast<int>(header.height),
-                     options.resolution_m, CellState::kUnknown);
+  OccupancyGrid grid(static_cast<int>(header.width), static_cast<int>(header.height), options.resolution_m,
+                     CellState::kUnknown);
   std::string line;
   for (long y = 0; y < header.height; ++y) {
     const std::string row_field = "map row " + std::to_string(y);
     if (!reader.Next(line))
       throw InputError(path, reader.line_number() + 1, row_field,
-                       "file ends after " + std::to_string(y) + " of " +
-                           std::to_string(header.height) + " rows (height " +
-                           std::to_string(header.height) + ")");
+                       "file ends after " + std::to_string(y) + " of " + std::to_string(header.height) +
+                           " rows (height " + std::to_string(header.height) + ")");
     if (static_cast<long>(line.size()) != header.width)
-      reader.Fail(row_field, "has " + std::to_string(line.size()) + " characters, expected width " +
-                                 std::to_string(header.width));
+      reader.Fail(row_field,
+                  "has " + std::to_string(line.size()) + " characters, expected width " + std::to_string(header.width));
     for (long x = 0; x < header.width; ++x) {
       CellState state;
       if (!IsTerrainCharacter(line[x], &state))
-        reader.Fail(
-            row_field + ", column " + std::to_string(x),
-            "unknown terrain character " + Printable(line[x]) + " (expected . G @ O T S W)");
+        reader.Fail(row_field + ", column " + std::to_string(x),
+                    "unknown terrain character " + Printable(line[x]) + " (expected . G @ O T S W)");
       grid.Set(static_cast<int>(x), static_cast<int>(y), state);
     }
   }

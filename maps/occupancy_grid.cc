@@ -10,8 +10,8 @@ namespace rc {
 OccupancyGrid::OccupancyGrid(int size_x, int size_y, double resolution_m, CellState fill)
     : size_x_(size_x), size_y_(size_y), resolution_m_(resolution_m) {
   if (size_x <= 0 || size_y <= 0)
-    throw std::invalid_argument("grid size must be positive, got " + std::to_string(size_x) +
-                                " x " + std::to_string(size_y));
+    throw std::invalid_argument("grid size must be positive, got " + std::to_string(size_x) + " x " +
+                                std::to_string(size_y));
   if (!(resolution_m > 0.0) || !std::isfinite(resolution_m))
     throw std::invalid_argument("grid resolution must be a positive number of metres");
   // Cell indices are stored as 32-bit values in free-cell lists and traces.

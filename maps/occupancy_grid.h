@@ -35,12 +35,9 @@ class OccupancyGrid {
   double extent_y_m() const { return size_y_ * resolution_m_; }
   std::size_t cell_count() const { return cells_.size(); }
 
-  bool Contains(int ix, int iy) const {
-    return ix >= 0 && iy >= 0 && ix < size_x_ && iy < size_y_;
-  }
+  bool Contains(int ix, int iy) const { return ix >= 0 && iy >= 0 && ix < size_x_ && iy < size_y_; }
   std::size_t Index(int ix, int iy) const {
-    return static_cast<std::size_t>(ix) * static_cast<std::size_t>(size_y_) +
-           static_cast<std::size_t>(iy);
+    return static_cast<std::size_t>(ix) * static_cast<std::size_t>(size_y_) + static_cast<std::size_t>(iy);
   }
   CellState At(int ix, int iy) const { return cells_[Index(ix, iy)]; }
   void Set(int ix, int iy, CellState s) { cells_[Index(ix, iy)] = s; }

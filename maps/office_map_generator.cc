@@ -82,8 +82,7 @@ MetricRect SnapToWalls(MetricRect f, const MetricRect& room) {
 }
 
 // Tries to place one random piece in room; returns whether it stayed.
-bool PlaceFurniture(const MetricRect& room, RandomStream& rng, std::vector<MetricRect>* avoid,
-                    OccupancyGrid* grid) {
+bool PlaceFurniture(const MetricRect& room, RandomStream& rng, std::vector<MetricRect>* avoid, OccupancyGrid* grid) {
   const auto& size = kFurnitureSizes[rng.Below(std::size(kFurnitureSizes))];
   const bool rotated = rng.Uniform() < 0.5;
   const double w = rotated ? size[1] : size[0];
@@ -93,9 +92,7 @@ bool PlaceFurniture(const MetricRect& room, RandomStream& rng, std::vector<Metri
     const double y0 = rng.Uniform(room.y0_m, room.y1_m - h);
     const MetricRect piece = SnapToWalls({x0, y0, x0 + w, y0 + h}, room);
     const MetricRect halo = Inflate(piece, kFurnitureClearanceM, kFurnitureClearanceM);
-    if (std::any_of(avoid->begin(), avoid->end(),
-                    [&](const MetricRect& a) { return Overlaps(halo, a); }))
-      continue;
+    if (std::any_of(avoid->begin(), avoid->end(), [&](const MetricRect& a) { return Overlaps(halo, a); })) continue;
     if (!AllFree(piece, *grid)) continue;  // walls (e.g. the storage room's) or pillars
     FillRect(piece, CellState::kOccupied, grid);
     if (CountFreeComponents(*grid) != 1) {
@@ -119,9 +116,7 @@ bool OfficeMapOptions::IsValid(std::string* error) const {
   return true;
 }
 
-const std::vector<MetricRect>& OfficeDoorOpenings() {
-  return kDoors;
-}
+const std::vector<MetricRect>& OfficeDoorOpenings() { return kDoors; }
 
 OccupancyGrid GenerateOfficeMap(const OfficeMapOptions& options) {
   std::string error;

@@ -14,9 +14,8 @@ namespace rc {
 // row or column for a missing row, a wrong value count, a non-number, NaN or
 // a value outside [0, 1] other than -1. Adds each cell's class to *counts
 // when given.
-void ReadProbabilityRows(LineReader& reader, ValueConvention convention,
-                         const ProbabilityThresholds& thresholds, OccupancyGrid* grid,
-                         CellClassCounts* counts = nullptr);
+void ReadProbabilityRows(LineReader& reader, ValueConvention convention, const ProbabilityThresholds& thresholds,
+                         OccupancyGrid* grid, CellClassCounts* counts = nullptr);
 
 // Throws InputError at the first non-blank line left in reader.
 void RequireNoTrailingData(LineReader& reader);

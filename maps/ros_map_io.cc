@@ -23,15 +23,13 @@ constexpr std::uint8_t kSavedUnknown = 205;
 constexpr double kSavedOccupiedThresh = 0.65;
 constexpr double kSavedFreeThresh = 0.196;
 
-const char* const kKnownKeys[] = {"image",       "resolution", "origin", "occupied_thresh",
-                                  "free_thresh", "negate",     "mode"};
+const char* const kKnownKeys[] = {"image", "resolution", "origin", "occupied_thresh", "free_thresh", "negate", "mode"};
 
 // The top-level keys of a map YAML, with every error located at a line.
 class MapYaml {
  public:
   MapYaml(std::string file, const YAML::Node& root) : file_(std::move(file)) {
-    if (!root.IsMap())
-      Fail(root, "", "expected a mapping of map_server keys (image, resolution, origin, ...)");
+    if (!root.IsMap()) Fail(root, "", "expected a mapping of map_server keys (image, resolution, origin, ...)");
     for (const auto& entry : root) {
       // Copies: yaml-cpp's iterator yields a temporary pair of handles.
       const YAML::Node key = entry.first;
@@ -72,8 +70,7 @@ class MapYaml {
     } catch (const YAML::Exception&) {
       Fail(node, field, "'" + node.Scalar() + "' is not a number");
     }
-    if (!std::isfinite(value))
-      Fail(node, field, "'" + node.Scalar() + "' is not finite (NaN or inf)");
+    if (!std::isfinite(value)) Fail(node, field, "'" + node.Scalar() + "' is not finite (NaN or inf)");
     return value;
   }
   double Number(const std::string& key) const { return Number(Get(key), key); }
@@ -104,8 +101,7 @@ class MapYaml {
     return mark.is_null() ? 0 : mark.line + 1;  // yaml-cpp counts lines from 0
   }
 
-  [[noreturn]] void Fail(const YAML::Node& node, const std::string& field,
-                         const std::string& problem) const {
+  [[noreturn]] void Fail(const YAML::Node& node, const std::string& field, const std::string& problem) const {
     throw InputError(file_, LineOf(node), field, problem);
   }
   [[noreturn]] void FailKey(const std::string& key, const std::string& problem) const {
@@ -128,8 +124,7 @@ ImageMapMode ParseMode(const MapYaml& yaml) {
 
 void ParseOrigin(const MapYaml& yaml, RosMapMetadata* meta) {
   const YAML::Node& origin = yaml.Get("origin");
-  if (!origin.IsSequence() || origin.size() != 3)
-    yaml.FailKey("origin", "expected [x, y, yaw] (three numbers)");
+  if (!origin.IsSequence() || origin.size() != 3) yaml.FailKey("origin", "expected [x, y, yaw] (three numbers)");
   meta->origin_x_m = yaml.Number(origin[0], "origin[0]");
   meta->origin_y_m = yaml.Number(origin[1], "origin[1]");
   meta->origin_yaw_rad = yaml.Number(origin[2], "origin[2]");
@@ -151,8 +146,7 @@ std::string FormatNumber(double value) {
 bool IsPlainFileName(const std::string& name) {
   if (name.empty() || name == "." || name == "..") return false;
   for (char c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-')
-      return false;
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') return false;
   return true;
 }
 
@@ -174,8 +168,7 @@ RosMap LoadRosMap(const std::string& yaml_path) {
   } catch (const YAML::BadFile&) {
     throw InputError(yaml_path, 0, "", "cannot open map YAML file");
   } catch (const YAML::ParserException& e) {
-    throw InputError(yaml_path, e.mark.is_null() ? 0 : e.mark.line + 1, "",
-                     "YAML syntax error: " + e.msg);
+    throw InputError(yaml_path, e.mark.is_null() ? 0 : e.mark.line + 1, "", "YAML syntax error: " + e.msg);
   }
   const MapYaml yaml(yaml_path, root);
 
@@ -186,8 +179,7 @@ RosMap LoadRosMap(const std::string& yaml_path) {
   meta.image_path = ResolveImagePath(yaml_path, image);
   meta.resolution_m = yaml.Number("resolution");
   if (!(meta.resolution_m > 0.0))
-    yaml.FailKey("resolution",
-                 "must be positive (m per cell), got " + yaml.Get("resolution").Scalar());
+    yaml.FailKey("resolution", "must be positive (m per cell), got " + yaml.Get("resolution").Scalar());
   ParseOrigin(yaml, &meta);
   meta.thresholds.occupied_thresh = yaml.Number("occupied_thresh");
   meta.thresholds.free_thresh = yaml.Number("free_thresh");
@@ -211,8 +203,7 @@ RosMap LoadRosMap(const std::string& yaml_path) {
   return map;
 }
 
-void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path,
-                const RosMapSaveOptions& options) {
+void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path, const RosMapSaveOptions& options) {
   if (!std::isfinite(options.origin_x_m) || !std::isfinite(options.origin_y_m) ||
       !std::isfinite(options.origin_yaw_rad))
     throw std::invalid_argument("SaveRosMap: the origin must be finite");
@@ -225,13 +216,11 @@ void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path,
 
   // Binary PGM (P5), top row first: row r holds iy = size_y - 1 - r.
   AtomicFile image((yaml.parent_path() / image_name).string());
-  image.stream() << "P5\n# CREATOR: rcbench SaveRosMap " << FormatNumber(grid.resolution_m())
-                 << " m/pix\n"
+  image.stream() << "P5\n# CREATOR: rcbench SaveRosMap " << FormatNumber(grid.resolution_m()) << " m/pix\n"
                  << grid.size_x() << ' ' << grid.size_y() << "\n255\n";
   std::string row(static_cast<std::size_t>(grid.size_x()), '\0');
   for (int iy = grid.size_y() - 1; iy >= 0; --iy) {
-    for (int ix = 0; ix < grid.size_x(); ++ix)
-      row[ix] = static_cast<char>(SavedGrey(grid.At(ix, iy)));
+    for (int ix = 0; ix < grid.size_x(); ++ix) row[ix] = static_cast<char>(SavedGrey(grid.At(ix, iy)));
     image.stream().write(row.data(), static_cast<std::streamsize>(row.size()));
   }
   image.Commit();
@@ -240,9 +229,8 @@ void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path,
   out.stream() << "image: " << image_name << "\n"
                << "mode: trinary\n"
                << "resolution: " << FormatNumber(grid.resolution_m()) << "\n"
-               << "origin: [" << FormatNumber(options.origin_x_m) << ", "
-               << FormatNumber(options.origin_y_m) << ", " << FormatNumber(options.origin_yaw_rad)
-               << "]\n"
+               << "origin: [" << FormatNumber(options.origin_x_m) << ", " << FormatNumber(options.origin_y_m) << ", "
+               << FormatNumber(options.origin_yaw_rad) << "]\n"
                << "negate: 0\n"
                << "occupied_thresh: " << FormatNumber(kSavedOccupiedThresh) << "\n"
                << "free_thresh: " << FormatNumber(kSavedFreeThresh) << "\n";

@@ -69,7 +69,6 @@ struct RosMapSaveOptions {
 // never names a missing image. Throws std::invalid_argument for a non-finite
 // origin or an image name with a folder or characters YAML would need quoted,
 // std::runtime_error on write failure.
-void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path,
-                const RosMapSaveOptions& options = {});
+void SaveRosMap(const OccupancyGrid& grid, const std::string& yaml_path, const RosMapSaveOptions& options = {});
 
 }  // namespace rc

@@ -25,19 +25,16 @@ HeaderValue ReadHeaderLine(LineReader& reader, const std::string& key) {
     const auto fields = SplitFields(line);
     if (fields.empty()) continue;
     if (fields[0] != key)
-      reader.Fail(key, "expected '" + key + " <integer cm>' here, found '" +
-                           std::string(fields[0]) +
+      reader.Fail(key, "expected '" + key + " <integer cm>' here, found '" + std::string(fields[0]) +
                            "' (RoWild header order: mapsize_x, mapsize_y, resolution)");
     if (fields.size() != 2) reader.Fail(key, "expected exactly one integer after the key");
     return {reader.ParseInt(fields[1], key, 1, kMaxHeaderCm), reader.line_number()};
   }
-  throw InputError(reader.file(), reader.line_number() + 1, key,
-                   "file ends before the '" + key + "' header line");
+  throw InputError(reader.file(), reader.line_number() + 1, key, "file ends before the '" + key + "' header line");
 }
 
 // Number of cells along one axis; the extent must be a whole number of cells.
-long CellsAlong(const std::string& file, const HeaderValue& extent, const std::string& key,
-                long resolution_cm) {
+long CellsAlong(const std::string& file, const HeaderValue& extent, const std::string& key, long resolution_cm) {
   if (extent.value % resolution_cm != 0)
     throw InputError(file, extent.line, key,
                      "extent " + std::to_string(extent.value) + " cm is not a whole number of " +
@@ -58,8 +55,8 @@ OccupancyGrid LoadRowildMap(const std::string& path, const RowildMapOptions& opt
   const long size_y = CellsAlong(path, extent_y, "mapsize_y", resolution.value);
   CheckMapSize(path, extent_x.line, "mapsize_x", size_x, size_y);
 
-  OccupancyGrid grid(static_cast<int>(size_x), static_cast<int>(size_y),
-                     static_cast<double>(resolution.value) / 100.0, CellState::kUnknown);
+  OccupancyGrid grid(static_cast<int>(size_x), static_cast<int>(size_y), static_cast<double>(resolution.value) / 100.0,
+                     CellState::kUnknown);
   ReadProbabilityRows(reader, options.convention, options.thresholds, &grid, counts);
   RequireNoTrailingData(reader);
   return grid;

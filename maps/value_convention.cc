@@ -13,9 +13,7 @@ ValueConvention ParseValueConvention(const std::string& name) {
   throw UsageError("unknown value convention '" + name + "' (expected 'free' or 'occupied')");
 }
 
-std::string ToString(ValueConvention c) {
-  return c == ValueConvention::kProbabilityFree ? "free" : "occupied";
-}
+std::string ToString(ValueConvention c) { return c == ValueConvention::kProbabilityFree ? "free" : "occupied"; }
 
 void CheckProbabilityThresholds(const ProbabilityThresholds& t) {
   auto text = [](double v) {

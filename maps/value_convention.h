@@ -35,18 +35,15 @@ std::string ToString(ValueConvention c);
 
 // value is the stored number; returns why the cell gets its state under
 // the convention (cell_classes.h).
-inline CellClass ClassifyProbabilityValue(double value, ValueConvention convention,
-                                          const ProbabilityThresholds& t) {
+inline CellClass ClassifyProbabilityValue(double value, ValueConvention convention, const ProbabilityThresholds& t) {
   if (value < t.unknown_below) return CellClass::kUnobserved;
-  const double p_occupied =
-      convention == ValueConvention::kProbabilityFree ? 1.0 - value : value;
+  const double p_occupied = convention == ValueConvention::kProbabilityFree ? 1.0 - value : value;
   if (p_occupied >= t.occupied_thresh) return CellClass::kOccupied;
   if (p_occupied <= t.free_thresh) return CellClass::kFree;
   return CellClass::kBetweenThresholds;
 }
 
-inline CellState ClassifyProbability(double value, ValueConvention convention,
-                                     const ProbabilityThresholds& t) {
+inline CellState ClassifyProbability(double value, ValueConvention convention, const ProbabilityThresholds& t) {
   return StateOf(ClassifyProbabilityValue(value, convention, t));
 }
 

@@ -19,10 +19,10 @@
 namespace rc {
 
 struct AddressSample {
-  int warp_size = 32;        // threads
-  int warps_per_block = 8;   // warps
-  int sms = 8;               // count
-  int sector_bytes = 32;     // bytes; what touched_sectors counts (a power of two)
+  int warp_size = 32;       // threads
+  int warps_per_block = 8;  // warps
+  int sms = 8;              // count
+  int sector_bytes = 32;    // bytes; what touched_sectors counts (a power of two)
   // SMs whose addresses are kept, spread evenly over the `sms`
   // (SM s is kept when (s * sampled_sms) mod sms < sampled_sms: SM 0 for
   // one, SMs 0 and sms/2 for two, ...); 0 or >= sms keeps every query.

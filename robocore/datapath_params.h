@@ -13,25 +13,27 @@ namespace rc {
 // Latency of one micro-op in its OP unit, cycles at the core clock (1365 MHz),
 // declared once each (common/parameter_spec.h). Every non-SACT unit but the
 // RCP unit takes a new micro-op every cycle.
-#define RC_OP_UNIT_LATENCIES(X)                                                                                 \
-  X(int, addsub_cycles, 3, "core cycles", 1, 64, "paper: RoboCore micro-op table (ADDSUB)")                    \
-  X(int, minmax_cycles, 2, "core cycles", 1, 64, "paper (MINMAX)")                                              \
-  X(int, maxmin_cycles, 2, "core cycles", 1, 64, "paper (MAXMIN)")                                              \
-  X(int, cmp_cycles, 1, "core cycles", 1, 64, "paper (CMP)")                                                    \
-  X(int, mul_cycles, 5, "core cycles", 1, 64, "paper (MUL)")                                                    \
-  X(int, rcp_cycles, 4, "core cycles", 1, 64, "artifact: -gpgpu_rt_intersection_latency (rcp 4)")              \
-  X(int, rcp_initiation_cycles, 3, "core cycles", 1, 64, "artifact: -gpgpu_rt_init_cycles (rcp 3)")            \
-  X(int, pre_process_cycles, 14, "core cycles", 1, 256, "paper (Pre-Process: PRE, XFORM)")                      \
-  X(int, box_normal_cycles, 12, "core cycles", 1, 256, "paper (Box-Normal: BOX, DOT)")                          \
-  X(int, edge_edge_cycles, 12, "core cycles", 1, 256, "paper (Edge x Edge: EDGE, CROSS)")                       \
-  X(int, logic_cycles, 1, "core cycles", 1, 64, "paper (LOGIC)")                                                \
-  X(int, push_cycles, 1, "core cycles", 1, 64, "paper (PUSH)")                                                  \
+#define RC_OP_UNIT_LATENCIES(X)                                                                     \
+  X(int, addsub_cycles, 3, "core cycles", 1, 64, "paper: RoboCore micro-op table (ADDSUB)")         \
+  X(int, minmax_cycles, 2, "core cycles", 1, 64, "paper (MINMAX)")                                  \
+  X(int, maxmin_cycles, 2, "core cycles", 1, 64, "paper (MAXMIN)")                                  \
+  X(int, cmp_cycles, 1, "core cycles", 1, 64, "paper (CMP)")                                        \
+  X(int, mul_cycles, 5, "core cycles", 1, 64, "paper (MUL)")                                        \
+  X(int, rcp_cycles, 4, "core cycles", 1, 64, "artifact: -gpgpu_rt_intersection_latency (rcp 4)")   \
+  X(int, rcp_initiation_cycles, 3, "core cycles", 1, 64, "artifact: -gpgpu_rt_init_cycles (rcp 3)") \
+  X(int, pre_process_cycles, 14, "core cycles", 1, 256, "paper (Pre-Process: PRE, XFORM)")          \
+  X(int, box_normal_cycles, 12, "core cycles", 1, 256, "paper (Box-Normal: BOX, DOT)")              \
+  X(int, edge_edge_cycles, 12, "core cycles", 1, 256, "paper (Edge x Edge: EDGE, CROSS)")           \
+  X(int, logic_cycles, 1, "core cycles", 1, 64, "paper (LOGIC)")                                    \
+  X(int, push_cycles, 1, "core cycles", 1, 64, "paper (PUSH)")                                      \
   X(int, return_cycles, 1, "core cycles", 1, 64, "paper (RETURN)")
 
 struct OpUnitLatencies {
   RC_OP_UNIT_LATENCIES(RC_PARAMETER_MEMBER)
   template <class Self, class Visitor>
-  static void Fields(Self& s, Visitor& v) { RC_OP_UNIT_LATENCIES(RC_PARAMETER_FIELD) }
+  static void Fields(Self& s, Visitor& v) {
+    RC_OP_UNIT_LATENCIES(RC_PARAMETER_FIELD)
+  }
 };
 
 // Latency of `unit` (kFetch has none here: the caches decide it).

@@ -87,8 +87,7 @@ class Simulation {
 
   void Complete() {
     std::vector<InFlight> done;
-    auto keep = std::partition(in_flight_.begin(), in_flight_.end(),
-                               [&](const InFlight& f) { return f.done > now_; });
+    auto keep = std::partition(in_flight_.begin(), in_flight_.end(), [&](const InFlight& f) { return f.done > now_; });
     done.assign(keep, in_flight_.end());
     in_flight_.erase(keep, in_flight_.end());
     std::sort(done.begin(), done.end(), [](const InFlight& a, const InFlight& b) {
@@ -96,8 +95,7 @@ class Simulation {
     });
     for (const InFlight& f : done) {
       const PlannedOp& op = plan(f.thread)[f.step];
-      if (op.opcode == Opcode::kBox || op.opcode == Opcode::kEdge)
-        ++result_.threads[f.thread].axes_tested;
+      if (op.opcode == Opcode::kBox || op.opcode == Opcode::kEdge) ++result_.threads[f.thread].axes_tested;
       if (op.fires) result_.threads[f.thread].exited_early = true;
       Advance(f.thread, f.step, f.done);
     }
@@ -148,8 +146,7 @@ class Simulation {
 
 }  // namespace
 
-FunctionUnitSimulation SimulateFunctionUnit(const SectionTiming& section,
-                                            const std::vector<SimulatedThread>& threads,
+FunctionUnitSimulation SimulateFunctionUnit(const SectionTiming& section, const std::vector<SimulatedThread>& threads,
                                             int threads_accepted_per_cycle) {
   return Simulation(section, threads).Run(threads_accepted_per_cycle);
 }

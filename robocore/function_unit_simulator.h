@@ -35,8 +35,8 @@
 namespace rc {
 
 struct SimulatedThread {
-  std::uint8_t exit = kNoExit;    // RETURN_IF that fires in this execution
-  int load_latency_cycles = 0;    // latency of its node fetch, if the section has one
+  std::uint8_t exit = kNoExit;  // RETURN_IF that fires in this execution
+  int load_latency_cycles = 0;  // latency of its node fetch, if the section has one
 };
 
 struct SimulatedThreadResult {
@@ -47,15 +47,14 @@ struct SimulatedThreadResult {
 
 struct FunctionUnitSimulation {
   std::vector<SimulatedThreadResult> threads;
-  std::uint64_t cycles = 0;                 // until the last thread finished
-  std::uint64_t chain_priority_wins = 0;    // cycles a chained packet was served while
-                                            // an interconnect packet also waited
+  std::uint64_t cycles = 0;               // until the last thread finished
+  std::uint64_t chain_priority_wins = 0;  // cycles a chained packet was served while
+                                          // an interconnect packet also waited
   std::uint64_t hops = 0;
   std::array<std::uint64_t, kOpUnitCount> busy_cycles{};  // input slots used per unit
 };
 
-FunctionUnitSimulation SimulateFunctionUnit(const SectionTiming& section,
-                                            const std::vector<SimulatedThread>& threads,
+FunctionUnitSimulation SimulateFunctionUnit(const SectionTiming& section, const std::vector<SimulatedThread>& threads,
                                             int threads_accepted_per_cycle);
 
 }  // namespace rc

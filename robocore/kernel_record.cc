@@ -43,8 +43,7 @@ std::uint64_t KernelRecord::footprint_end() const {
 void KernelRecord::Validate() const {
   auto fail = [](const std::string& what) { throw std::logic_error("kernel record: " + what); };
   if (!program || !program->has_loop()) fail("no step program with a loop");
-  if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone))
-    fail("leaf program and leaf kind disagree");
+  if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone)) fail("leaf program and leaf kind disagree");
   if (scalar_bytes != 4 && scalar_bytes != 8) fail("scalar_bytes must be 4 (float) or 8 (double)");
   if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
   if (exits_per_query() ? (last_exits.size() != query_count() || !node_exits.empty())
@@ -60,8 +59,7 @@ void KernelRecord::Validate() const {
       fail("address offsets: one per query plus one, from 0");
     for (std::size_t q = 0; q < query_count(); ++q) {
       const std::uint64_t kept = address_offsets[q + 1] - address_offsets[q];
-      if (address_offsets[q + 1] < address_offsets[q] ||
-          kept != (address_sample.KeepsQuery(q) ? nodes(q) : 0))
+      if (address_offsets[q + 1] < address_offsets[q] || kept != (address_sample.KeepsQuery(q) ? nodes(q) : 0))
         fail("query " + std::to_string(q) + " keeps addresses against its sample");
     }
     if (address_offsets.back() != fetch_addresses.size()) fail("address offsets do not end at the address count");
@@ -69,26 +67,24 @@ void KernelRecord::Validate() const {
   const int returns = program->ReturnIfCount(ProgramSection::kLoop);
   for (std::uint8_t e : exits_per_query() ? last_exits : node_exits)
     if (e != kNoExit && e >= returns)
-      fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" +
-           program->name() + "' has " + std::to_string(returns));
+      fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" + program->name() + "' has " +
+           std::to_string(returns));
   for (std::uint64_t a : fetch_addresses) {
     bool inside = false;
-    for (const MemoryRegion& r : regions)
-      inside = inside || (a >= r.base && a + node_bytes <= r.base + r.bytes());
+    for (const MemoryRegion& r : regions) inside = inside || (a >= r.base && a + node_bytes <= r.base + r.bytes());
     if (!inside) fail("address " + std::to_string(a) + " lies outside every region");
   }
 }
 
-KernelRecordBuilder::KernelRecordBuilder(std::shared_ptr<const MicroProgram> program,
-                                         StepProgramKind kind, MemoryRegion region) {
+KernelRecordBuilder::KernelRecordBuilder(std::shared_ptr<const MicroProgram> program, StepProgramKind kind,
+                                         MemoryRegion region) {
   record_.program = std::move(program);
   record_.step_kind = kind;
   record_.node_bytes = region.element_bytes;
   record_.regions.push_back(std::move(region));
 }
 
-KernelRecordBuilder& KernelRecordBuilder::SetLeaf(std::shared_ptr<const MicroProgram> leaf,
-                                                  LeafProgramKind kind) {
+KernelRecordBuilder& KernelRecordBuilder::SetLeaf(std::shared_ptr<const MicroProgram> leaf, LeafProgramKind kind) {
   record_.leaf = std::move(leaf);
   record_.leaf_kind = kind;
   return *this;

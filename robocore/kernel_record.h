@@ -32,11 +32,11 @@ namespace rc {
 
 // The kernel's step program.
 enum class StepProgramKind : std::uint8_t {
-  kGridMarch,  // march: programs/grid_march.asm
-  kDdaStep,    // dda:   programs/dda_step.asm
-  kRmStep,     // rm:    programs/rm_step.asm
-  kSactTest,   // one OBB-vs-AABB SACT per node: programs/sact_obb_aabb.asm
-  kSphereTest, // one sphere-vs-AABB test per node (sphere robot): programs/sphere_aabb.asm
+  kGridMarch,         // march: programs/grid_march.asm
+  kDdaStep,           // dda:   programs/dda_step.asm
+  kRmStep,            // rm:    programs/rm_step.asm
+  kSactTest,          // one OBB-vs-AABB SACT per node: programs/sact_obb_aabb.asm
+  kSphereTest,        // one sphere-vs-AABB test per node (sphere robot): programs/sphere_aabb.asm
   kBallQueryPRay,     // ball query, point probe vs state spheres: programs/ball_query_pray.asm
   kBallQueryPSphere,  // ball query, query sphere vs state boxes: programs/ball_query_psphere.asm
 };
@@ -103,7 +103,7 @@ struct KernelRecord {
   // without nodes), node_exits then empty. ExitAt reads either.
   std::vector<std::uint8_t> node_exits;
   std::vector<std::uint8_t> last_exits;
-  std::vector<std::uint64_t> fetch_addresses;   // device byte addresses of the kept queries
+  std::vector<std::uint64_t> fetch_addresses;  // device byte addresses of the kept queries
   // Which queries' addresses are kept. With every query kept
   // (address_sample.KeepsAll()), address_offsets is empty and query i's
   // addresses sit at its exits' positions, [fetch_offsets[i],
@@ -148,8 +148,7 @@ struct KernelRecord {
 // given node addresses and exits, one region covering them.
 class KernelRecordBuilder {
  public:
-  KernelRecordBuilder(std::shared_ptr<const MicroProgram> program, StepProgramKind kind,
-                      MemoryRegion region);
+  KernelRecordBuilder(std::shared_ptr<const MicroProgram> program, StepProgramKind kind, MemoryRegion region);
   KernelRecordBuilder& SetLeaf(std::shared_ptr<const MicroProgram> leaf, LeafProgramKind kind);
   // Appends one query; `exits` is empty (no exits) or one per address.
   KernelRecordBuilder& AddQuery(const std::vector<std::uint64_t>& addresses,

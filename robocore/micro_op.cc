@@ -36,8 +36,8 @@ constexpr std::array<OpcodeInfo, kOpcodeCount> kOpcodes = {{
 // clang-format on
 
 constexpr std::array<const char*, kOpUnitCount> kUnitNames = {
-    "ADDSUB", "MINMAX", "MAXMIN", "CMP", "MUL", "RCP", "PRE_PROCESS",
-    "BOX_NORMAL", "EDGE_EDGE", "LOGIC", "PUSH", "RETURN", "FETCH"};
+    "ADDSUB",     "MINMAX",    "MAXMIN", "CMP",  "MUL",    "RCP",  "PRE_PROCESS",
+    "BOX_NORMAL", "EDGE_EDGE", "LOGIC",  "PUSH", "RETURN", "FETCH"};
 
 }  // namespace
 
@@ -61,9 +61,8 @@ std::optional<Opcode> ParseOpcode(std::string_view mnemonic) {
 
 const std::vector<ExpandedOp>& TtaPlusExpansion(Opcode op) {
   // Paper, "SACT on TTA+ (micro-ops per test)".
-  static const std::vector<ExpandedOp> kPre = {{Opcode::kSub, 3}, {Opcode::kSub, 3},
-                                               {Opcode::kSub, 3}, {Opcode::kSub, 3},
-                                               {Opcode::kXform, 3}};
+  static const std::vector<ExpandedOp> kPre = {
+      {Opcode::kSub, 3}, {Opcode::kSub, 3}, {Opcode::kSub, 3}, {Opcode::kSub, 3}, {Opcode::kXform, 3}};
   static const std::vector<ExpandedOp> kBox = {
       {Opcode::kDot, 3}, {Opcode::kDot, 3}, {Opcode::kSub, 3}, {Opcode::kCmp, 3}};
   static const std::vector<ExpandedOp> kEdge = {{Opcode::kCross, 3}, {Opcode::kCmp, 3}};

@@ -26,17 +26,17 @@ namespace rc {
 enum class Opcode : std::uint8_t {
   kAdd,
   kSub,
-  kMin,       // MIN(a, b): the MINMAX unit with its MAX input tied off
-  kMax,       // MAX(a, b): the MAXMIN unit with its MIN input tied off
+  kMin,  // MIN(a, b): the MINMAX unit with its MAX input tied off
+  kMax,  // MAX(a, b): the MAXMIN unit with its MIN input tied off
   kCmp,
   kMul,
-  kRcp,       // reciprocal; not in the paper's table, in the artifact (RT_RCP)
+  kRcp,  // reciprocal; not in the paper's table, in the artifact (RT_RCP)
   kDot,
   kCross,
-  kXform,     // ray/box transform by a 3x3 rotation (TTA+'s R-XFORM)
-  kPre,       // SACT pre-process: relative frame of an OBB/AABB pair
-  kBox,       // SACT box-normal axis test (axis 0..5)
-  kEdge,      // SACT edge x edge axis test (axis 0..8)
+  kXform,  // ray/box transform by a 3x3 rotation (TTA+'s R-XFORM)
+  kPre,    // SACT pre-process: relative frame of an OBB/AABB pair
+  kBox,    // SACT box-normal axis test (axis 0..5)
+  kEdge,   // SACT edge x edge axis test (axis 0..8)
   kAnd,
   kOr,
   kXor,
@@ -61,7 +61,7 @@ enum class OpUnit : std::uint8_t {
   kLogic,
   kPush,
   kReturn,
-  kFetch,       // the node-fetch path to L1; its latency comes from the caches
+  kFetch,  // the node-fetch path to L1; its latency comes from the caches
 };
 inline constexpr int kOpUnitCount = 13;
 
@@ -86,13 +86,13 @@ struct OpcodeInfo {
   Opcode opcode;
   const char* mnemonic;
   OpUnit unit;
-  int operand_count;     // operands written in assembly (destination first)
+  int operand_count;          // operands written in assembly (destination first)
   const char* operand_names;  // for error messages, e.g. "dst, a, b"
-  bool has_width;        // accepts a .1/.2/.3 suffix
+  bool has_width;             // accepts a .1/.2/.3 suffix
   int min_width;
   int default_width;
-  bool sact;             // PRE, BOX, EDGE
-  int max_axis;          // BOX/EDGE: highest axis immediate; else -1
+  bool sact;     // PRE, BOX, EDGE
+  int max_axis;  // BOX/EDGE: highest axis immediate; else -1
 };
 
 const OpcodeInfo& InfoOf(Opcode op);

@@ -19,8 +19,7 @@ std::string_view Trim(std::string_view s) {
 
 // A name, optionally with one component selector: p, p.x, tb.y.
 bool IsIdentifier(std::string_view s) {
-  if (s.size() > 2 && s[s.size() - 2] == '.' &&
-      (s.back() == 'x' || s.back() == 'y' || s.back() == 'z'))
+  if (s.size() > 2 && s[s.size() - 2] == '.' && (s.back() == 'x' || s.back() == 'y' || s.back() == 'z'))
     s.remove_suffix(2);
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
   for (char c : s)
@@ -44,8 +43,7 @@ class Parser {
     std::size_t start = 0;
     while (start <= text_.size()) {
       const std::size_t end = text_.find('\n', start);
-      std::string_view line =
-          text_.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
+      std::string_view line = text_.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start);
       ++line_;
       ParseLine(line);
       if (end == std::string_view::npos) break;
@@ -73,20 +71,16 @@ class Parser {
     int section = -1;
     for (int s = 0; s < kSectionCount; ++s)
       if (label == SectionName(static_cast<ProgramSection>(s))) section = s;
-    if (section < 0)
-      Fail("label", "unknown label '" + std::string(label) +
-                        "' (expected prologue, loop or epilogue)");
+    if (section < 0) Fail("label", "unknown label '" + std::string(label) + "' (expected prologue, loop or epilogue)");
     if (seen_[section]) Fail("label", "section '" + std::string(label) + "' appears twice");
     if (section < current_)
-      Fail("label", "section '" + std::string(label) +
-                        "' out of order (prologue, loop, epilogue)");
+      Fail("label", "section '" + std::string(label) + "' out of order (prologue, loop, epilogue)");
     seen_[section] = true;
     current_ = section;
   }
 
   void ParseMicroOp(std::string_view line) {
-    if (current_ < 0)
-      Fail("opcode", "micro-op before any section label (start with prologue:, loop: or epilogue:)");
+    if (current_ < 0) Fail("opcode", "micro-op before any section label (start with prologue:, loop: or epilogue:)");
     std::size_t split = 0;
     while (split < line.size() && !std::isspace(static_cast<unsigned char>(line[split]))) ++split;
     std::string_view head = line.substr(0, split);
@@ -107,12 +101,10 @@ class Parser {
     op.line = line_;
     op.width = static_cast<std::uint8_t>(info.default_width);
     if (head.find('.') != std::string_view::npos) {
-      if (!info.has_width)
-        Fail("width", std::string(info.mnemonic) + " takes no width suffix");
-      if (width_text.size() != 1 || width_text[0] < '1' || width_text[0] > '3' ||
-          width_text[0] - '0' < info.min_width)
-        Fail("width", "width '" + std::string(width_text) + "' of " + info.mnemonic +
-                          " must be " + std::to_string(info.min_width) + " to 3");
+      if (!info.has_width) Fail("width", std::string(info.mnemonic) + " takes no width suffix");
+      if (width_text.size() != 1 || width_text[0] < '1' || width_text[0] > '3' || width_text[0] - '0' < info.min_width)
+        Fail("width", "width '" + std::string(width_text) + "' of " + info.mnemonic + " must be " +
+                          std::to_string(info.min_width) + " to 3");
       op.width = static_cast<std::uint8_t>(width_text[0] - '0');
     }
 
@@ -120,8 +112,8 @@ class Parser {
       std::size_t start = 0;
       while (true) {
         const std::size_t comma = rest.find(',', start);
-        std::string_view token = Trim(rest.substr(
-            start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+        std::string_view token =
+            Trim(rest.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
         const std::string field = "operand " + std::to_string(op.operands.size() + 1);
         if (token.empty()) Fail(field, "missing operand (empty between commas)");
         if (!IsIdentifier(token) && !IsInteger(token))
@@ -132,11 +124,9 @@ class Parser {
       }
     }
     const int n = static_cast<int>(op.operands.size());
-    const std::string usage = std::string(info.mnemonic) + " takes " +
-                              std::to_string(info.operand_count) + " operand(s)" +
-                              (info.operand_count > 0 ? std::string(": ") + info.operand_names : "");
-    if (n < info.operand_count)
-      Fail("operand " + std::to_string(n + 1), "missing operand; " + usage);
+    const std::string usage = std::string(info.mnemonic) + " takes " + std::to_string(info.operand_count) +
+                              " operand(s)" + (info.operand_count > 0 ? std::string(": ") + info.operand_names : "");
+    if (n < info.operand_count) Fail("operand " + std::to_string(n + 1), "missing operand; " + usage);
     if (n > info.operand_count)
       Fail("operand " + std::to_string(info.operand_count + 1), "unexpected operand; " + usage);
     if (info.max_axis >= 0) {
@@ -164,8 +154,7 @@ class Parser {
     for (const MicroOp& op : loop) loads += op.opcode == Opcode::kLoad;
     if (loads != 1)
       throw InputError(file_, 0, "loop",
-                       "the loop must hold exactly one LOAD (one node fetch per pass), found " +
-                           std::to_string(loads));
+                       "the loop must hold exactly one LOAD (one node fetch per pass), found " + std::to_string(loads));
     if (loop.front().opcode != Opcode::kLoad)
       throw InputError(file_, loop.front().line, "opcode",
                        "a loop pass starts with its node fetch: LOAD must be the loop's first "
@@ -191,8 +180,7 @@ const char* SectionName(ProgramSection s) {
   return "?";
 }
 
-MicroProgram::MicroProgram(std::string name,
-                           std::array<std::vector<MicroOp>, kSectionCount> sections)
+MicroProgram::MicroProgram(std::string name, std::array<std::vector<MicroOp>, kSectionCount> sections)
     : name_(std::move(name)), sections_(std::move(sections)) {}
 
 int MicroProgram::ReturnIfCount(ProgramSection s) const {

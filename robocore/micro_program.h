@@ -61,9 +61,7 @@ class MicroProgram {
   MicroProgram(std::string name, std::array<std::vector<MicroOp>, kSectionCount> sections);
 
   const std::string& name() const { return name_; }
-  const std::vector<MicroOp>& section(ProgramSection s) const {
-    return sections_[static_cast<int>(s)];
-  }
+  const std::vector<MicroOp>& section(ProgramSection s) const { return sections_[static_cast<int>(s)]; }
   int ReturnIfCount(ProgramSection s) const;
   bool has_loop() const { return !section(ProgramSection::kLoop).empty(); }
   std::size_t MicroOpCount() const;  // all sections

@@ -12,8 +12,7 @@ namespace {
 // threads on a shared machine even out (dynamic schedule).
 constexpr long kQueriesPerUnit = 2048;
 
-void CastRange(const RayCastScene& scene, const RayBatch& batch, bool lanes, long begin, long end,
-               RayHit* hits) {
+void CastRange(const RayCastScene& scene, const RayBatch& batch, bool lanes, long begin, long end, RayHit* hits) {
   if (lanes) {
     CastRayLanes(scene, batch.queries.data() + begin, static_cast<std::size_t>(end - begin), batch.max_range_m,
                  hits + begin);

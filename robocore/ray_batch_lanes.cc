@@ -57,8 +57,7 @@ struct alignas(64) LaneState {
 // The vector form of one axis's boundary time, (double(cell + offset) * r -
 // origin) * inv, then the limit: max_pd(limit, t) is (t < limit) ? limit : t
 // (exit), min_pd(limit, t) is (limit < t) ? limit : t (entry).
-RC_LANES_TARGET inline __m512d BoundaryTime(__m256i cell, __m256i offset, __m512d r, __m512d origin,
-                                             __m512d inv) {
+RC_LANES_TARGET inline __m512d BoundaryTime(__m256i cell, __m256i offset, __m512d r, __m512d origin, __m512d inv) {
   const __m512d b = _mm512_cvtepi32_pd(_mm256_add_epi32(cell, offset));
   return _mm512_mul_pd(_mm512_sub_pd(_mm512_mul_pd(b, r), origin), inv);
 }
@@ -140,8 +139,8 @@ inline int FloorToInt(double x) {
 // end one lane at a time, and a vector set-up of one lane measured 2-6%
 // slower (its vector loads wait on the scalar stores just made).
 inline void SetUpAxisLane(int l, double o, double d, double r, double* origin, double* dir, double* inv_a,
-                          std::int32_t* step_a, std::int32_t* exit_off_a, std::int32_t* entry_off_a,
-                          double* exit_lim_a, double* entry_lim_a, std::int32_t* cell_a, double* exit_a) {
+                          std::int32_t* step_a, std::int32_t* exit_off_a, std::int32_t* entry_off_a, double* exit_lim_a,
+                          double* entry_lim_a, std::int32_t* cell_a, double* exit_a) {
   const bool pos = d > 0.0, neg = d < 0.0, moves = pos | neg;
   const double inv = SelectDouble(moves, 1.0 / d, 0.0);
   const int exit_off = static_cast<int>(pos);
@@ -175,8 +174,8 @@ inline void StartLane(LaneState& s, int l, const RayQuery& q, std::size_t index,
 
 // Writes the hits of the lanes in `ended` and starts the batch's next
 // queries in them; lanes left without one leave `live`.
-RC_LANES_TARGET void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::size_t count,
-                            std::size_t& next, LaneMask& live, RayHit* hits, double r) {
+RC_LANES_TARGET void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::size_t count, std::size_t& next,
+                            LaneMask& live, RayHit* hits, double r) {
   while (ended != 0) {
     const int l = __builtin_ctzll(ended);
     ended &= ended - 1;
@@ -223,8 +222,8 @@ RC_LANES_TARGET inline StepResult StepDdaGroup(LaneState& s, int g, const Consta
   __m512d tx = _mm512_load_pd(s.exit_x + base), ty = _mm512_load_pd(s.exit_y + base);
   __m256i ix = RC_LOAD_I(ix), iy = RC_LOAD_I(iy), nodes = RC_LOAD_I(nodes);
   const Head h = LoopHead(t, ix, iy, c.max_range, c.size_x, c.size_y);
-  const __m256i cell = _mm256_and_si256(
-      _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), h.fetch, h.index, cells, 1), c.byte_mask);
+  const __m256i cell =
+      _mm256_and_si256(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), h.fetch, h.index, cells, 1), c.byte_mask);
   const __mmask8 open = _mm256_cmpeq_epi32_mask(cell, _mm256_setzero_si256());  // CellState::kFree
   nodes = _mm256_mask_add_epi32(nodes, h.fetch, nodes, c.one);
   // CastDda's step: x first on a tie (tx <= ty); t = min_pd(ty, tx), which
@@ -272,8 +271,8 @@ RC_LANES_TARGET inline StepResult StepMarchGroup(LaneState& s, int g, const Cons
   const __mmask8 inside = _mm256_cmplt_epu32_mask(ix, c.size_x) & _mm256_cmplt_epu32_mask(iy, c.size_y);
   const __mmask8 fetch = in_range & inside;
   const __m256i index = _mm256_add_epi32(_mm256_mullo_epi32(ix, c.size_y), iy);
-  const __m256i cell = _mm256_and_si256(
-      _mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), fetch, index, cells, 1), c.byte_mask);
+  const __m256i cell =
+      _mm256_and_si256(_mm256_mmask_i32gather_epi32(_mm256_setzero_si256(), fetch, index, cells, 1), c.byte_mask);
   const __mmask8 open = _mm256_cmpeq_epi32_mask(cell, _mm256_setzero_si256());  // CellState::kFree
   nodes = _mm256_mask_add_epi32(nodes, fetch, nodes, c.one);
   _mm512_store_pd(s.range + base, _mm512_mask_mov_pd(c.max_range, in_range, t));
@@ -363,7 +362,7 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
   while (live != 0) {
     LaneMask ended = 0, stopped = 0;
     for (int g = 0; g < kGroups; ++g) {
-      const StepResult step = kMethod == RayCastMethod::kDda    ? StepDdaGroup(s, g, c, cells)
+      const StepResult step = kMethod == RayCastMethod::kDda     ? StepDdaGroup(s, g, c, cells)
                               : kMethod == RayCastMethod::kMarch ? StepMarchGroup(s, g, c, cells)
                                                                  : StepRayMarchingGroup(s, g, c, field);
       ended |= static_cast<LaneMask>(step.ended) << (g * kRayLanes);
@@ -377,9 +376,7 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
       if (rec->last_exits)
         for (LaneMask m = ended; m != 0; m &= m - 1) {
           const int l = __builtin_ctzll(m);
-          rec->last_exits[s.query[l]] = s.nodes[l] == 0                    ? kNoExit
-                                        : (stopped >> l) & 1 ? kRayHitReturn
-                                                             : kRayEndReturn;
+          rec->last_exits[s.query[l]] = s.nodes[l] == 0 ? kNoExit : (stopped >> l) & 1 ? kRayHitReturn : kRayEndReturn;
         }
     }
     if (ended != 0) Refill(s, ended, queries, count, next, live, hits, r);
@@ -398,8 +395,8 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
 }  // namespace
 
 bool RayLanesSupported() {
-  static const bool supported = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-                                __builtin_cpu_supports("avx512dq");
+  static const bool supported =
+      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq");
   return supported;
 }
 
@@ -415,9 +412,7 @@ RC_LANES_TARGET void CastRayLanes(const RayCastScene& scene, const RayQuery* que
   if (count == 0) return;
   const Constants c = MakeConstants(scene.grid(), max_range_m);
   switch (scene.method()) {
-    case RayCastMethod::kDda:
-      RunLanes<RayCastMethod::kDda>(scene, queries, count, hits, c, rec);
-      return;
+    case RayCastMethod::kDda: RunLanes<RayCastMethod::kDda>(scene, queries, count, hits, c, rec); return;
     case RayCastMethod::kMarch:
       // Sample indices are 32-bit in the lanes.
       if (MarchSamples(scene.grid(), max_range_m) < std::numeric_limits<std::int32_t>::max()) {

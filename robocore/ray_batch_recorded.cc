@@ -67,9 +67,8 @@ struct RecordingVisitor : LastFetchVisitor {
 // kernel_record.h): the fetched cell stopped the ray, or the next one is out
 // of range or off the map.
 std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) {
-  const bool stops = v.last_kind == FetchKind::kDistanceCell
-                         ? scene.distance_field()->values()[v.last_index] == 0.0f
-                         : scene.grid().cells()[v.last_index] != CellState::kFree;
+  const bool stops = v.last_kind == FetchKind::kDistanceCell ? scene.distance_field()->values()[v.last_index] == 0.0f
+                                                             : scene.grid().cells()[v.last_index] != CellState::kFree;
   return stops ? kRayHitReturn : kRayEndReturn;
 }
 
@@ -110,15 +109,13 @@ std::vector<MemoryRegion> RayCastRegions(const RayCastScene& scene, const Device
   if (scene.method() != RayCastMethod::kRayMarching) return {grid};
   // The distance field lives after the grid, at its own base, even though
   // rm never reads the grid: the two are distinct device allocations.
-  MemoryRegion field{"distance field", FetchKind::kDistanceCell,
-                     AlignUp(grid.base + grid.bytes(), layout.alignment), sizeof(float),
-                     scene.distance_field()->values().size()};
+  MemoryRegion field{"distance field", FetchKind::kDistanceCell, AlignUp(grid.base + grid.bytes(), layout.alignment),
+                     sizeof(float), scene.distance_field()->values().size()};
   return {field};
 }
 
-void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
-                          std::vector<RayHit>& hits, KernelRecord& record,
-                          const RecordOptions& options) {
+void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
+                          KernelRecord& record, const RecordOptions& options) {
   record.step_kind = StepProgramFor(scene.method());
   record.program = options.program ? options.program : ShippedStepProgram(record.step_kind);
   if (record.program->ReturnIfCount(ProgramSection::kLoop) <= kRayEndReturn)
@@ -150,8 +147,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
   int sector_shift = 0;
   while ((1 << sector_shift) < sample.sector_bytes) ++sector_shift;
   const std::uint64_t footprint_begin = record.footprint_begin();
-  const std::uint64_t sectors =
-      mark ? ((record.footprint_end() - footprint_begin) >> sector_shift) + 1 : 0;
+  const std::uint64_t sectors = mark ? ((record.footprint_end() - footprint_begin) >> sector_shift) + 1 : 0;
   std::vector<std::vector<std::uint64_t>> touched;
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
@@ -206,8 +202,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
         lane.offset = fetched.base - footprint_begin;
         lane.element_bytes = fetched.element_bytes;
         lane.sector_shift = sector_shift;
-        CastRayLanes(scene, batch.queries.data() + seg.lo, static_cast<std::size_t>(seg.hi - seg.lo),
-                     batch.max_range_m, hits.data() + seg.lo, &lane);
+        CastRayLanes(scene, batch.queries.data() + seg.lo, static_cast<std::size_t>(seg.hi - seg.lo), batch.max_range_m,
+                     hits.data() + seg.lo, &lane);
       } else {
         MarkingVisitor marking;
         marking.touched = mine.data();

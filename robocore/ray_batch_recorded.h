@@ -42,7 +42,7 @@ enum class MarchProgramChoice : std::uint8_t {
   kShipped,   // programs/grid_march.asm: the micro-ops CastMarch performs, 1-byte cells
   kArtifact,  // programs/grid_march_artifact.asm: the artifact's 7-op cell transaction
 };
-const char* ToString(MarchProgramChoice choice);                  // "shipped" | "artifact"
+const char* ToString(MarchProgramChoice choice);  // "shipped" | "artifact"
 bool ParseMarchProgramChoice(const std::string& text, MarchProgramChoice* out);
 
 struct RayKernelChoices {
@@ -56,9 +56,8 @@ struct RayKernelChoices {
 // Throws std::invalid_argument for invalid choices.
 RecordOptions RecordOptionsFor(RayCastMethod method, const RayKernelChoices& choices, RecordOptions base = {});
 
-void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch,
-                          std::vector<RayHit>& hits, KernelRecord& record,
-                          const RecordOptions& options = {});
+void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
+                          KernelRecord& record, const RecordOptions& options = {});
 
 // The regions a scene's kernel fetches from, placed by `layout`: the grid
 // (layout.grid_cell_bytes per cell) for march and dda, the distance field

@@ -21,14 +21,11 @@ std::string ToString(RayCastMethod m) {
   return "?";
 }
 
-RayCastScene::RayCastScene(const OccupancyGrid& grid, RayCastMethod method)
-    : grid_(&grid), method_(method) {
+RayCastScene::RayCastScene(const OccupancyGrid& grid, RayCastMethod method) : grid_(&grid), method_(method) {
   if (method == RayCastMethod::kRayMarching) {
     const auto start = std::chrono::steady_clock::now();
-    distance_field_ = std::make_shared<const DistanceField>(
-        DistanceField::Build(grid, DistanceTarget::kBlocking));
-    build_seconds_ =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    distance_field_ = std::make_shared<const DistanceField>(DistanceField::Build(grid, DistanceTarget::kBlocking));
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   if (method != RayCastMethod::kRayMarching) {
     gather_cells_ = grid.cells();
@@ -36,8 +33,6 @@ RayCastScene::RayCastScene(const OccupancyGrid& grid, RayCastMethod method)
   }
 }
 
-std::size_t RayCastScene::precomputed_bytes() const {
-  return distance_field_ ? distance_field_->memory_bytes() : 0;
-}
+std::size_t RayCastScene::precomputed_bytes() const { return distance_field_ ? distance_field_->memory_bytes() : 0; }
 
 }  // namespace rc

@@ -47,9 +47,9 @@ std::string ToString(RayCastMethod m);
 
 // What a node fetch reads, so a backend can price its bytes.
 enum class FetchKind : std::uint8_t {
-  kGridCell = 0,       // one CellState byte
-  kDistanceCell = 1,   // one float of the distance field
-  kTreeNode = 2,       // one flattened box-tree node (robocore/collision/flat_box_tree.h)
+  kGridCell = 0,      // one CellState byte
+  kDistanceCell = 1,  // one float of the distance field
+  kTreeNode = 2,      // one flattened box-tree node (robocore/collision/flat_box_tree.h)
 };
 
 struct RayHit {
@@ -90,10 +90,10 @@ namespace ray_cast_detail {
 
 // Per-axis traversal state computed from the origin by formula.
 struct Axis {
-  double origin = 0.0;    // m
-  double dir = 0.0;       // unit-vector component
-  double inv_dir = 0.0;   // 1 / dir (0 when dir is 0): a multiply per boundary, not a divide
-  int step = 0;           // +1, -1 or 0
+  double origin = 0.0;   // m
+  double dir = 0.0;      // unit-vector component
+  double inv_dir = 0.0;  // 1 / dir (0 when dir is 0): a multiply per boundary, not a divide
+  int step = 0;          // +1, -1 or 0
   double BoundaryTime(int cell, double r) const {
     // Time at which the ray leaves `cell` along this axis.
     if (step == 0) return std::numeric_limits<double>::infinity();
@@ -123,8 +123,7 @@ inline bool Stops(const OccupancyGrid& g, int ix, int iy) {
 }  // namespace ray_cast_detail
 
 template <typename Visitor>
-RayHit CastMarch(const OccupancyGrid& g, double ox, double oy, double angle, double max_range,
-                 Visitor& visitor) {
+RayHit CastMarch(const OccupancyGrid& g, double ox, double oy, double angle, double max_range, Visitor& visitor) {
   const double r = g.resolution_m();
   const double dx = std::cos(angle), dy = std::sin(angle);
   RayHit hit;
@@ -149,8 +148,7 @@ RayHit CastMarch(const OccupancyGrid& g, double ox, double oy, double angle, dou
 }
 
 template <typename Visitor>
-RayHit CastDda(const OccupancyGrid& g, double ox, double oy, double angle, double max_range,
-               Visitor& visitor) {
+RayHit CastDda(const OccupancyGrid& g, double ox, double oy, double angle, double max_range, Visitor& visitor) {
   using namespace ray_cast_detail;
   const double r = g.resolution_m();
   const Axis ax = MakeAxis(ox, std::cos(angle));
@@ -189,8 +187,8 @@ RayHit CastDda(const OccupancyGrid& g, double ox, double oy, double angle, doubl
 }
 
 template <typename Visitor>
-RayHit CastRayMarching(const OccupancyGrid& g, const DistanceField& df, double ox, double oy,
-                       double angle, double max_range, Visitor& visitor) {
+RayHit CastRayMarching(const OccupancyGrid& g, const DistanceField& df, double ox, double oy, double angle,
+                       double max_range, Visitor& visitor) {
   using namespace ray_cast_detail;
   const double r = g.resolution_m();
   const Axis ax = MakeAxis(ox, std::cos(angle));
@@ -249,22 +247,17 @@ RayHit CastRayMarching(const OccupancyGrid& g, const DistanceField& df, double o
 
 // Dispatches on the scene's method.
 template <typename Visitor>
-RayHit CastRay(const RayCastScene& scene, double ox, double oy, double angle, double max_range,
-               Visitor& visitor) {
+RayHit CastRay(const RayCastScene& scene, double ox, double oy, double angle, double max_range, Visitor& visitor) {
   switch (scene.method()) {
-    case RayCastMethod::kMarch:
-      return CastMarch(scene.grid(), ox, oy, angle, max_range, visitor);
-    case RayCastMethod::kDda:
-      return CastDda(scene.grid(), ox, oy, angle, max_range, visitor);
+    case RayCastMethod::kMarch: return CastMarch(scene.grid(), ox, oy, angle, max_range, visitor);
+    case RayCastMethod::kDda: return CastDda(scene.grid(), ox, oy, angle, max_range, visitor);
     case RayCastMethod::kRayMarching:
-      return CastRayMarching(scene.grid(), *scene.distance_field(), ox, oy, angle, max_range,
-                             visitor);
+      return CastRayMarching(scene.grid(), *scene.distance_field(), ox, oy, angle, max_range, visitor);
   }
   return {};
 }
 
-inline RayHit CastRay(const RayCastScene& scene, double ox, double oy, double angle,
-                      double max_range) {
+inline RayHit CastRay(const RayCastScene& scene, double ox, double oy, double angle, double max_range) {
   NoFetchVisitor none;
   return CastRay(scene, ox, oy, angle, max_range, none);
 }

@@ -29,8 +29,7 @@ void RoboCoreContext::ConfigRoboCore(std::shared_ptr<const MicroProgram> program
   if (HasSactMicroOps(*program) && !KeepsSactExitContract(*program, &why))
     throw std::invalid_argument("ConfigRoboCore: " + why);
   if (leaf && (leaf->has_loop() || !leaf->section(ProgramSection::kPrologue).empty()))
-    throw std::invalid_argument("ConfigRoboCore: leaf '" + leaf->name() +
-                                "' must hold only an epilogue: section");
+    throw std::invalid_argument("ConfigRoboCore: leaf '" + leaf->name() + "' must hold only an epilogue: section");
   program_ = std::move(program);
   leaf_ = std::move(leaf);
   leaf_configured_ = true;
@@ -49,13 +48,12 @@ void RoboCoreContext::CheckLayout(const MemoryRegion& region) const {
     if (l.kind == region.kind) layout = &l;
   if (!layout) throw std::invalid_argument("ConfigDecode: no layout for the " + region.name + "'s nodes");
   if (layout->element_bytes != region.element_bytes)
-    throw std::invalid_argument("ConfigDecode: the " + region.name + " stores " +
-                                std::to_string(region.element_bytes) + "-byte nodes, the layout says " +
-                                std::to_string(layout->element_bytes));
+    throw std::invalid_argument("ConfigDecode: the " + region.name + " stores " + std::to_string(region.element_bytes) +
+                                "-byte nodes, the layout says " + std::to_string(layout->element_bytes));
 }
 
-void RoboCoreContext::ExecuteRoboCore(const RayBatch& queries, const RayCastScene& scene,
-                                      std::vector<RayHit>& results, KernelRecord& record) const {
+void RoboCoreContext::ExecuteRoboCore(const RayBatch& queries, const RayCastScene& scene, std::vector<RayHit>& results,
+                                      KernelRecord& record) const {
   if (program_ && HasSactMicroOps(*program_))
     throw std::invalid_argument("ExecuteRoboCore: program '" + program_->name() +
                                 "' is a collision (SACT) program; run it with CheckCollisions");

@@ -51,8 +51,7 @@ class RoboCoreContext {
   // the test of axis k). Throws std::invalid_argument if the program has no
   // loop, has fewer than two loop RETURN_IFs, holds SACT micro-ops without
   // keeping the SACT contract, or if `leaf` holds anything but an epilogue.
-  void ConfigRoboCore(std::shared_ptr<const MicroProgram> program,
-                      std::shared_ptr<const MicroProgram> leaf = nullptr);
+  void ConfigRoboCore(std::shared_ptr<const MicroProgram> program, std::shared_ptr<const MicroProgram> leaf = nullptr);
   // One layout per node kind the program may load; replaces earlier ones.
   void ConfigDecode(std::vector<NodeLayout> layouts);
 
@@ -63,8 +62,8 @@ class RoboCoreContext {
   // size disagrees with the structure in memory.
   // Also throws if the configured program holds SACT micro-ops (a
   // collision program).
-  void ExecuteRoboCore(const RayBatch& queries, const RayCastScene& scene,
-                       std::vector<RayHit>& results, KernelRecord& record) const;
+  void ExecuteRoboCore(const RayBatch& queries, const RayCastScene& scene, std::vector<RayHit>& results,
+                       KernelRecord& record) const;
 
   // Runs every OBB against the tree (CollideBatch: the staged SACT at every
   // visited node, early exit at the first colliding leaf) and fills one

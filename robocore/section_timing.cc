@@ -77,8 +77,7 @@ void Accumulate(SectionCost& into, const SectionCost& add) {
   into.pushes += add.pushes;
 }
 
-SectionTiming::SectionTiming(const std::vector<MicroOp>& source, const DatapathConfig& config)
-    : config_(config) {
+SectionTiming::SectionTiming(const std::vector<MicroOp>& source, const DatapathConfig& config) : config_(config) {
   const bool robocore = config.kind == DatapathKind::kRoboCore;
   int returns = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
@@ -90,8 +89,8 @@ SectionTiming::SectionTiming(const std::vector<MicroOp>& source, const DatapathC
       r.dropped = config.exit_mode == EarlyExitMode::kNone;
       // CTRL folds the exit test of the axis a SACT unit has just computed.
       const MicroOp* prev = i > 0 ? &source[i - 1] : nullptr;
-      r.ctrl_exit = robocore && !r.dropped && prev && InfoOf(prev->opcode).sact &&
-                    !prev->operands.empty() && prev->operands[0] == op.operands[0];
+      r.ctrl_exit = robocore && !r.dropped && prev && InfoOf(prev->opcode).sact && !prev->operands.empty() &&
+                    prev->operands[0] == op.operands[0];
       ops_.push_back(r);
       continue;
     }
@@ -114,12 +113,10 @@ SectionTiming::SectionTiming(const std::vector<MicroOp>& source, const DatapathC
       prev_position = position;
     }
   }
-  if (returns >= kNoExit)
-    throw std::invalid_argument("a section may hold at most 254 RETURN_IFs");
+  if (returns >= kNoExit) throw std::invalid_argument("a section may hold at most 254 RETURN_IFs");
   costs_.assign(1 + returns, SectionCost{});
   costs_[0] = Summarize(Plan(kNoExit), config);
-  for (int j = 0; j < returns; ++j)
-    costs_[1 + j] = Summarize(Plan(static_cast<std::uint8_t>(j)), config);
+  for (int j = 0; j < returns; ++j) costs_[1 + j] = Summarize(Plan(static_cast<std::uint8_t>(j)), config);
 }
 
 std::vector<PlannedOp> SectionTiming::Plan(std::uint8_t exit) const {
@@ -221,8 +218,7 @@ ProgramTiming::ProgramTiming(const MicroProgram& program, const MicroProgram* le
       epilogue(program.section(ProgramSection::kEpilogue), config) {
   if (leaf_program) {
     if (!leaf_program->section(ProgramSection::kPrologue).empty() || leaf_program->has_loop())
-      throw std::invalid_argument("leaf program '" + leaf_program->name() +
-                                  "' must hold only an epilogue: section");
+      throw std::invalid_argument("leaf program '" + leaf_program->name() + "' must hold only an epilogue: section");
     leaf = SectionTiming(leaf_program->section(ProgramSection::kEpilogue), config);
   }
   once_ = prologue.Cost(kNoExit);

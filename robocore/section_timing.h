@@ -30,11 +30,11 @@ struct LoweredOp {
   std::uint8_t width = 1;
   OpUnit unit = OpUnit::kAddSub;
   int latency = 0;
-  int initiation = 1;         // cycles the micro-op holds its unit's input
-  int return_index = -1;      // RETURN_IF ordinal within the section, else -1
-  bool ctrl_exit = false;     // RoboCore: a RETURN_IF folded into CTRL
-  bool chained = false;       // RoboCore: reaches its SACT unit over the chain
-  bool dropped = false;       // plain TTA+: a RETURN_IF marker, not run
+  int initiation = 1;      // cycles the micro-op holds its unit's input
+  int return_index = -1;   // RETURN_IF ordinal within the section, else -1
+  bool ctrl_exit = false;  // RoboCore: a RETURN_IF folded into CTRL
+  bool chained = false;    // RoboCore: reaches its SACT unit over the chain
+  bool dropped = false;    // plain TTA+: a RETURN_IF marker, not run
   int source_line = 0;
 };
 
@@ -56,10 +56,10 @@ struct PlannedOp {
 };
 
 struct SectionCost {
-  std::uint32_t cycles = 0;          // latency of one execution, LOAD excluded
-  std::uint32_t hops = 0;            // interconnect hops taken
-  std::uint32_t predicated_off = 0;  // micro-ops that travelled without work
-  std::uint32_t ctrl_exits = 0;      // CTRL-folded RETURN_IFs evaluated
+  std::uint32_t cycles = 0;                              // latency of one execution, LOAD excluded
+  std::uint32_t hops = 0;                                // interconnect hops taken
+  std::uint32_t predicated_off = 0;                      // micro-ops that travelled without work
+  std::uint32_t ctrl_exits = 0;                          // CTRL-folded RETURN_IFs evaluated
   std::array<std::uint32_t, kOpcodeCount> executed{};    // micro-ops that did work
   std::array<std::uint32_t, kOpUnitCount> unit_slots{};  // issue cycles held per unit
   ArithmeticContent arithmetic;
@@ -75,9 +75,7 @@ class SectionTiming {
   const std::vector<LoweredOp>& ops() const { return ops_; }
   int return_count() const { return static_cast<int>(costs_.size()) - 1; }
   // One execution in which RETURN_IF #exit fired; kNoExit: none fired.
-  const SectionCost& Cost(std::uint8_t exit) const {
-    return costs_[exit == kNoExit ? 0 : 1 + exit];
-  }
+  const SectionCost& Cost(std::uint8_t exit) const { return costs_[exit == kNoExit ? 0 : 1 + exit]; }
   // The steps of one execution in which RETURN_IF #exit fired.
   std::vector<PlannedOp> Plan(std::uint8_t exit) const;
   const DatapathConfig& config() const { return config_; }
@@ -96,8 +94,7 @@ struct ProgramTiming {
   SectionTiming epilogue;
   SectionTiming leaf;
   ProgramTiming() = default;
-  ProgramTiming(const MicroProgram& program, const MicroProgram* leaf_program,
-                const DatapathConfig& config);
+  ProgramTiming(const MicroProgram& program, const MicroProgram* leaf_program, const DatapathConfig& config);
   // Cost of everything a query runs once (prologue + epilogue + leaf).
   const SectionCost& once() const { return once_; }
 

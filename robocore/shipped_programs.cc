@@ -16,8 +16,8 @@ std::shared_ptr<const MicroProgram> ShippedProgram(const std::string& file_name)
   for (const EmbeddedProgram& p : EmbeddedPrograms()) {
     if (file_name != p.file_name) continue;
     // Errors name the source file, so a broken shipped program points at it.
-    auto program = std::make_shared<const MicroProgram>(
-        ParseMicroProgram(p.text, ShippedProgramDirectory() + "/" + file_name));
+    auto program =
+        std::make_shared<const MicroProgram>(ParseMicroProgram(p.text, ShippedProgramDirectory() + "/" + file_name));
     parsed.emplace(file_name, program);
     return program;
   }

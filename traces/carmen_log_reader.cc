@@ -25,8 +25,7 @@ const char* const kOdomLayout = "ODOM x y theta tv rv accel timestamp hostname l
 
 using Fields = std::vector<std::string_view>;
 
-std::string NameOrPosition(const char* const* names, std::size_t count, std::size_t k,
-                           std::size_t absolute_index) {
+std::string NameOrPosition(const char* const* names, std::size_t count, std::size_t k, std::size_t absolute_index) {
   return k < count ? names[k] : "field " + std::to_string(absolute_index + 1);
 }
 
@@ -38,8 +37,8 @@ struct LaserRecord {
   LaserScan scan;
 };
 
-Pose2 ParsePose(const LineReader& reader, const Fields& f, std::size_t first, const char* x,
-                const char* y, const char* theta) {
+Pose2 ParsePose(const LineReader& reader, const Fields& f, std::size_t first, const char* x, const char* y,
+                const char* theta) {
   return Pose2{reader.ParseDouble(f[first], x), reader.ParseDouble(f[first + 1], y),
                reader.ParseDouble(f[first + 2], theta)};
 }
@@ -52,8 +51,8 @@ double ParseTrailer(const LineReader& reader, const Fields& f, std::size_t first
 }
 
 LaserRecord ParseFlaser(const LineReader& reader, const Fields& f) {
-  static const char* const kTail[] = {"x", "y", "theta", "odom_x", "odom_y", "odom_theta",
-                                      "timestamp", "hostname", "logger_timestamp"};
+  static const char* const kTail[] = {"x",          "y",         "theta",    "odom_x",          "odom_y",
+                                      "odom_theta", "timestamp", "hostname", "logger_timestamp"};
   if (f.size() < 2) reader.Fail("num_readings", "missing (" + std::string(kFlaserLayout) + ")");
   const std::size_t n = static_cast<std::size_t>(reader.ParseInt(f[1], "num_readings", 1, kMaxBeams));
   auto name_of = [n](std::size_t i) -> std::string {
@@ -75,12 +74,22 @@ LaserRecord ParseFlaser(const LineReader& reader, const Fields& f) {
 }
 
 LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
-  static const char* const kHead[] = {"message",      "laser_type",    "start_angle",
+  static const char* const kHead[] = {"message",       "laser_type",         "start_angle",
                                       "field_of_view", "angular_resolution", "maximum_range",
-                                      "accuracy",     "remission_mode", "num_readings"};
-  static const char* const kTail[] = {"laser_x", "laser_y", "laser_theta", "robot_x", "robot_y",
-                                      "robot_theta", "tv", "rv", "forward_safety_dist",
-                                      "side_safety_dist", "turn_axis", "timestamp", "hostname",
+                                      "accuracy",      "remission_mode",     "num_readings"};
+  static const char* const kTail[] = {"laser_x",
+                                      "laser_y",
+                                      "laser_theta",
+                                      "robot_x",
+                                      "robot_y",
+                                      "robot_theta",
+                                      "tv",
+                                      "rv",
+                                      "forward_safety_dist",
+                                      "side_safety_dist",
+                                      "turn_axis",
+                                      "timestamp",
+                                      "hostname",
                                       "logger_timestamp"};
   std::size_t n = 0, m = 0;
   bool know_m = false;
@@ -99,8 +108,7 @@ LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
   record.geometry.angle_min_rad = reader.ParseDouble(f[2], "start_angle");
   reader.ParseDouble(f[3], "field_of_view");
   record.geometry.angle_increment_rad = reader.ParseDouble(f[4], "angular_resolution");
-  if (!(record.geometry.angle_increment_rad > 0.0))
-    reader.Fail("angular_resolution", "must be positive (rad)");
+  if (!(record.geometry.angle_increment_rad > 0.0)) reader.Fail("angular_resolution", "must be positive (rad)");
   record.geometry.max_range_m = reader.ParseDouble(f[5], "maximum_range");
   if (!(record.geometry.max_range_m > 0.0)) reader.Fail("maximum_range", "must be positive (m)");
   reader.ParseDouble(f[6], "accuracy");
@@ -114,8 +122,7 @@ LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
   record.geometry.beam_count = static_cast<int>(n);
   record.scan.ranges_m.resize(n);
   for (std::size_t b = 0; b < n; ++b) record.scan.ranges_m[b] = ParseRange(reader, f[9 + b], b, 1.0);
-  for (std::size_t j = 0; j < m; ++j)
-    reader.ParseDouble(f[10 + n + j], "remission " + std::to_string(j + 1));
+  for (std::size_t j = 0; j < m; ++j) reader.ParseDouble(f[10 + n + j], "remission " + std::to_string(j + 1));
   const std::size_t tail = 10 + n + m;
   record.laser_pose = ParsePose(reader, f, tail, "laser_x", "laser_y", "laser_theta");
   record.scan.odometry = ParsePose(reader, f, tail + 3, "robot_x", "robot_y", "robot_theta");
@@ -125,11 +132,10 @@ LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
 }
 
 void ParseOdom(const LineReader& reader, const Fields& f) {
-  static const char* const kNames[] = {"message", "x",         "y",        "theta",
-                                       "tv",      "rv",        "accel",    "timestamp",
-                                       "hostname", "logger_timestamp"};
-  RequireFieldCount(reader, f.size(), 10,
-                    [](std::size_t i) { return NameOrPosition(kNames, 10, i, i); }, kOdomLayout);
+  static const char* const kNames[] = {"message", "x",     "y",         "theta",    "tv",
+                                       "rv",      "accel", "timestamp", "hostname", "logger_timestamp"};
+  RequireFieldCount(
+      reader, f.size(), 10, [](std::size_t i) { return NameOrPosition(kNames, 10, i, i); }, kOdomLayout);
   for (std::size_t i = 1; i < 7; ++i) reader.ParseDouble(f[i], kNames[i]);
   ParseTrailer(reader, f, 7);
 }
@@ -140,8 +146,7 @@ void ParseOdom(const LineReader& reader, const Fields& f) {
 bool IsMessageName(std::string_view token) {
   if (token.size() < 2 || !std::isupper(static_cast<unsigned char>(token[0]))) return false;
   for (char c : token)
-    if (!std::isupper(static_cast<unsigned char>(c)) && !std::isdigit(static_cast<unsigned char>(c)) &&
-        c != '_')
+    if (!std::isupper(static_cast<unsigned char>(c)) && !std::isdigit(static_cast<unsigned char>(c)) && c != '_')
       return false;
   return true;
 }
@@ -170,8 +175,10 @@ class LaserRecordChecker {
 
   // Checks the record against the first one and returns its scan.
   LaserScan Accept(const LineReader& reader, LaserRecord record) {
-    if (kind_.empty()) Fix(reader, record);
-    else CheckSameGeometry(reader, record);
+    if (kind_.empty())
+      Fix(reader, record);
+    else
+      CheckSameGeometry(reader, record);
     const LaserMountOffset mount = MeasureMountOffset(record.scan.odometry, record.laser_pose);
     stats_.laser_mount.Add(mount);
     if (!options_.laser_offset_forward_m) {
@@ -220,9 +227,8 @@ class LaserRecordChecker {
                                  ": both describe the front laser; a log must use one");
     const LaserGeometry& g = geometry_;
     if (record.geometry.beam_count != g.beam_count)
-      reader.Fail("num_readings", std::to_string(record.geometry.beam_count) +
-                                      " beams, but the first laser record" + since + " has " +
-                                      std::to_string(g.beam_count));
+      reader.Fail("num_readings", std::to_string(record.geometry.beam_count) + " beams, but the first laser record" +
+                                      since + " has " + std::to_string(g.beam_count));
     if (kind_ != "ROBOTLASER1") return;
     if (record.geometry.angle_min_rad != g.angle_min_rad)
       reader.Fail("start_angle", "differs from the first laser record" + since);

@@ -30,8 +30,8 @@ std::string OdometryFieldName(std::size_t i) {
 }
 
 // Robot or laser pose from three fields in cm, cm, rad.
-Pose2 ParsePoseCm(const LineReader& reader, const std::vector<std::string_view>& fields,
-                  std::size_t first, const char* x_name, const char* y_name, const char* theta_name) {
+Pose2 ParsePoseCm(const LineReader& reader, const std::vector<std::string_view>& fields, std::size_t first,
+                  const char* x_name, const char* y_name, const char* theta_name) {
   Pose2 pose;
   pose.x = CentimetresToMetres(reader.ParseDouble(fields[first], x_name));
   pose.y = CentimetresToMetres(reader.ParseDouble(fields[first + 1], y_name));
@@ -59,8 +59,7 @@ bool CmuLogStream::Next(LaserScan& scan) {
       ++stats_.odometry_records;
       continue;
     }
-    if (fields[0] != "L")
-      reader_.Fail("record type", "'" + std::string(fields[0]) + "' is neither O nor L");
+    if (fields[0] != "L") reader_.Fail("record type", "'" + std::string(fields[0]) + "' is neither O nor L");
 
     RequireFieldCount(reader_, fields.size(), kLaserFields, LaserFieldName, kLaserLayout);
     scan.source_line = reader_.line_number();

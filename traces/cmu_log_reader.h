@@ -40,8 +40,7 @@ struct CmuLogOptions {
 // than the one before (record_fields.h), a laser pose that disagrees with
 // the first record's mount or is off the heading axis, or a log without L
 // records. Nothing is repaired.
-SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options = {},
-                       TraceReadStats* stats = nullptr);
+SensorTrace ReadCmuLog(const std::string& path, const CmuLogOptions& options = {}, TraceReadStats* stats = nullptr);
 
 // The same reader, one L record at a time.
 class CmuLogStream final : public LaserRecordStream {

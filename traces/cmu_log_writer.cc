@@ -18,12 +18,12 @@ constexpr double kAngleTolerance_rad = 1e-9;
 void RequireCmuGeometry(const SensorTrace& trace) {
   const LaserGeometry cmu = CmuLaserGeometry();
   const LaserGeometry& g = trace.geometry;
-  if (g.beam_count != cmu.beam_count ||
-      std::abs(g.angle_min_rad - cmu.angle_min_rad) > kAngleTolerance_rad ||
+  if (g.beam_count != cmu.beam_count || std::abs(g.angle_min_rad - cmu.angle_min_rad) > kAngleTolerance_rad ||
       std::abs(g.angle_increment_rad - cmu.angle_increment_rad) > kAngleTolerance_rad) {
-    throw UsageError(fmt::format("cannot write '{}' as a CMU log: its laser has {} beams from {:.6f} rad every "
-                                 "{:.6f} rad; a CMU log implies 180 beams from -pi/2 every pi/180",
-                                 trace.source_path, g.beam_count, g.angle_min_rad, g.angle_increment_rad));
+    throw UsageError(
+        fmt::format("cannot write '{}' as a CMU log: its laser has {} beams from {:.6f} rad every "
+                    "{:.6f} rad; a CMU log implies 180 beams from -pi/2 every pi/180",
+                    trace.source_path, g.beam_count, g.angle_min_rad, g.angle_increment_rad));
   }
 }
 
@@ -44,11 +44,10 @@ void CheckScan(const SensorTrace& trace, std::size_t k, double previous_time_s) 
   const LaserScan& scan = trace.scans[k];
   const std::string where = "scan " + std::to_string(k) + " of '" + trace.source_path + "'";
   if (scan.ranges_m.size() != static_cast<std::size_t>(trace.geometry.beam_count))
-    throw std::invalid_argument(where + " has " + std::to_string(scan.ranges_m.size()) +
-                                " ranges for a " + std::to_string(trace.geometry.beam_count) +
-                                "-beam laser");
-  if (!std::isfinite(scan.time_s) || !std::isfinite(scan.odometry.x) ||
-      !std::isfinite(scan.odometry.y) || !std::isfinite(scan.odometry.theta))
+    throw std::invalid_argument(where + " has " + std::to_string(scan.ranges_m.size()) + " ranges for a " +
+                                std::to_string(trace.geometry.beam_count) + "-beam laser");
+  if (!std::isfinite(scan.time_s) || !std::isfinite(scan.odometry.x) || !std::isfinite(scan.odometry.y) ||
+      !std::isfinite(scan.odometry.theta))
     throw std::invalid_argument(where + " has a non-finite pose or time");
   if (k > 0 && scan.time_s < previous_time_s)
     throw std::invalid_argument(where + " is earlier than the scan before it");
@@ -58,8 +57,8 @@ void CheckScan(const SensorTrace& trace, std::size_t k, double previous_time_s) 
     if (!std::isfinite(r) || r < 0.0f)
       throw std::invalid_argument(where + " range " + std::to_string(b + 1) + " is NaN, inf or negative");
     if (r < trace.geometry.max_range_m && r >= cmu_max_m)
-      throw UsageError(where + " range " + std::to_string(b + 1) + " is a valid reading of " +
-                       std::to_string(r) + " m, beyond what a CMU log can carry (< 81.83 m)");
+      throw UsageError(where + " range " + std::to_string(b + 1) + " is a valid reading of " + std::to_string(r) +
+                       " m, beyond what a CMU log can carry (< 81.83 m)");
   }
 }
 
@@ -67,8 +66,7 @@ void CheckScan(const SensorTrace& trace, std::size_t k, double previous_time_s) 
 
 void WriteCmuLog(const SensorTrace& trace, const std::string& path, const CmuLogWriteOptions& options) {
   RequireCmuGeometry(trace);
-  for (std::size_t k = 0; k < trace.scans.size(); ++k)
-    CheckScan(trace, k, k > 0 ? trace.scans[k - 1].time_s : 0.0);
+  for (std::size_t k = 0; k < trace.scans.size(); ++k) CheckScan(trace, k, k > 0 ? trace.scans[k - 1].time_s : 0.0);
 
   AtomicFile file(path);
   std::ostream& out = file.stream();

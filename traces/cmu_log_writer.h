@@ -29,7 +29,6 @@ struct CmuLogWriteOptions {
 // range >= 81.83 m); std::invalid_argument if a scan has the wrong beam count
 // or a NaN, inf or negative value, or times go backwards (caller bugs);
 // std::runtime_error if the file cannot be written. Writes via AtomicFile.
-void WriteCmuLog(const SensorTrace& trace, const std::string& path,
-                 const CmuLogWriteOptions& options = {});
+void WriteCmuLog(const SensorTrace& trace, const std::string& path, const CmuLogWriteOptions& options = {});
 
 }  // namespace rc

@@ -14,9 +14,7 @@
 namespace rc {
 namespace {
 
-bool NeedsQuotes(std::string_view text) {
-  return text.find_first_of(",\"\r\n") != std::string_view::npos;
-}
+bool NeedsQuotes(std::string_view text) { return text.find_first_of(",\"\r\n") != std::string_view::npos; }
 
 std::string Quoted(std::string_view text) {
   if (!NeedsQuotes(text)) return std::string(text);
@@ -35,8 +33,7 @@ std::string CsvCell::Format(int significant_digits) const {
     int digits;
     std::string operator()(std::monostate) const { return ""; }
     std::string operator()(double v) const {
-      if (!std::isfinite(v))
-        throw std::invalid_argument(std::isnan(v) ? "NaN" : "infinite value");
+      if (!std::isfinite(v)) throw std::invalid_argument(std::isnan(v) ? "NaN" : "infinite value");
       return fmt::format("{:.{}g}", v, digits);
     }
     std::string operator()(long long v) const { return std::to_string(v); }
@@ -68,11 +65,10 @@ CsvTable::CsvTable(std::string path, std::vector<std::string> columns, CsvTableO
   for (std::size_t i = 0; i < all.size(); ++i) {
     const std::string& name = all[i];
     if (name.empty() || NeedsQuotes(name))
-      throw std::invalid_argument("CSV table '" + path_ + "': column " + std::to_string(i + 1) +
-                                  " name '" + name + "' is empty or holds a comma, quote or newline");
+      throw std::invalid_argument("CSV table '" + path_ + "': column " + std::to_string(i + 1) + " name '" + name +
+                                  "' is empty or holds a comma, quote or newline");
     for (std::size_t j = 0; j < i; ++j)
-      if (all[j] == name)
-        throw std::invalid_argument("CSV table '" + path_ + "': duplicate column '" + name + "'");
+      if (all[j] == name) throw std::invalid_argument("CSV table '" + path_ + "': duplicate column '" + name + "'");
   }
   std::string header;
   for (std::size_t i = 0; i < columns_.size(); ++i) header += (i ? "," : "") + columns_[i];
@@ -107,9 +103,8 @@ void CsvTable::AddRow(const Row& row) {
   if (row.table_ != this) throw std::logic_error("CSV row built for another table");
   for (std::size_t i = 0; i < columns_.size(); ++i)
     if (!row.set_[i])
-      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) +
-                                  ": column '" + columns_[i] +
-                                  "' not set (use CsvCell::Empty() for a missing value)");
+      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row_count_ + 1) + ": column '" +
+                                  columns_[i] + "' not set (use CsvCell::Empty() for a missing value)");
   AddRow(row.cells_);
 }
 
@@ -125,8 +120,8 @@ std::string CsvTable::FormatRow(const std::vector<CsvCell>& cells, const std::ve
     try {
       line += cells[i].Format(options_.significant_digits);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row + 1) + " column '" +
-                                  names[i] + "': " + e.what() + " (write CsvCell::Empty() for a missing value)");
+      throw std::invalid_argument("CSV table '" + path_ + "' row " + std::to_string(row + 1) + " column '" + names[i] +
+                                  "': " + e.what() + " (write CsvCell::Empty() for a missing value)");
     }
   }
   return line;
@@ -177,8 +172,7 @@ void CsvTable::Commit(const std::function<std::vector<CsvCell>(std::size_t row)>
     if (!prefix) throw OutputError(path_, "the timeline changed while it was being written");
     at = row_ends_[r];
     out << text;
-    if (!options_.hindsight_columns.empty())
-      out << ',' << FormatRow(cells_of_row(r), options_.hindsight_columns, r);
+    if (!options_.hindsight_columns.empty()) out << ',' << FormatRow(cells_of_row(r), options_.hindsight_columns, r);
     out << '\n';
   }
   complete.Commit();
@@ -216,8 +210,7 @@ CsvContents ReadCsv(const std::string& path) {
       contents.header = std::move(record);
     } else if (record.size() != contents.header.size()) {
       throw InputError(path, record_line, "column count",
-                       std::to_string(record.size()) + " fields, header has " +
-                           std::to_string(contents.header.size()));
+                       std::to_string(record.size()) + " fields, header has " + std::to_string(contents.header.size()));
     } else {
       contents.rows.push_back(std::move(record));
     }

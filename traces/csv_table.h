@@ -37,13 +37,15 @@ class CsvCell {
   CsvCell(double value) : value_(value) {}  // NOLINT: cells are built implicitly
   template <typename T, std::enable_if_t<std::is_integral_v<T> && !std::is_same_v<T, bool>, int> = 0>
   CsvCell(T value) {  // NOLINT
-    if constexpr (std::is_signed_v<T>) value_ = static_cast<long long>(value);
-    else value_ = static_cast<unsigned long long>(value);
+    if constexpr (std::is_signed_v<T>)
+      value_ = static_cast<long long>(value);
+    else
+      value_ = static_cast<unsigned long long>(value);
   }
   CsvCell(bool) = delete;  // a pointer or condition passed by mistake; write 0/1 explicitly
-  CsvCell(std::string value) : value_(std::move(value)) {}  // NOLINT
+  CsvCell(std::string value) : value_(std::move(value)) {}         // NOLINT
   CsvCell(std::string_view value) : value_(std::string(value)) {}  // NOLINT
-  CsvCell(const char* value) : value_(std::string(value)) {}  // NOLINT
+  CsvCell(const char* value) : value_(std::string(value)) {}       // NOLINT
 
   static CsvCell Empty() { return CsvCell(); }
 

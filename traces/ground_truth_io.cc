@@ -29,8 +29,8 @@ GroundTruth ReadGroundTruth(const std::string& path) {
     const auto f = SplitFields(line);
     if (f.empty() || f[0][0] == '#') continue;
     static const char* const kNames[] = {"t", "x", "y", "theta"};
-    RequireFieldCount(reader, f.size(), 4, [](std::size_t i) { return std::string(kNames[i]); },
-                      kColumns);
+    RequireFieldCount(
+        reader, f.size(), 4, [](std::size_t i) { return std::string(kNames[i]); }, kColumns);
     GroundTruthPose p;
     p.time_s = reader.ParseDouble(f[0], "t");
     p.pose.x = reader.ParseDouble(f[1], "x");
@@ -51,8 +51,7 @@ void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose
     const GroundTruthPose& p = poses[k];
     if (!std::isfinite(p.time_s) || !std::isfinite(p.pose.x) || !std::isfinite(p.pose.y) ||
         !std::isfinite(p.pose.theta))
-      throw std::invalid_argument("ground-truth pose " + std::to_string(k) + " for '" + path +
-                                  "' is not finite");
+      throw std::invalid_argument("ground-truth pose " + std::to_string(k) + " for '" + path + "' is not finite");
     out << fmt::format("{:.17g} {:.17g} {:.17g} {:.17g}\n", p.time_s, p.pose.x, p.pose.y, p.pose.theta);
   }
   file.Commit();
@@ -61,17 +60,15 @@ void WriteGroundTruth(const std::string& path, const std::vector<GroundTruthPose
 void CheckGroundTruthMatches(ScanSource& scans, const GroundTruth& truth) {
   if (truth.poses.size() != scans.size())
     throw InputError(truth.source_path, 0, "poses",
-                     std::to_string(truth.poses.size()) + " ground-truth poses for " +
-                         std::to_string(scans.size()) + " laser records in '" + scans.source_path() +
-                         "'; the files pair line by line");
+                     std::to_string(truth.poses.size()) + " ground-truth poses for " + std::to_string(scans.size()) +
+                         " laser records in '" + scans.source_path() + "'; the files pair line by line");
   scans.Rewind();
   LaserScan scan;
   for (std::size_t k = 0; k < truth.poses.size() && scans.Next(scan); ++k) {
     const double t_truth = truth.poses[k].time_s;
     if (std::abs(t_truth - scan.time_s) > kTimeTolerance_s) {
-      const std::string text =
-          fmt::format("pose {} has time {:.6f} s, but laser record {} has {:.6f} s ('{}' line {})", k + 1, t_truth,
-                      k + 1, scan.time_s, scans.source_path(), scan.source_line);
+      const std::string text = fmt::format("pose {} has time {:.6f} s, but laser record {} has {:.6f} s ('{}' line {})",
+                                           k + 1, t_truth, k + 1, scan.time_s, scans.source_path(), scan.source_line);
       throw InputError(truth.source_path, truth.poses[k].source_line, "t", text);
     }
   }

@@ -15,8 +15,8 @@ namespace rc {
 
 struct GroundTruthPose {
   double time_s = 0.0;
-  Pose2 pose;             // m, m, rad, in the map frame
-  long source_line = 0;   // 1-based line in the file (0 if not read from one)
+  Pose2 pose;            // m, m, rad, in the map frame
+  long source_line = 0;  // 1-based line in the file (0 if not read from one)
 };
 
 struct GroundTruth {

@@ -31,16 +31,15 @@ void LaserMountStats::Add(const LaserMountOffset& offset) {
   ++samples;
 }
 
-void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured,
-                      double expected_forward_m, const LaserMountTolerance& tolerance,
-                      const std::string& position_field, const std::string& heading_field,
-                      const std::string& expected_source) {
+void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured, double expected_forward_m,
+                      const LaserMountTolerance& tolerance, const std::string& position_field,
+                      const std::string& heading_field, const std::string& expected_source) {
   if (std::abs(measured.forward_m - expected_forward_m) > tolerance.position_m ||
       std::abs(measured.lateral_m) > tolerance.position_m)
     reader.Fail(position_field, fmt::format("laser pose puts the laser {:.6f} m ahead and {:.6f} m left of the robot; "
                                             "expected {:.6f} m ahead on the heading axis ({}; tolerance {:.6f} m)",
-                                            measured.forward_m, measured.lateral_m, expected_forward_m,
-                                            expected_source, tolerance.position_m));
+                                            measured.forward_m, measured.lateral_m, expected_forward_m, expected_source,
+                                            tolerance.position_m));
   if (std::abs(measured.heading_rad) > tolerance.heading_rad)
     reader.Fail(heading_field, fmt::format("laser heading differs from the robot heading by {:.6f} rad (tolerance "
                                            "{:.6f} rad); a rotated laser mount is not modelled",

@@ -42,10 +42,9 @@ struct LaserMountStats {
 // `tolerance` of a laser `expected_forward_m` ahead on the heading axis.
 // position_field / heading_field name the record's laser pose fields;
 // expected_source says where the expectation came from, for the message.
-void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured,
-                      double expected_forward_m, const LaserMountTolerance& tolerance,
-                      const std::string& position_field, const std::string& heading_field,
-                      const std::string& expected_source);
+void CheckMountOffset(const LineReader& reader, const LaserMountOffset& measured, double expected_forward_m,
+                      const LaserMountTolerance& tolerance, const std::string& position_field,
+                      const std::string& heading_field, const std::string& expected_source);
 
 // A log that records both poses states its own mount: the readers take it
 // from the first laser record, rounded to kMountResolutionM, and require

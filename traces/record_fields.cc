@@ -8,23 +8,20 @@
 
 namespace rc {
 
-void RequireFieldCount(const LineReader& reader, std::size_t actual, std::size_t expected,
-                       const FieldNamer& name_of, const std::string& layout) {
+void RequireFieldCount(const LineReader& reader, std::size_t actual, std::size_t expected, const FieldNamer& name_of,
+                       const std::string& layout) {
   if (actual < expected)
-    reader.Fail(name_of(actual), "line ends after " + std::to_string(actual) + " of " +
-                                     std::to_string(expected) + " fields (" + layout + ")");
+    reader.Fail(name_of(actual), "line ends after " + std::to_string(actual) + " of " + std::to_string(expected) +
+                                     " fields (" + layout + ")");
   if (actual > expected)
-    reader.Fail("field " + std::to_string(expected + 1),
-                std::to_string(actual) + " fields where " + std::to_string(expected) +
-                    " were expected (" + layout + ")");
+    reader.Fail("field " + std::to_string(expected + 1), std::to_string(actual) + " fields where " +
+                                                             std::to_string(expected) + " were expected (" + layout +
+                                                             ")");
 }
 
-std::string RangeFieldName(std::size_t beam_index) {
-  return "range " + std::to_string(beam_index + 1);
-}
+std::string RangeFieldName(std::size_t beam_index) { return "range " + std::to_string(beam_index + 1); }
 
-float ParseRange(const LineReader& reader, std::string_view token, std::size_t beam_index,
-                 double units_per_metre) {
+float ParseRange(const LineReader& reader, std::string_view token, std::size_t beam_index, double units_per_metre) {
   const std::string field = RangeFieldName(beam_index);
   const double value = reader.ParseDouble(token, field);  // rejects NaN and inf
   if (value < 0.0) reader.Fail(field, "negative range '" + std::string(token) + "'");

@@ -18,8 +18,8 @@ using FieldNamer = std::function<std::string(std::size_t index)>;
 // Throws unless a record has exactly `expected` fields. A short line names the
 // first missing field (a line cut off mid-scan says which range is missing);
 // `layout` is the record's format as a reader would write it in a manual.
-void RequireFieldCount(const LineReader& reader, std::size_t actual, std::size_t expected,
-                       const FieldNamer& name_of, const std::string& layout);
+void RequireFieldCount(const LineReader& reader, std::size_t actual, std::size_t expected, const FieldNamer& name_of,
+                       const std::string& layout);
 
 // "range 1" .. "range N": 1-based like the r1..r180 of the CMU format note.
 std::string RangeFieldName(std::size_t beam_index);
@@ -30,8 +30,7 @@ std::string RangeFieldName(std::size_t beam_index);
 // shared/data contains one, but drivers such as CARMEN's use 0 for "no
 // echo"; the sensor model, not the reader, decides what a 0 means).
 // Readings at or beyond the no-return threshold are kept as logged.
-float ParseRange(const LineReader& reader, std::string_view token, std::size_t beam_index,
-                 double units_per_metre);
+float ParseRange(const LineReader& reader, std::string_view token, std::size_t beam_index, double units_per_metre);
 
 // Laser records must be in time order: the motion model differences
 // consecutive records, and a step far back means a spliced or corrupt log.
@@ -49,9 +48,9 @@ float ParseRange(const LineReader& reader, std::string_view token, std::size_t b
 inline constexpr double kMaxClockGlitchS = 0.5;
 
 struct TimeGlitchStats {
-  long count = 0;              // laser records earlier than the one before
-  double largest_step_s = 0.0; // the largest such step back (s)
-  long first_line = 0;         // 1-based line of the first one (0: none)
+  long count = 0;               // laser records earlier than the one before
+  double largest_step_s = 0.0;  // the largest such step back (s)
+  long first_line = 0;          // 1-based line of the first one (0: none)
 };
 
 class LaserTimeOrder {

@@ -38,8 +38,7 @@ bool RowildLogStream::Next(LaserScan& scan) {
     scan.odometry.y = CentimetresToMetres(reader_.ParseDouble(fields[1], "y"));
     scan.odometry.theta = reader_.ParseDouble(fields[2], "theta");
     scan.ranges_m.resize(kBeams);
-    for (std::size_t b = 0; b < kBeams; ++b)
-      scan.ranges_m[b] = ParseRange(reader_, fields[kPoseFields + b], b, 100.0);
+    for (std::size_t b = 0; b < kBeams; ++b) scan.ranges_m[b] = ParseRange(reader_, fields[kPoseFields + b], b, 100.0);
     ++stats_.laser_records;
     return true;
   }

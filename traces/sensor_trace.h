@@ -18,24 +18,24 @@ namespace rc {
 // robot centre on its heading axis.
 struct LaserGeometry {
   int beam_count = 180;
-  double angle_min_rad = -kPi / 2.0;          // first beam: the robot's right
-  double angle_increment_rad = kPi / 180.0;   // counter-clockwise (right to left)
-  double max_range_m = 81.83;                 // readings >= this are "no return"
-  double offset_forward_m = 0.25;             // laser ahead of the robot centre
+  double angle_min_rad = -kPi / 2.0;         // first beam: the robot's right
+  double angle_increment_rad = kPi / 180.0;  // counter-clockwise (right to left)
+  double max_range_m = 81.83;                // readings >= this are "no return"
+  double offset_forward_m = 0.25;            // laser ahead of the robot centre
 
   double BeamAngle(int i) const { return angle_min_rad + i * angle_increment_rad; }
 };
 
 struct LaserScan {
-  double time_s = 0.0;      // timestamp from the log (0 if the format has none)
-  Pose2 odometry;           // robot pose in the odometry frame (m, rad)
+  double time_s = 0.0;  // timestamp from the log (0 if the format has none)
+  Pose2 odometry;       // robot pose in the odometry frame (m, rad)
   std::vector<float> ranges_m;
-  long source_line = 0;     // 1-based line in the trace file, for messages
+  long source_line = 0;  // 1-based line in the trace file, for messages
 };
 
 struct SensorTrace {
   std::string source_path;
-  std::string format;       // "cmu", "rowild", "carmen", "rawlog"
+  std::string format;  // "cmu", "rowild", "carmen", "rawlog"
   LaserGeometry geometry;
   std::vector<LaserScan> scans;
 };

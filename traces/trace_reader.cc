@@ -22,9 +22,8 @@ bool IsNumber(std::string_view token) {
 // Messages CARMEN's logger documents; enough to recognise a CARMEN log by its
 // first message without mistaking other upper-case text for one.
 bool IsKnownCarmenMessage(std::string_view token) {
-  static const char* const kNames[] = {"PARAM",       "SYNC",        "ODOM",      "TRUEPOS",
-                                       "FLASER",      "RLASER",      "LASER3",    "LASER4",
-                                       "RAWLASER1",   "RAWLASER2",   "RAWLASER3", "RAWLASER4",
+  static const char* const kNames[] = {"PARAM",       "SYNC",        "ODOM",      "TRUEPOS",   "FLASER",    "RLASER",
+                                       "LASER3",      "LASER4",      "RAWLASER1", "RAWLASER2", "RAWLASER3", "RAWLASER4",
                                        "ROBOTLASER1", "ROBOTLASER2", "NMEAGGA",   "NMEARMC"};
   for (const char* name : kNames)
     if (token == name) return true;
@@ -46,9 +45,9 @@ std::string DetectTraceFormat(const std::string& path) {
     if (IsKnownCarmenMessage(fields[0])) return "carmen";
     if (fields.size() == kRowildFields) {
       for (std::size_t i = 0; i < fields.size(); ++i)
-        if (!IsNumber(fields[i])) reader.Fail("field " + std::to_string(i + 1),
-                                              "looks like a RoWild log (183 fields) but '" +
-                                                  std::string(fields[i]) + "' is not a number");
+        if (!IsNumber(fields[i]))
+          reader.Fail("field " + std::to_string(i + 1),
+                      "looks like a RoWild log (183 fields) but '" + std::string(fields[i]) + "' is not a number");
       return "rowild";
     }
     reader.Fail("format", "cannot tell the trace format from this line (" + std::to_string(fields.size()) +
@@ -138,8 +137,9 @@ class FileScanSource final : public ScanSource {
 
  private:
   [[noreturn]] void Changed(long line) const {
-    throw InputError(path_, line, "", "the file changed while it was being read (it held " + std::to_string(size_) +
-                                          " laser records when it was opened)");
+    throw InputError(path_, line, "",
+                     "the file changed while it was being read (it held " + std::to_string(size_) +
+                         " laser records when it was opened)");
   }
 
   std::string path_, format_;

@@ -40,8 +40,7 @@ struct TraceReadOptions {
 std::string DetectTraceFormat(const std::string& path);
 
 // Throws UsageError for an unknown format name, InputError for bad input.
-SensorTrace ReadTrace(const std::string& path, const TraceReadOptions& options,
-                      TraceReadStats* stats = nullptr);
+SensorTrace ReadTrace(const std::string& path, const TraceReadOptions& options, TraceReadStats* stats = nullptr);
 
 // The same trace as a stream (scan_source.h): the file is read once here to
 // validate it (every InputError ReadTrace would raise is raised now) and

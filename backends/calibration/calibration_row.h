@@ -32,23 +32,23 @@ struct ValueRange {
 
 // Which workload scale a row measures.
 enum class CalibrationScale {
-  kPaperScale,   // octrees of 1000-2000 nodes and >= 10,000 queries; whole DeliBot runs
-  kSmallBatch,   // one DeliBot update; 70 OBBs against a 107-node tree
+  kPaperScale,  // octrees of 1000-2000 nodes and >= 10,000 queries; whole DeliBot runs
+  kSmallBatch,  // one DeliBot update; 70 OBBs against a 107-node tree
 };
 const char* ToString(CalibrationScale scale);  // "paper scale" | "small batch"
 
 struct CalibrationRow {
-  std::string result;    // what is compared, e.g. "SACT collision queries, RoboCore vs CUDA"
+  std::string result;  // what is compared, e.g. "SACT collision queries, RoboCore vs CUDA"
   CalibrationScale scale = CalibrationScale::kPaperScale;
   std::string workload;  // its size: queries, nodes per query, tree nodes, updates
   std::string paper;     // the paper's statement, as it words it
   double paper_value = std::numeric_limits<double>::quiet_NaN();  // in `unit`; NaN: no number given
   double artifact = std::numeric_limits<double>::quiet_NaN();     // in `unit`, priced under the artifact preset
   double ours = std::numeric_limits<double>::quiet_NaN();         // in `unit`, priced under our parameters
-  std::optional<ValueRange> artifact_range;  // the sensitivity sweep's, when run
+  std::optional<ValueRange> artifact_range;                       // the sensitivity sweep's, when run
   std::optional<ValueRange> ours_range;
   CalibrationUnit unit = CalibrationUnit::kSpeedup;
-  std::string why;       // computed from the run: what limits each side (why_sentences.h)
+  std::string why;  // computed from the run: what limits each side (why_sentences.h)
 };
 
 // What one calibration run measured on, for the report's header.

@@ -124,8 +124,8 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
     for (const Obbd& b : links) poses.push_back({b});
   }
   const std::string links_source =
-      have_robot ? "the " + std::to_string(poses.size()) + " mpnet_master arm poses (" +
-                       std::to_string(links.size()) + " link OBBs, " + robot_path + ")"
+      have_robot ? "the " + std::to_string(poses.size()) + " mpnet_master arm poses (" + std::to_string(links.size()) +
+                       " link OBBs, " + robot_path + ")"
                  : std::to_string(links.size()) + " seeded random link-size OBBs (no " + robot_path + ")";
 
   // Paper scale: SACT scenes.

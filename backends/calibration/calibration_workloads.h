@@ -38,17 +38,17 @@ struct CalibrationOptions {
   std::string data_dir = "../shared/data";  // the shared data; absent files fall back to generated inputs
   std::uint64_t seed = 7;                   // particles, scenes, OBB jitter, random OBBs
   // Small batch.
-  int particles = 500;                      // count; RoWild DeliBot
-  int beams = 180;                          // count; RoWild DeliBot
-  double max_range_m = 10.0;                // m; RoWild DeliBot
-  int random_obbs = 700;                    // count; only without the mpnet_master file
+  int particles = 500;        // count; RoWild DeliBot
+  int beams = 180;            // count; RoWild DeliBot
+  double max_range_m = 10.0;  // m; RoWild DeliBot
+  int random_obbs = 700;      // count; only without the mpnet_master file
   // Paper scale.
-  int min_sact_queries = 10000;             // per scene, count: the paper-scale batch floor
+  int min_sact_queries = 10000;  // per scene, count: the paper-scale batch floor
   std::vector<MpinetSceneKind> scenes = {std::begin(kMpinetSceneKinds), std::end(kMpinetSceneKinds)};
-  bool delibot_runs = true;                 // price whole DeliBot runs
-  int run_particles = 500;                  // count; RoWild DeliBot
-  int run_beam_step = 6;                    // every K-th of 180 beams (30 beams), rcbench delibot's default
-  long run_max_records = 0;                 // 0: the whole trace
+  bool delibot_runs = true;  // price whole DeliBot runs
+  int run_particles = 500;   // count; RoWild DeliBot
+  int run_beam_step = 6;     // every K-th of 180 beams (30 beams), rcbench delibot's default
+  long run_max_records = 0;  // 0: the whole trace
   bool IsValid(std::string* error) const;
 };
 
@@ -58,14 +58,14 @@ struct SactSceneWorkload {
   std::uint32_t octree_nodes = 0;  // the artifact's node count (cells with children)
   std::uint64_t box_nodes = 0;     // nodes of the box tree the kernels fetch
   CollisionSummary summary;
-  KernelRecord sact;               // the shipped SACT program's record
-  KernelRecord spheres;            // one bounding sphere per OBB
+  KernelRecord sact;     // the shipped SACT program's record
+  KernelRecord spheres;  // one bounding sphere per OBB
   std::uint64_t sphere_false_collisions = 0;
-  std::string Size() const;        // "10010 queries x 23.4 nodes, 1312-node octree (8745 box nodes)"
+  std::string Size() const;  // "10010 queries x 23.4 nodes, 1312-node octree (8745 box nodes)"
 };
 
 struct DelibotRunWorkload {
-  std::string name;                // "demo", "robotdata1"
+  std::string name;  // "demo", "robotdata1"
   OccupancyGrid grid;
   SensorTrace trace;
 };
@@ -79,9 +79,9 @@ struct CalibrationWorkloads {
   std::vector<DelibotRunWorkload> runs;
 
   // Small batch.
-  OccupancyGrid ray_grid;          // Wean, or the generated office map
-  RayBatch first_update;           // every particle uniform in free space
-  KernelRecord sact;               // mpnet_master (or random) OBBs vs the shelf tree
+  OccupancyGrid ray_grid;  // Wean, or the generated office map
+  RayBatch first_update;   // every particle uniform in free space
+  KernelRecord sact;       // mpnet_master (or random) OBBs vs the shelf tree
   KernelRecord spheres;
   std::uint64_t sphere_false_collisions = 0;
   std::uint64_t sphere_obb_collisions = 0;

@@ -28,7 +28,8 @@ struct SactColumn {
   SideEvidence half{"RoboCore"}, twice{"RoboCore"}, parallel{"RoboCore"}, doubled{"RoboCore"};
   SideEvidence spheres{"RoboCore (spheres)"};
   double queries = 0, nodes = 0, overlaps = 0, exit_axis_sum = 0, separated = 0;
-  double with_exit = 0, without_exit = 0, parallel_cycles = 0, doubled_cycles = 0;  // computation cycles, summed over queries
+  double with_exit = 0, without_exit = 0, parallel_cycles = 0,
+         doubled_cycles = 0;  // computation cycles, summed over queries
   double sphere_nodes = 0, sphere_queries = 0, false_collisions = 0;
   std::string simt_kernel;  // what the SIMT model priced
   int predicated_op_cycles = 1;
@@ -37,16 +38,28 @@ struct SactColumn {
 
 // Sums another batch's column into this one.
 void Merge(SactColumn& c, const SactColumn& more) {
-  for (auto [to, from] : {std::pair{&c.simt, &more.simt}, {&c.tta, &more.tta}, {&c.tta_p, &more.tta_p},
-                          {&c.tta_cr, &more.tta_cr}, {&c.robo, &more.robo}, {&c.half, &more.half},
-                          {&c.twice, &more.twice}, {&c.parallel, &more.parallel}, {&c.doubled, &more.doubled},
+  for (auto [to, from] : {std::pair{&c.simt, &more.simt},
+                          {&c.tta, &more.tta},
+                          {&c.tta_p, &more.tta_p},
+                          {&c.tta_cr, &more.tta_cr},
+                          {&c.robo, &more.robo},
+                          {&c.half, &more.half},
+                          {&c.twice, &more.twice},
+                          {&c.parallel, &more.parallel},
+                          {&c.doubled, &more.doubled},
                           {&c.spheres, &more.spheres}})
     to->Add(*from);
-  for (auto [to, from] : {std::pair{&c.queries, more.queries}, {&c.nodes, more.nodes}, {&c.overlaps, more.overlaps},
-                          {&c.exit_axis_sum, more.exit_axis_sum}, {&c.separated, more.separated},
-                          {&c.with_exit, more.with_exit}, {&c.without_exit, more.without_exit},
-                          {&c.parallel_cycles, more.parallel_cycles}, {&c.doubled_cycles, more.doubled_cycles},
-                          {&c.sphere_nodes, more.sphere_nodes}, {&c.sphere_queries, more.sphere_queries},
+  for (auto [to, from] : {std::pair{&c.queries, more.queries},
+                          {&c.nodes, more.nodes},
+                          {&c.overlaps, more.overlaps},
+                          {&c.exit_axis_sum, more.exit_axis_sum},
+                          {&c.separated, more.separated},
+                          {&c.with_exit, more.with_exit},
+                          {&c.without_exit, more.without_exit},
+                          {&c.parallel_cycles, more.parallel_cycles},
+                          {&c.doubled_cycles, more.doubled_cycles},
+                          {&c.sphere_nodes, more.sphere_nodes},
+                          {&c.sphere_queries, more.sphere_queries},
                           {&c.false_collisions, more.false_collisions},
                           {&c.robo_memory_joules, more.robo_memory_joules},
                           {&c.simt_memory_joules, more.simt_memory_joules}})
@@ -122,10 +135,9 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
   std::vector<RowSpec> specs;
   specs.push_back({"SACT collision queries, RoboCore vs CUDA" + suffix, workload, "13.3x faster", 13.3,
                    CalibrationUnit::kSpeedup, [](const SactColumn& c) {
-                     return ColumnValue{
-                         Speedup(c.simt.kernel_seconds(), c.robo.kernel_seconds()),
-                         "The CUDA cores run " + c.simt_kernel + ". " + CompareSides(c.robo, c.simt),
-                         Tags({&c.robo, &c.simt})};
+                     return ColumnValue{Speedup(c.simt.kernel_seconds(), c.robo.kernel_seconds()),
+                                        "The CUDA cores run " + c.simt_kernel + ". " + CompareSides(c.robo, c.simt),
+                                        Tags({&c.robo, &c.simt})};
                    }});
   specs.push_back(
       {"SACT collision queries, RoboCore vs CUDA, incl. launch" + suffix, workload, "13.3x faster", 13.3,
@@ -136,11 +148,11 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
              Speedup(c.simt.seconds(), c.robo.seconds()),
              share >= kLaunchShareWorthNaming
                  ? fmt::format("The {:.0f}-cycle launch (kernel launch + program and decode configuration) is {:.0f}% "
-                                  "of RoboCore's time for this batch, so the ratio moves toward 1.",
-                                  launch, 100.0 * share)
+                               "of RoboCore's time for this batch, so the ratio moves toward 1.",
+                               launch, 100.0 * share)
                  : fmt::format("The {:.0f}-cycle launch is {:.1f}% of RoboCore's time for this batch, so including "
-                                  "it changes the ratio little.",
-                                  launch, 100.0 * share),
+                               "it changes the ratio little.",
+                               launch, 100.0 * share),
              Tags({&c.robo})};
        }});
   specs.push_back({"SACT, TTA+ with conditional return vs TTA+" + suffix, workload, "1.40x faster", 1.40,
@@ -148,8 +160,8 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                      return ColumnValue{
                          Speedup(c.tta.kernel_seconds(), c.tta_cr.kernel_seconds()),
                          fmt::format("Conditional return cuts executed micro-ops from {:.3g} to {:.3g} ({:+.0f}%). ",
-                                        c.tta.micro_ops(), c.tta_cr.micro_ops(),
-                                        PercentChange(c.tta.micro_ops(), c.tta_cr.micro_ops())) +
+                                     c.tta.micro_ops(), c.tta_cr.micro_ops(),
+                                     PercentChange(c.tta.micro_ops(), c.tta_cr.micro_ops())) +
                              CompareSides(c.tta_cr, c.tta),
                          Tags({&c.tta_cr, &c.tta})};
                    }});
@@ -158,10 +170,10 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                      return ColumnValue{
                          Speedup(c.tta_cr.kernel_seconds(), c.robo.kernel_seconds()),
                          fmt::format("The chained SACT units replace each axis's TTA+ expansion ({:.3g} micro-ops, "
-                                        "{:.3g} hops) by one native micro-op with CTRL-folded exits ({:.3g} micro-ops, "
-                                        "{:.3g} hops). ",
-                                        c.tta_cr.micro_ops(), double(c.tta_cr.total().interconnect_hops),
-                                        c.robo.micro_ops(), double(c.robo.total().interconnect_hops)) +
+                                     "{:.3g} hops) by one native micro-op with CTRL-folded exits ({:.3g} micro-ops, "
+                                     "{:.3g} hops). ",
+                                     c.tta_cr.micro_ops(), double(c.tta_cr.total().interconnect_hops),
+                                     c.robo.micro_ops(), double(c.robo.total().interconnect_hops)) +
                              CompareSides(c.robo, c.tta_cr),
                          Tags({&c.robo, &c.tta_cr})};
                    }});
@@ -170,8 +182,8 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                      return ColumnValue{
                          Speedup(c.tta.kernel_seconds(), c.tta_p.kernel_seconds()),
                          fmt::format("Predicated-off micro-ops ({:.3g}) take {} cycle(s) in their unit instead of "
-                                        "their latency (artifact rt_op_unit::cycle). ",
-                                        double(c.tta_p.total().predicated_off_micro_ops), c.predicated_op_cycles) +
+                                     "their latency (artifact rt_op_unit::cycle). ",
+                                     double(c.tta_p.total().predicated_off_micro_ops), c.predicated_op_cycles) +
                              CompareSides(c.tta_p, c.tta),
                          Tags({&c.tta_p, &c.tta})};
                    }});
@@ -183,12 +195,12 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
          return ColumnValue{
              PercentChange(c.simt.total().energy_joules, c.robo.total().energy_joules),
              fmt::format("Both fetch the same nodes ({:.3g} sectors); memory is {:.0f}% of RoboCore's energy and "
-                            "{:.0f}% of the CUDA cores', whose rest is instruction fetch and register accesses per "
-                            "instruction, RoboCore's packet-buffer accesses per micro-op; {} (Horowitz 45 nm; "
-                            "leakage not modelled).",
-                            double(c.robo.total().memory.sector_requests), 100.0 * robo_memory, 100.0 * simt_memory,
-                            robo_memory >= 0.5 ? "RoboCore's energy is mostly memory traffic, which no datapath saves"
-                                               : "RoboCore's energy is mostly its micro-ops' buffer accesses"),
+                         "{:.0f}% of the CUDA cores', whose rest is instruction fetch and register accesses per "
+                         "instruction, RoboCore's packet-buffer accesses per micro-op; {} (Horowitz 45 nm; "
+                         "leakage not modelled).",
+                         double(c.robo.total().memory.sector_requests), 100.0 * robo_memory, 100.0 * simt_memory,
+                         robo_memory >= 0.5 ? "RoboCore's energy is mostly memory traffic, which no datapath saves"
+                                            : "RoboCore's energy is mostly its micro-ops' buffer accesses"),
              ""};
        }});
   specs.push_back(
@@ -196,37 +208,37 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
        CalibrationUnit::kPercentChange, [](const SactColumn& c) {
          const double overlap = c.overlaps / c.nodes;
          std::string mechanism =
-             overlap >= 0.5
-                 ? fmt::format("{:.0f}% of our node tests overlap, and an overlapping test runs every axis (a query "
+             overlap >= 0.5 ? fmt::format(
+                                  "{:.0f}% of our node tests overlap, and an overlapping test runs every axis (a query "
                                   "descends only through boxes it overlaps and stops at its first colliding leaf)",
                                   100.0 * overlap)
-                 : fmt::format("{:.0f}% of our node tests separate, at axis {:.1f} of 15 on average, and {:.0f}% "
+                            : fmt::format(
+                                  "{:.0f}% of our node tests separate, at axis {:.1f} of 15 on average, and {:.0f}% "
                                   "overlap and run every axis",
                                   100.0 * (1.0 - overlap), c.separated ? 1.0 + c.exit_axis_sum / c.separated : 0.0,
                                   100.0 * overlap);
-         return ColumnValue{
-             PercentChange(c.without_exit, c.with_exit),
-             fmt::format("{:.0f} vs {:.0f} computation cycles per query: ", c.with_exit / c.queries,
-                            c.without_exit / c.queries) +
-                 mechanism + ".",
-             ""};
+         return ColumnValue{PercentChange(c.without_exit, c.with_exit),
+                            fmt::format("{:.0f} vs {:.0f} computation cycles per query: ", c.with_exit / c.queries,
+                                        c.without_exit / c.queries) +
+                                mechanism + ".",
+                            ""};
        }});
   for (double factor : {0.5, 2.0}) {
-    specs.push_back(
-        {fmt::format("SACT unit latency x{:g}, RoboCore total time", factor) + suffix, workload, "small change",
-         kNoPaperNumber, CalibrationUnit::kPercentChange, [factor](const SactColumn& c) {
-           const SideEvidence& scaled = factor < 1 ? c.half : c.twice;
-           return ColumnValue{PercentChange(c.robo.kernel_seconds(), scaled.kernel_seconds()),
-                              "With the SACT latencies scaled, " + BoundClause(scaled) + ".", Tags({&scaled})};
-         }});
+    specs.push_back({fmt::format("SACT unit latency x{:g}, RoboCore total time", factor) + suffix, workload,
+                     "small change", kNoPaperNumber, CalibrationUnit::kPercentChange, [factor](const SactColumn& c) {
+                       const SideEvidence& scaled = factor < 1 ? c.half : c.twice;
+                       return ColumnValue{PercentChange(c.robo.kernel_seconds(), scaled.kernel_seconds()),
+                                          "With the SACT latencies scaled, " + BoundClause(scaled) + ".",
+                                          Tags({&scaled})};
+                     }});
   }
   specs.push_back({"Fully parallel SACT (6 box + 9 edge units), RoboCore total time" + suffix, workload,
                    "-41% latency (3.7x area)", -41.0, CalibrationUnit::kPercentChange, [](const SactColumn& c) {
                      return ColumnValue{
                          PercentChange(c.robo.kernel_seconds(), c.parallel.kernel_seconds()),
                          fmt::format("Our smallest model (sact_datapath_variants.h): all 15 axes in one round "
-                                        "after PRE, so a query computes for {:.0f} cycles instead of {:.0f}; ",
-                                        c.parallel_cycles / c.queries, c.with_exit / c.queries) +
+                                     "after PRE, so a query computes for {:.0f} cycles instead of {:.0f}; ",
+                                     c.parallel_cycles / c.queries, c.with_exit / c.queries) +
                              BoundClause(c.parallel) + ".",
                          Tags({&c.parallel})};
                    }});
@@ -235,8 +247,8 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
                      return ColumnValue{
                          Speedup(c.robo.kernel_seconds(), c.doubled.kernel_seconds()),
                          fmt::format("Modelled as two axes of a stage per round (sact_datapath_variants.h): {:.0f} "
-                                        "instead of {:.0f} computation cycles per query; ",
-                                        c.doubled_cycles / c.queries, c.with_exit / c.queries) +
+                                     "instead of {:.0f} computation cycles per query; ",
+                                     c.doubled_cycles / c.queries, c.with_exit / c.queries) +
                              BoundClause(c.doubled) + ".",
                          Tags({&c.doubled})};
                    }});
@@ -246,10 +258,10 @@ std::vector<RowSpec> Specs(const std::string& suffix, const std::string& workloa
          return ColumnValue{
              Speedup(c.simt.kernel_seconds(), c.spheres.kernel_seconds()),
              fmt::format("One bounding sphere per OBB, 9 micro-ops per node on the generic OP units ({:.2f} nodes "
-                            "per sphere against {:.2f} per OBB); the spheres report {:.0f} false collisions in {:.0f} "
-                            "queries ({:.1f}%), measured against the SACT's answers. ",
-                            c.sphere_nodes / c.sphere_queries, c.nodes / c.queries, c.false_collisions, c.queries,
-                            100.0 * c.false_collisions / c.queries) +
+                         "per sphere against {:.2f} per OBB); the spheres report {:.0f} false collisions in {:.0f} "
+                         "queries ({:.1f}%), measured against the SACT's answers. ",
+                         c.sphere_nodes / c.sphere_queries, c.nodes / c.queries, c.false_collisions, c.queries,
+                         100.0 * c.false_collisions / c.queries) +
                  CompareSides(c.spheres, c.simt),
              Tags({&c.spheres, &c.simt})};
        }});
@@ -293,15 +305,14 @@ std::vector<CalibrationRow> CollisionRows(const CalibrationWorkloads& w, const B
       Merge(all_ours, o);
     }
     const std::string workload =
-        fmt::format("{} scenes, {:.0f} queries x {:.1f} nodes; {}-{}-node octrees", w.scenes.size(),
-                       all_ours.queries, all_ours.nodes / all_ours.queries, fewest, most);
+        fmt::format("{} scenes, {:.0f} queries x {:.1f} nodes; {}-{}-node octrees", w.scenes.size(), all_ours.queries,
+                    all_ours.nodes / all_ours.queries, fewest, most);
     AddRows(rows, Specs(" (all scenes)", workload), CalibrationScale::kPaperScale, all_artifact, all_ours);
   }
   const SactInput small{&w.sact, &w.spheres, w.sphere_false_collisions};
   const std::string workload =
       fmt::format("{} queries x {:.1f} nodes; {:.0f}-node binary tree", w.sact.query_count(),
-                     double(w.sact.total_nodes()) / double(w.sact.query_count()),
-                     double(w.sact.regions.front().elements));
+                  double(w.sact.total_nodes()) / double(w.sact.query_count()), double(w.sact.regions.front().elements));
   const SactColumn small_ours = PriceSact({small}, ours.backend);
   AddRows(rows, Specs("", workload), CalibrationScale::kSmallBatch,
           &artifact == &ours ? small_ours : PriceSact({small}, artifact.backend), small_ours);

@@ -13,8 +13,8 @@ namespace {
 // What one preset's pricing of a DeliBot workload measured.
 struct DelibotColumn {
   SideEvidence simt{"the CUDA cores"}, tta{"TTA+"}, robo{"RoboCore"};
-  LoopMix mix;                      // the step program's loop
-  std::uint32_t cell_bytes = 1;     // bytes per fetched cell
+  LoopMix mix;                             // the step program's loop
+  std::uint32_t cell_bytes = 1;            // bytes per fetched cell
   double robo_cycles = 0, tta_cycles = 0;  // small batch: computation cycles per ray
   double queries = 0, nodes = 0;
   long updates = 0, records = 0;
@@ -73,7 +73,7 @@ DelibotColumn PriceRun(const DelibotRunWorkload& run, const CalibrationOptions& 
 
 std::string ProgramClause(const DelibotColumn& c, const std::string& method) {
   return fmt::format("Our {} step runs {} micro-ops per cell ({} CMP) on {}-byte cells. ", method.c_str(),
-                        c.mix.micro_ops, c.mix.compares, c.cell_bytes);
+                     c.mix.micro_ops, c.mix.compares, c.cell_bytes);
 }
 
 void AddPair(std::vector<CalibrationRow>& rows, const std::string& what, const std::string& method,
@@ -124,10 +124,10 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
     const DelibotColumn a = &artifact == &ours ? o : PriceRun(run, w.options, artifact);
     const std::string workload =
         fmt::format("{} updates of {:.0f} rays x {:.1f} nodes ({} records, {} particles x {} beams)", o.updates,
-                       o.queries / double(o.updates), o.nodes / o.queries, o.records, w.options.run_particles,
-                       (180 + w.options.run_beam_step - 1) / w.options.run_beam_step);
-    AddPair(rows, "DeliBot MCL, whole run (" + run.name + ", march)", "march", CalibrationScale::kPaperScale,
-            workload, a, o);
+                    o.queries / double(o.updates), o.nodes / o.queries, o.records, w.options.run_particles,
+                    (180 + w.options.run_beam_step - 1) / w.options.run_beam_step);
+    AddPair(rows, "DeliBot MCL, whole run (" + run.name + ", march)", "march", CalibrationScale::kPaperScale, workload,
+            a, o);
     if (notes)
       notes->push_back("DeliBot " + run.name + ": " + std::to_string(run.trace.scans.size()) +
                        " laser records, march ray caster, " + std::to_string(w.options.run_particles) +
@@ -138,8 +138,7 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
   for (RayCastMethod method : {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching}) {
     const DelibotColumn o = PriceFirstUpdate(w, method, ours);
     const DelibotColumn a = &artifact == &ours ? o : PriceFirstUpdate(w, method, artifact);
-    const std::string workload =
-        fmt::format("1 update of {:.0f} rays x {:.1f} nodes", o.queries, o.nodes / o.queries);
+    const std::string workload = fmt::format("1 update of {:.0f} rays x {:.1f} nodes", o.queries, o.nodes / o.queries);
     AddPair(rows, std::string("DeliBot MCL (") + ToString(method) + ")", ToString(method),
             CalibrationScale::kSmallBatch, workload, a, o);
   }

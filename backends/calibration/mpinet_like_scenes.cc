@@ -16,7 +16,9 @@
 namespace rc {
 namespace {
 
-Aabbd FromCorners(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) { return Aabbd{0.5 * (lo + hi), 0.5 * (hi - lo)}; }
+Aabbd FromCorners(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  return Aabbd{0.5 * (lo + hi), 0.5 * (hi - lo)};
+}
 
 void Append(std::vector<Aabbd>& to, const std::vector<Aabbd>& more, const Eigen::Vector3d& shift) {
   for (Aabbd b : more) {
@@ -68,10 +70,9 @@ std::vector<Aabbd> Dresser(std::uint64_t seed) {
   const double x0 = 0.6, x1 = 1.0, y0 = -0.5, y1 = 0.5, height = 0.9, t = 0.02;
   const int drawers = 4;
   std::vector<Aabbd> boxes = {
-      FromCorners({x1 - t, y0, 0}, {x1, y1, height}),               // back
-      FromCorners({x0, y0, 0}, {x1, y0 + t, height}),               // sides
-      FromCorners({x0, y1 - t, 0}, {x1, y1, height}),
-      FromCorners({x0, y0, height - t}, {x1, y1, height}),          // top
+      FromCorners({x1 - t, y0, 0}, {x1, y1, height}),                                                       // back
+      FromCorners({x0, y0, 0}, {x1, y0 + t, height}),                                                       // sides
+      FromCorners({x0, y1 - t, 0}, {x1, y1, height}), FromCorners({x0, y0, height - t}, {x1, y1, height}),  // top
   };
   RandomStream rng(seed, StreamPurpose::kMapGeneration, 0, 0);
   const double slot = height / drawers;
@@ -81,11 +82,11 @@ std::vector<Aabbd> Dresser(std::uint64_t seed) {
     const double out = rng.Uniform(0.0, 0.3);                          // m pulled out
     const double f = x0 - out, b = x1 - t - out - 0.02;
     const double dy0 = y0 + t + 0.01, dy1 = y1 - t - 0.01, dz0 = z0 + t + 0.005;
-    boxes.push_back(FromCorners({f - t, y0 + t, z0 + t}, {f, y1 - t, z1}));    // front
-    boxes.push_back(FromCorners({f, dy0, dz0}, {b, dy1, dz0 + t}));            // bottom
-    boxes.push_back(FromCorners({f, dy0, dz0}, {b, dy0 + t, z1 - 0.04}));      // sides
+    boxes.push_back(FromCorners({f - t, y0 + t, z0 + t}, {f, y1 - t, z1}));  // front
+    boxes.push_back(FromCorners({f, dy0, dz0}, {b, dy1, dz0 + t}));          // bottom
+    boxes.push_back(FromCorners({f, dy0, dz0}, {b, dy0 + t, z1 - 0.04}));    // sides
     boxes.push_back(FromCorners({f, dy1 - t, dz0}, {b, dy1, z1 - 0.04}));
-    boxes.push_back(FromCorners({b - t, dy0, dz0}, {b, dy1, z1 - 0.04}));      // back
+    boxes.push_back(FromCorners({b - t, dy0, dz0}, {b, dy1, z1 - 0.04}));  // back
   }
   return boxes;
 }
@@ -217,8 +218,8 @@ SceneOctree BuildSceneOctree(MpinetSceneKind kind, std::uint64_t seed) {
                            " octree nodes (counts, coarse to fine:" + tried + ")");
 }
 
-std::vector<Obbd> JitteredArmQueries(const std::vector<std::vector<Obbd>>& poses, int yaws,
-                                     const SceneOctree& scene, std::uint64_t seed) {
+std::vector<Obbd> JitteredArmQueries(const std::vector<std::vector<Obbd>>& poses, int yaws, const SceneOctree& scene,
+                                     std::uint64_t seed) {
   if (yaws < 1) throw std::invalid_argument("arm queries: yaws must be >= 1");
   constexpr double kTranslationJitter = 0.02;  // m, per axis, uniform
   constexpr double kRotationJitter = 0.05;     // rad about a random axis, uniform

@@ -57,12 +57,12 @@ inline constexpr std::uint32_t kMaxOctreeNodes = 2000;
 
 struct SceneOctree {
   MpinetSceneKind kind = MpinetSceneKind::kCubby;
-  double resolution_m = 0;          // OctoMap leaf size chosen from the ladder
-  std::uint32_t octree_nodes = 0;   // cells with children (the artifact's node count)
+  double resolution_m = 0;         // OctoMap leaf size chosen from the ladder
+  std::uint32_t octree_nodes = 0;  // cells with children (the artifact's node count)
   std::uint32_t occupied_leaves = 0;
   Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  // robot frame = octree frame + offset
-  double azimuth_lo_rad = 0, azimuth_hi_rad = 0;        // the scene's extent seen from the base
-  BoxTree tree;                     // OctoMap's occupied leaves, one box per node, octree frame
+  double azimuth_lo_rad = 0, azimuth_hi_rad = 0;       // the scene's extent seen from the base
+  BoxTree tree;                                        // OctoMap's occupied leaves, one box per node, octree frame
 };
 
 // Voxelizes `boxes` (robot frame) at `resolution_m`: a voxel is occupied
@@ -77,7 +77,7 @@ SceneOctree BuildSceneOctree(MpinetSceneKind kind, std::uint64_t seed);
 // Each pose (its links, base to tip) turned so that its tip points at
 // `yaws` azimuths across the scene and jittered (see above), shifted into
 // the octree's frame. yaws >= 1; every pose non-empty.
-std::vector<Obbd> JitteredArmQueries(const std::vector<std::vector<Obbd>>& poses, int yaws,
-                                     const SceneOctree& scene, std::uint64_t seed);
+std::vector<Obbd> JitteredArmQueries(const std::vector<std::vector<Obbd>>& poses, int yaws, const SceneOctree& scene,
+                                     std::uint64_t seed);
 
 }  // namespace rc

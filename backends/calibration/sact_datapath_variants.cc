@@ -58,9 +58,9 @@ SactDatapathVariant SactUnitCopies(int copies) {
 std::shared_ptr<const MicroProgram> VariantProgram(const SactDatapathVariant& variant,
                                                    const OpUnitLatencies& latencies) {
   RoundOfAxis(variant);  // validates
-  std::string text =
-      "# " + variant.name + " (backends/calibration/sact_datapath_variants.h)\n"
-      "loop:\n  LOAD box, node\n  PRE frame, obb, box\n";
+  std::string text = "# " + variant.name +
+                     " (backends/calibration/sact_datapath_variants.h)\n"
+                     "loop:\n  LOAD box, node\n  PRE frame, obb, box\n";
   for (std::size_t r = 0; r < variant.rounds.size(); ++r) {
     bool any_edge = false, any_box = false;
     for (int axis : variant.rounds[r]) (IsBoxNormalAxis(axis) ? any_box : any_edge) = true;

@@ -136,33 +136,36 @@ std::string BoundClause(const SideEvidence& side) {
           "{:.0f}% L1 hits) passes through the warp buffer, which no other bound outlasts",
           who.c_str(), Is(who), share.c_str(), side.micro_ops(), 100.0 * side.l1_hit_rate());
     case BoundKind::kIssue:
-      return fmt::format("{} busiest SM is issue-bound{}: {:.3g} warp instructions at one per scheduler per "
-                            "cycle, with {:.0f}% of lanes active (SIMT efficiency {:.2f})",
-                            Possessive(who).c_str(), share.c_str(), double(side.total().warp_instructions),
-                            100.0 * side.simt_efficiency(), side.simt_efficiency());
+      return fmt::format(
+          "{} busiest SM is issue-bound{}: {:.3g} warp instructions at one per scheduler per "
+          "cycle, with {:.0f}% of lanes active (SIMT efficiency {:.2f})",
+          Possessive(who).c_str(), share.c_str(), double(side.total().warp_instructions),
+          100.0 * side.simt_efficiency(), side.simt_efficiency());
     case BoundKind::kPipe:
-      return fmt::format("{} busiest SM is bound by its {}{} ({:.3g} warp instructions; a class's initiation "
-                            "interval holds the pipe{})",
-                            Possessive(who).c_str(), side.bound().c_str(), share.c_str(),
-                            double(side.total().warp_instructions),
-                            side.bound() == "SFU pipe" ? ", and FP64 and divisions issue to the SFU pipe" : "");
+      return fmt::format(
+          "{} busiest SM is bound by its {}{} ({:.3g} warp instructions; a class's initiation "
+          "interval holds the pipe{})",
+          Possessive(who).c_str(), side.bound().c_str(), share.c_str(), double(side.total().warp_instructions),
+          side.bound() == "SFU pipe" ? ", and FP64 and divisions issue to the SFU pipe" : "");
     case BoundKind::kL1:
-      return fmt::format("{} {} bound by L1 bandwidth{}: {:.3g} sector requests ({:.0f}% hits) at a fixed number "
-                            "per cycle",
-                            who.c_str(), Is(who), share.c_str(),
-                            double(side.total().memory.sector_requests), 100.0 * side.l1_hit_rate());
+      return fmt::format(
+          "{} {} bound by L1 bandwidth{}: {:.3g} sector requests ({:.0f}% hits) at a fixed number "
+          "per cycle",
+          who.c_str(), Is(who), share.c_str(), double(side.total().memory.sector_requests), 100.0 * side.l1_hit_rate());
     case BoundKind::kDram:
-      return fmt::format("{} {} bound by DRAM bandwidth{}: {:.3g} DRAM sector accesses", who.c_str(),
-                            Is(who), share.c_str(), double(side.total().memory.dram_accesses));
+      return fmt::format("{} {} bound by DRAM bandwidth{}: {:.3g} DRAM sector accesses", who.c_str(), Is(who),
+                         share.c_str(), double(side.total().memory.dram_accesses));
     case BoundKind::kOpUnit:
-      return fmt::format("{} busiest unit is its {} OP unit{}: one per intersection unit set, taking a "
-                            "micro-op per initiation interval ({:.3g} micro-ops, {:.3g} interconnect hops)",
-                            Possessive(who).c_str(), UnitName(side.bound()).c_str(), share.c_str(), side.micro_ops(),
-                            double(side.total().interconnect_hops));
+      return fmt::format(
+          "{} busiest unit is its {} OP unit{}: one per intersection unit set, taking a "
+          "micro-op per initiation interval ({:.3g} micro-ops, {:.3g} interconnect hops)",
+          Possessive(who).c_str(), UnitName(side.bound()).c_str(), share.c_str(), side.micro_ops(),
+          double(side.total().interconnect_hops));
     case BoundKind::kThreadIntake:
-      return fmt::format("{} {} bound by thread intake{}: the unit sets take a few threads per cycle and each "
-                            "query does little work ({:.3g} micro-ops for {:.3g} queries)",
-                            who.c_str(), Is(who), share.c_str(), side.micro_ops(), double(side.total().queries));
+      return fmt::format(
+          "{} {} bound by thread intake{}: the unit sets take a few threads per cycle and each "
+          "query does little work ({:.3g} micro-ops for {:.3g} queries)",
+          who.c_str(), Is(who), share.c_str(), side.micro_ops(), double(side.total().queries));
   }
   return "";
 }
@@ -172,7 +175,7 @@ std::string CompareSides(const SideEvidence& a, const SideEvidence& b) {
   for (const SideEvidence* side : {&a, &b})
     if (side->launch_share() >= kLaunchShareWorthNaming)
       text += fmt::format("; the launch is {:.0f}% of {} time", 100.0 * side->launch_share(),
-                             Possessive(side->label()).c_str());
+                          Possessive(side->label()).c_str());
   return text + ".";
 }
 

@@ -37,19 +37,19 @@ struct BallNode {
 template <typename T>
 struct BallQueryLaunch {
   const BallNode<T>* __restrict__ nodes;
-  int root;                 // node index of the root (>= 0: a non-empty tree)
-  int root_is_leaf;         // a one-state tree: the root slot holds the state as child a
-  int tree_size;            // live states
+  int root;                                         // node index of the root (>= 0: a non-empty tree)
+  int root_is_leaf;                                 // a one-state tree: the root slot holds the state as child a
+  int tree_size;                                    // live states
   const unsigned long long* __restrict__ sequence;  // insertion sequence by state id
   const T* __restrict__ queries;                    // kDim coordinates per query
   int count;
-  int k;                    // <= kMaxK
-  T sphere_radius;          // BallQueryConfig::sphere_radius
-  T radius_growth;          // BallQueryConfig::radius_growth (> 1)
-  int early_exit;           // BallQueryConfig::early_exit: shrink the radius to the k-th best
-  T* __restrict__ best_distance;      // kMaxK per query
-  unsigned* __restrict__ best_id;     // kMaxK per query
-  int* __restrict__ found;            // states found per query; -1: stack overflow
+  int k;                           // <= kMaxK
+  T sphere_radius;                 // BallQueryConfig::sphere_radius
+  T radius_growth;                 // BallQueryConfig::radius_growth (> 1)
+  int early_exit;                  // BallQueryConfig::early_exit: shrink the radius to the k-th best
+  T* __restrict__ best_distance;   // kMaxK per query
+  unsigned* __restrict__ best_id;  // kMaxK per query
+  int* __restrict__ found;         // states found per query; -1: stack overflow
 };
 
 template <typename T>

@@ -25,11 +25,11 @@ struct BeamParams {
   T lambda_short_per_m;  // 1/m
   T max_range_m;         // m
   // The max-log leaf's constants (beam_leaf.asm's inputs).
-  T neg_half_inv_var;    // -1 / (2 sigma_hit^2), 1/m^2
-  T neg_lambda;          // -lambda_short, 1/m
-  T log_z_hit;           // log(z_hit / (sigma_hit sqrt(2 pi)))
-  T log_z_rand;          // log(z_rand / max_range)
-  T log_z_max;           // log(z_max)
+  T neg_half_inv_var;  // -1 / (2 sigma_hit^2), 1/m^2
+  T neg_lambda;        // -lambda_short, 1/m
+  T log_z_hit;         // log(z_hit / (sigma_hit sqrt(2 pi)))
+  T log_z_rand;        // log(z_rand / max_range)
+  T log_z_max;         // log(z_max)
 };
 
 // beam_leaf.asm: the largest of the hit Gaussian's log, the short
@@ -64,8 +64,7 @@ __device__ __forceinline__ T BeamLogDensity(const BeamParams<T>& p, T z, T z_sta
   density += p.z_hit * kInvSqrt2Pi / p.sigma_hit_m * Exp(T(-0.5) * e * e);
   if (z < z_star) {
     const T normalizer = T(1) - Exp(-p.lambda_short_per_m * z_star);
-    if (normalizer > T(0))
-      density += p.z_short * p.lambda_short_per_m * Exp(-p.lambda_short_per_m * z) / normalizer;
+    if (normalizer > T(0)) density += p.z_short * p.lambda_short_per_m * Exp(-p.lambda_short_per_m * z) / normalizer;
   }
   density += p.z_rand / p.max_range_m;
   return Log(density);

@@ -11,10 +11,10 @@ namespace rc_cuda {
 // FlatNode<Scalar>: 32 bytes in float, 64 in double (alignas(32)).
 template <typename T>
 struct alignas(32) FlatNode {
-  T centre[3];  // m
-  T half[3];    // m
-  unsigned first_child;          // internal: first child; leaf: scene box index
-  unsigned short child_count;    // 0 for a leaf
+  T centre[3];                 // m
+  T half[3];                   // m
+  unsigned first_child;        // internal: first child; leaf: scene box index
+  unsigned short child_count;  // 0 for a leaf
   unsigned short depth;
 };
 

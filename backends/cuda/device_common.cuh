@@ -33,8 +33,12 @@ __device__ __forceinline__ double Exp(double x) { return exp(x); }
 __device__ __forceinline__ float Log(float x) { return logf(x); }
 __device__ __forceinline__ double Log(double x) { return log(x); }
 template <typename T>
-__device__ __forceinline__ T Min(T a, T b) { return b < a ? b : a; }  // std::min's order
+__device__ __forceinline__ T Min(T a, T b) {
+  return b < a ? b : a;
+}  // std::min's order
 template <typename T>
-__device__ __forceinline__ T Max(T a, T b) { return a < b ? b : a; }  // std::max's order
+__device__ __forceinline__ T Max(T a, T b) {
+  return a < b ? b : a;
+}  // std::max's order
 
 }  // namespace rc_cuda

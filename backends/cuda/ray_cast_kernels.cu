@@ -41,9 +41,9 @@ struct RayLaunch {
   const T* __restrict__ dir_x;     // unit direction
   const T* __restrict__ dir_y;
   int count;
-  T max_range_m;                   // m
-  float* __restrict__ range_m;     // RayHit::range_m
-  unsigned* __restrict__ nodes;    // RayHit::nodes
+  T max_range_m;                 // m
+  float* __restrict__ range_m;   // RayHit::range_m
+  unsigned* __restrict__ nodes;  // RayHit::nodes
   // The beam leaf: the measured range of each ray and its log density.
   const T* __restrict__ measured_m;
   T* __restrict__ log_density;
@@ -158,8 +158,8 @@ __device__ __forceinline__ RayHit CastDda(const Grid<T>& g, T ox, T oy, T dx, T 
 }
 
 template <typename T>
-__device__ __forceinline__ RayHit CastRayMarching(const Grid<T>& g, const DistanceCells& df, T ox, T oy, T dx,
-                                                  T dy, T max_range) {
+__device__ __forceinline__ RayHit CastRayMarching(const Grid<T>& g, const DistanceCells& df, T ox, T oy, T dx, T dy,
+                                                  T max_range) {
   const T r = g.resolution_m;
   const Axis<T> ax = MakeAxis(ox, dx);
   const Axis<T> ay = MakeAxis(oy, dy);
@@ -240,16 +240,16 @@ using rc_cuda::Leaf;
 using rc_cuda::Method;
 using rc_cuda::RayLaunch;
 
-#define RC_RAY_KERNEL(name, T, method, leaf)                                                   \
-  extern "C" __global__ void name(Grid<T> grid, DistanceCells df, RayLaunch<T> rays) {         \
-    rc_cuda::CastOneRay<T, method, leaf>(grid, df, rays);                                      \
+#define RC_RAY_KERNEL(name, T, method, leaf)                                           \
+  extern "C" __global__ void name(Grid<T> grid, DistanceCells df, RayLaunch<T> rays) { \
+    rc_cuda::CastOneRay<T, method, leaf>(grid, df, rays);                              \
   }
-#define RC_RAY_KERNELS(prefix, method)                                                         \
-  RC_RAY_KERNEL(prefix##_fp32, float, method, Leaf::kNone)                                     \
-  RC_RAY_KERNEL(prefix##_fp64, double, method, Leaf::kNone)                                    \
-  RC_RAY_KERNEL(prefix##_beam_fp32, float, method, Leaf::kMaxLog)                              \
-  RC_RAY_KERNEL(prefix##_beam_fp64, double, method, Leaf::kMaxLog)                             \
-  RC_RAY_KERNEL(prefix##_beam_exact_fp32, float, method, Leaf::kExact)                         \
+#define RC_RAY_KERNELS(prefix, method)                                 \
+  RC_RAY_KERNEL(prefix##_fp32, float, method, Leaf::kNone)             \
+  RC_RAY_KERNEL(prefix##_fp64, double, method, Leaf::kNone)            \
+  RC_RAY_KERNEL(prefix##_beam_fp32, float, method, Leaf::kMaxLog)      \
+  RC_RAY_KERNEL(prefix##_beam_fp64, double, method, Leaf::kMaxLog)     \
+  RC_RAY_KERNEL(prefix##_beam_exact_fp32, float, method, Leaf::kExact) \
   RC_RAY_KERNEL(prefix##_beam_exact_fp64, double, method, Leaf::kExact)
 RC_RAY_KERNELS(rc_march, Method::kMarch)
 RC_RAY_KERNELS(rc_dda, Method::kDda)

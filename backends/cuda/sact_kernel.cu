@@ -73,8 +73,8 @@ __device__ __forceinline__ void CollideOneObb(const SactLaunch<T>& q) {
   if (i >= q.count) return;
   const ObbIn<T> obb = q.obbs[i];
   const T epsilon = q.parallel_epsilon;
-  q.results[i] = TraverseTree(q.nodes, q.node_count,
-                              [&](const FlatNode<T>& node) { return ObbOverlapsAabb(obb, node, epsilon); });
+  q.results[i] =
+      TraverseTree(q.nodes, q.node_count, [&](const FlatNode<T>& node) { return ObbOverlapsAabb(obb, node, epsilon); });
 }
 
 }  // namespace rc_cuda

@@ -37,8 +37,8 @@ __device__ __forceinline__ void CollideOneSphere(const SphereLaunch<T>& q) {
   const int i = QueryIndex();
   if (i >= q.count) return;
   const SphereIn<T> sphere = q.spheres[i];
-  q.results[i] = TraverseTree(q.nodes, q.node_count,
-                              [&](const FlatNode<T>& node) { return SphereOverlapsAabb(sphere, node); });
+  q.results[i] =
+      TraverseTree(q.nodes, q.node_count, [&](const FlatNode<T>& node) { return SphereOverlapsAabb(sphere, node); });
 }
 
 }  // namespace rc_cuda

@@ -69,7 +69,8 @@ void GradeAgainstOracle(const std::vector<LedgerIteration>& iterations, const st
 }  // namespace
 
 BackendLedger::BackendLedger(const BackendParameters& params, LedgerOptions options)
-    : options_(std::move(options)), params_(params),
+    : options_(std::move(options)),
+      params_(params),
       online_(MakeOnline(options_.policy.kind == SchedulerKind::kStatic ? options_.policy : SchedulerOptions{},
                          Backend::ModelledNames())) {
   for (const std::string& name : Backend::ModelledNames()) {
@@ -145,7 +146,8 @@ void BackendLedger::AddLaunch(const KernelRecord& record) {
   if (!prepared_ && options_.policy.kind == SchedulerKind::kThreshold) Prepare(record, record.query_count());
   any_sampled_ = any_sampled_ || record.sampled();
   std::vector<BatchCost> costs = PriceAll(backend_ptrs_, record);
-  if (open_costs_.empty()) open_costs_ = std::move(costs);
+  if (open_costs_.empty())
+    open_costs_ = std::move(costs);
   else
     for (std::size_t b = 0; b < costs.size(); ++b) open_costs_[b] += costs[b];
   open_queries_ += record.query_count();
@@ -219,7 +221,8 @@ LedgerSummary BackendLedger::Finish() const {
   }
   GradeAgainstOracle(iterations_, ran, s);
   const auto best = std::min_element(s.static_total_cycles.begin(), s.static_total_cycles.end());
-  if (best != s.static_total_cycles.end()) s.best_static = names_[static_cast<std::size_t>(best - s.static_total_cycles.begin())];
+  if (best != s.static_total_cycles.end())
+    s.best_static = names_[static_cast<std::size_t>(best - s.static_total_cycles.begin())];
   s.gap_to_oracle_percent =
       s.oracle_total_cycles > 0 ? 100.0 * (s.policy_total_cycles - s.oracle_total_cycles) / s.oracle_total_cycles : 0.0;
   return s;

@@ -37,29 +37,29 @@ struct LedgerOptions {
 };
 
 struct LedgerIteration {
-  bool priced = false;                     // false: no kernel work this iteration
-  std::string backend;                     // the one the policy chose
-  double nodes_per_query = -1.0;           // this iteration (-1 if none)
-  double nodes_per_query_prev = -1.0;      // what the decision saw
+  bool priced = false;                                          // false: no kernel work this iteration
+  std::string backend;                                          // the one the policy chose
+  double nodes_per_query = -1.0;                                // this iteration (-1 if none)
+  double nodes_per_query_prev = -1.0;                           // what the decision saw
   double threshold = std::numeric_limits<double>::quiet_NaN();  // threshold policy only
   bool switched = false;
-  std::vector<BatchCost> costs;            // one per ledger backend (empty if !priced)
-  double chosen_cycles = 0.0;              // incl. a switch cost if switched
+  std::vector<BatchCost> costs;  // one per ledger backend (empty if !priced)
+  double chosen_cycles = 0.0;    // incl. a switch cost if switched
   double chosen_energy_j = 0.0;
 };
 
 struct LedgerSummary {
   std::vector<std::string> backends;
-  std::vector<double> static_total_cycles;   // per backend
-  double policy_total_cycles = 0.0;          // the chosen policy, switches included
-  double oracle_total_cycles = 0.0;          // hindsight over the candidates
+  std::vector<double> static_total_cycles;  // per backend
+  double policy_total_cycles = 0.0;         // the chosen policy, switches included
+  double oracle_total_cycles = 0.0;         // hindsight over the candidates
   std::vector<std::string> oracle_candidates;
   long switches = 0;
   double switch_cost_cycles = 0.0;
   double threshold = std::numeric_limits<double>::quiet_NaN();
   bool threshold_has_crossing = false;
   std::string best_static;
-  double gap_to_oracle_percent = 0.0;        // (policy - oracle) / oracle
+  double gap_to_oracle_percent = 0.0;  // (policy - oracle) / oracle
   // Priced iterations on which the policy ran the backend the oracle chose
   // (percent; NaN with none priced).
   double oracle_agreement_percent = std::numeric_limits<double>::quiet_NaN();
@@ -79,7 +79,7 @@ struct LedgerSummary {
   long oracle_lasting_changes_followed = 0;
   std::vector<double> oracle_cumulative_cycles;  // per iteration
   std::vector<std::string> oracle_choice;        // per iteration
-  int replay_sms = 0;  // SMs replayed exactly when a priced record was sampled; 0 = every SM
+  int replay_sms = 0;                            // SMs replayed exactly when a priced record was sampled; 0 = every SM
 };
 
 class BackendLedger {

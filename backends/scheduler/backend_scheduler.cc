@@ -68,9 +68,7 @@ OnlineScheduler::OnlineScheduler(SchedulerOptions options, std::vector<std::stri
     throw std::invalid_argument("hysteresis must be >= 0 nodes per query");
   if (!(options_.switch_cost_cycles >= 0.0)) throw std::invalid_argument("switch cost must be >= 0 cycles");
   switch (options_.kind) {
-    case SchedulerKind::kStatic:
-      current_ = options_.static_backend;
-      break;
+    case SchedulerKind::kStatic: current_ = options_.static_backend; break;
     case SchedulerKind::kAdaptive:
       if (candidates_.empty()) throw std::invalid_argument("the adaptive policy needs at least one candidate");
       current_ = options_.initial_backend.empty() ? candidates_.front() : options_.initial_backend;
@@ -101,8 +99,8 @@ const std::string& OnlineScheduler::Choose(const IterationObservation& previous)
   } else if (options_.kind == SchedulerKind::kAdaptive) {
     if (previous.candidate_cycles.size() != candidates_.size())
       throw std::invalid_argument("the adaptive policy needs one predicted cost per candidate");
-    const std::size_t now = static_cast<std::size_t>(
-        std::find(candidates_.begin(), candidates_.end(), current_) - candidates_.begin());
+    const std::size_t now =
+        static_cast<std::size_t>(std::find(candidates_.begin(), candidates_.end(), current_) - candidates_.begin());
     // Regret: what each rival would have saved over the current backend in
     // the iterations since the last switch, never below zero (a rival is
     // not held back by the iterations it lost). The rival with the most
@@ -112,8 +110,7 @@ const std::string& OnlineScheduler::Choose(const IterationObservation& previous)
     for (std::size_t b = 0; b < candidates_.size(); ++b) {
       if (b == now) continue;
       regret_[b] = std::max(0.0, regret_[b] + previous.candidate_cycles[now] - previous.candidate_cycles[b]);
-      if (regret_[b] > 0.0 && regret_[b] >= options_.switch_cost_cycles &&
-          (best == now || regret_[b] > regret_[best]))
+      if (regret_[b] > 0.0 && regret_[b] >= options_.switch_cost_cycles && (best == now || regret_[b] > regret_[best]))
         best = b;
     }
     if (best != now) {

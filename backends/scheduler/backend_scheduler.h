@@ -49,11 +49,11 @@ struct SchedulerOptions {
   // adaptive: where it starts (empty: the first candidate).
   std::string initial_backend;
   // threshold: the two backends and the counter's threshold.
-  std::string high_backend = "robocore";   // above the threshold
-  std::string low_backend = "simt";        // at or below it
-  double threshold_nodes_per_query = 0.0;  // the crossover
-  double hysteresis_nodes_per_query = 0.0; // margin around the threshold, >= 0
-  double switch_cost_cycles = 0.0;         // charged on every change of backend
+  std::string high_backend = "robocore";    // above the threshold
+  std::string low_backend = "simt";         // at or below it
+  double threshold_nodes_per_query = 0.0;   // the crossover
+  double hysteresis_nodes_per_query = 0.0;  // margin around the threshold, >= 0
+  double switch_cost_cycles = 0.0;          // charged on every change of backend
 };
 
 // Parses "static:<backend>", "adaptive", "threshold", "oracle", or a bare
@@ -66,8 +66,8 @@ std::string ToString(const SchedulerOptions& options);
 
 // What an iteration measured, as the next decision sees it.
 struct IterationObservation {
-  bool ran = false;               // false: no kernel work; the choice stays
-  double nodes_per_query = -1.0;  // the traversal counter
+  bool ran = false;                      // false: no kernel work; the choice stays
+  double nodes_per_query = -1.0;         // the traversal counter
   std::vector<double> candidate_cycles;  // modelled cycles on each candidate (adaptive)
 };
 

@@ -13,28 +13,36 @@ namespace rc {
 void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string& counter) {
   std::string names;
   for (const std::string& n : Backend::ModelledNames()) names += (names.empty() ? "" : "|") + n;
-  command.add_option("--backend", cli.policy,
-                     "Backend that runs each iteration: adaptive (predicts each candidate's cycles from the "
-                     "previous iteration's) | threshold (the paper's: " + counter + " against a threshold) | "
-                     "oracle (hindsight) | static:<" + names + "> (every backend is priced regardless)")
+  command
+      .add_option("--backend", cli.policy,
+                  "Backend that runs each iteration: adaptive (predicts each candidate's cycles from the "
+                  "previous iteration's) | threshold (the paper's: " +
+                      counter +
+                      " against a threshold) | "
+                      "oracle (hindsight) | static:<" +
+                      names + "> (every backend is priced regardless)")
       ->capture_default_str();
   command.add_option("--candidates", cli.candidates,
                      "Backends the adaptive policy and the oracle choose among, comma-separated (default: all)");
   command.add_option("--threshold", cli.threshold,
                      "Threshold policy's switch point (" + counter + "); default: the cost models' crossover");
-  command.add_option("--hysteresis", cli.hysteresis, "Threshold policy's margin around the threshold (" + counter + ")")
+  command
+      .add_option("--hysteresis", cli.hysteresis, "Threshold policy's margin around the threshold (" + counter + ")")
       ->capture_default_str();
-  command.add_option("--switch-cost", cli.switch_cost,
-                     "Cycles a change of backend adds beyond the launch every iteration pays anyway (core cycles, "
-                     ">= 0; see backends/scheduler/backend_ledger.h)")
+  command
+      .add_option("--switch-cost", cli.switch_cost,
+                  "Cycles a change of backend adds beyond the launch every iteration pays anyway (core cycles, "
+                  ">= 0; see backends/scheduler/backend_ledger.h)")
       ->capture_default_str();
-  command.add_option("--replay-sms", cli.replay_sms,
-                     "SMs whose memory traffic is replayed exactly (count; the others are estimated from them; "
-                     "0 = every SM, exact)")
+  command
+      .add_option("--replay-sms", cli.replay_sms,
+                  "SMs whose memory traffic is replayed exactly (count; the others are estimated from them; "
+                  "0 = every SM, exact)")
       ->capture_default_str();
-  command.add_option("--backend-params", cli.backend_params,
-                     "A named preset (artifact: the RoboGPU artifact's configuration, backends/presets/artifact.json) or a JSON "
-                     "file overriding backend cost parameters (see rcbench backends)");
+  command.add_option(
+      "--backend-params", cli.backend_params,
+      "A named preset (artifact: the RoboGPU artifact's configuration, backends/presets/artifact.json) or a JSON "
+      "file overriding backend cost parameters (see rcbench backends)");
   command.add_flag("--no-pricing", cli.no_pricing, "Do not price the kernels on the modelled backends");
 }
 
@@ -101,18 +109,20 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
        l.oracle_total_cycles / clock_hz, over.c_str());
   if (options.policy.kind == SchedulerKind::kThreshold)
     emit("  threshold {:.1f} {} ({})", l.threshold, counter.c_str(),
-         options.threshold_overridden ? "given" : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"));
+         options.threshold_overridden ? "given"
+                                      : (l.threshold_has_crossing ? "crossover of the cost models" : "no crossover"));
   if (std::isnan(l.oracle_agreement_percent)) {
     emit("  gap to oracle {:.2f}%", l.gap_to_oracle_percent);
     return;
   }
   // "launch" -> "launches", "update" -> "updates".
   const std::string whats = what + (what.size() >= 2 && what.compare(what.size() - 2, 2, "ch") == 0 ? "es" : "s");
-  emit("  gap to oracle {:.2f}%; the oracle's choice in {:.1f}% of priced {} ({:.1f}% counting one within {:.0f}% of "
-       "its cycles); followed {} of its {} lasting changes (>= {} {})",
-       l.gap_to_oracle_percent, l.oracle_agreement_percent, whats.c_str(), l.oracle_equivalent_percent,
-       LedgerSummary::kEquivalentPercent, l.oracle_lasting_changes_followed, l.oracle_lasting_changes,
-       LedgerSummary::kLastingIterations, whats.c_str());
+  emit(
+      "  gap to oracle {:.2f}%; the oracle's choice in {:.1f}% of priced {} ({:.1f}% counting one within {:.0f}% of "
+      "its cycles); followed {} of its {} lasting changes (>= {} {})",
+      l.gap_to_oracle_percent, l.oracle_agreement_percent, whats.c_str(), l.oracle_equivalent_percent,
+      LedgerSummary::kEquivalentPercent, l.oracle_lasting_changes_followed, l.oracle_lasting_changes,
+      LedgerSummary::kLastingIterations, whats.c_str());
 }
 
 nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& options) {

@@ -17,12 +17,12 @@ namespace rc {
 
 struct SchedulerCli {
   std::string policy = "adaptive";
-  std::string candidates;        // comma-separated; empty: every modelled backend
-  double threshold = -1.0;       // threshold policy; < 0: derived
+  std::string candidates;   // comma-separated; empty: every modelled backend
+  double threshold = -1.0;  // threshold policy; < 0: derived
   double hysteresis = 0.0;
-  double switch_cost = 0.0;      // core cycles
-  int replay_sms = 1;            // SMs replayed exactly; 0 = all
-  std::string backend_params;    // JSON override file
+  double switch_cost = 0.0;    // core cycles
+  int replay_sms = 1;          // SMs replayed exactly; 0 = all
+  std::string backend_params;  // JSON override file
   bool no_pricing = false;
 };
 
@@ -45,8 +45,8 @@ BackendParameters BackendParametersOf(const SchedulerCli& cli);
 // the policy's (switches, agreement with the oracle), the oracle's, and for
 // the threshold policy its threshold. `what` names the iteration ("update",
 // "launch"), `counter` the traversal counter.
-void PrintLedgerSummary(std::ostream& out, const LedgerSummary& summary, const LedgerOptions& options,
-                        double clock_hz, const std::string& what, const std::string& counter);
+void PrintLedgerSummary(std::ostream& out, const LedgerSummary& summary, const LedgerOptions& options, double clock_hz,
+                        const std::string& what, const std::string& counter);
 
 // The same as JSON (units in the keys).
 nlohmann::json LedgerSummaryJson(const LedgerSummary& summary, const LedgerOptions& options);

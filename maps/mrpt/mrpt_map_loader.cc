@@ -40,7 +40,8 @@ MrptGridMap FromMrpt(const mrpt::maps::COccupancyGridMap2D& source, const std::s
   out.thresholds = thresholds;
   for (int cx = 0; cx < size_x; ++cx)
     for (int cy = 0; cy < size_y; ++cy) {
-      const CellClass c = ClassifyProbabilityValue(source.getCell(cx, cy), ValueConvention::kProbabilityFree, thresholds);
+      const CellClass c =
+          ClassifyProbabilityValue(source.getCell(cx, cy), ValueConvention::kProbabilityFree, thresholds);
       out.cell_classes.Add(c);
       out.grid.Set(cx, cy, StateOf(c));
     }
@@ -98,16 +99,18 @@ void ReadWholeArchive(const std::string& path, const std::string& what, T& objec
   try {
     ParseWithinBudget(budget, [&] { archive >> object; });
   } catch (const AllocationBudgetExceeded&) {
-    throw InputError(path, 0, "", "corrupt " + what + ": it declares sizes that would take more than " +
-                                      DescribeBytes(budget) + " of memory for " + std::to_string(bytes.size()) +
-                                      " bytes");
+    throw InputError(path, 0, "",
+                     "corrupt " + what + ": it declares sizes that would take more than " + DescribeBytes(budget) +
+                         " of memory for " + std::to_string(bytes.size()) + " bytes");
   } catch (const std::exception& e) {
-    throw InputError(path, 0, "", "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
-                                      " bytes uncompressed): " + MrptMessage(e.what()));
+    throw InputError(path, 0, "",
+                     "corrupt or truncated " + what + " (" + std::to_string(bytes.size()) +
+                         " bytes uncompressed): " + MrptMessage(e.what()));
   }
   if (memory.getPosition() != bytes.size())
-    throw InputError(path, 0, "", std::to_string(bytes.size() - memory.getPosition()) +
-                                      " bytes after the " + what + " object: not a single " + what);
+    throw InputError(path, 0, "",
+                     std::to_string(bytes.size() - memory.getPosition()) + " bytes after the " + what +
+                         " object: not a single " + what);
 }
 
 }  // namespace
@@ -151,9 +154,8 @@ void ToMrptGrid(const OccupancyGrid& grid, double x_min_m, double y_min_m, mrpt:
   const double r = grid.resolution_m();
   // MRPT rounds both bounds to its cell lattice and sizes the grid by
   // round((max - min) / r), so exact bounds give exactly our size.
-  out.setSize(static_cast<float>(x_min_m), static_cast<float>(x_min_m + grid.size_x() * r),
-              static_cast<float>(y_min_m), static_cast<float>(y_min_m + grid.size_y() * r),
-              static_cast<float>(r));
+  out.setSize(static_cast<float>(x_min_m), static_cast<float>(x_min_m + grid.size_x() * r), static_cast<float>(y_min_m),
+              static_cast<float>(y_min_m + grid.size_y() * r), static_cast<float>(r));
   if (static_cast<int>(out.getSizeX()) != grid.size_x() || static_cast<int>(out.getSizeY()) != grid.size_y() ||
       std::abs(out.getXMin() - x_min_m) > 1e-4 * r || std::abs(out.getYMin() - y_min_m) > 1e-4 * r)
     throw std::invalid_argument("MRPT placed the grid at (" + std::to_string(out.getXMin()) + ", " +
@@ -183,10 +185,9 @@ void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double 
 
 std::string DescribeMrptGridMap(const MrptGridMap& map) {
   std::ostringstream text;
-  text << "MRPT cells are P(free): occupied if 1 - P(free) >= " << map.thresholds.occupied_thresh << ", free if <= "
-       << map.thresholds.free_thresh << ", else unknown; "
-       << "map (x, y) = MRPT world (X, Y) - (x_min, y_min) = (X, Y) - (" << map.x_min_m << ", " << map.y_min_m
-       << ") m";
+  text << "MRPT cells are P(free): occupied if 1 - P(free) >= " << map.thresholds.occupied_thresh
+       << ", free if <= " << map.thresholds.free_thresh << ", else unknown; "
+       << "map (x, y) = MRPT world (X, Y) - (x_min, y_min) = (X, Y) - (" << map.x_min_m << ", " << map.y_min_m << ") m";
   return text.str();
 }
 

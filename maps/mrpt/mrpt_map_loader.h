@@ -37,8 +37,8 @@ namespace rc {
 
 struct MrptGridMap {
   OccupancyGrid grid;
-  double x_min_m = 0.0;  // MRPT world x of our map frame's origin
-  double y_min_m = 0.0;  // MRPT world y of our map frame's origin
+  double x_min_m = 0.0;              // MRPT world x of our map frame's origin
+  double y_min_m = 0.0;              // MRPT world y of our map frame's origin
   ProbabilityThresholds thresholds;  // the ones applied to P(occupied)
   CellClassCounts cell_classes;
 };
@@ -63,8 +63,7 @@ MrptGridMap LoadMrptSimplemap(const std::string& path, double resolution_m = kSi
 // (x_min_m, y_min_m): free 1.0, occupied 0.0, unknown 0.5 as P(free). For
 // tests and for running MRPT's own tools on our maps. Throws
 // std::runtime_error when the file cannot be written.
-void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double x_min_m = 0.0,
-                     double y_min_m = 0.0);
+void SaveMrptGridmap(const OccupancyGrid& grid, const std::string& path, double x_min_m = 0.0, double y_min_m = 0.0);
 
 // Sizes `out` to the grid with its origin at (x_min_m, y_min_m) and sets
 // every cell: free 1.0, occupied 0.0, unknown 0.5 (as P(free)). Our cell

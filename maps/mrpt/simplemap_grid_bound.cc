@@ -70,8 +70,8 @@ class Extent {
 
 void RequireFinite(const mrpt::poses::CPose3D& pose, const std::string& path, const std::string& field,
                    const std::string& what) {
-  if (!std::isfinite(pose.x()) || !std::isfinite(pose.y()) || !std::isfinite(pose.z()) ||
-      !std::isfinite(pose.yaw()) || !std::isfinite(pose.pitch()) || !std::isfinite(pose.roll()))
+  if (!std::isfinite(pose.x()) || !std::isfinite(pose.y()) || !std::isfinite(pose.z()) || !std::isfinite(pose.yaw()) ||
+      !std::isfinite(pose.pitch()) || !std::isfinite(pose.roll()))
     throw InputError(path, 0, field, what + " is not finite");
 }
 
@@ -96,7 +96,8 @@ void AddObservation(const mrpt::obs::CObservation& observation, const mrpt::pose
                        std::to_string(n) + " beams; at most " + std::to_string(kMaxSimplemapScanBeams) +
                            " are read (MRPT keeps two floats per beam on the stack)");
     for (std::size_t i = 0; i < n; ++i)
-      if (scan->getScanRangeValidity(i)) RequireDistance(scan->getScanRange(i), path, field + " range " + std::to_string(i));
+      if (scan->getScanRangeValidity(i))
+        RequireDistance(scan->getScanRange(i), path, field + " range " + std::to_string(i));
     const mrpt::poses::CPose2D sensor(robot + scan->sensorPose);
     extent.Add(sensor.x(), sensor.y(), max_insertion_m, keyframe);
   } else if (const auto* ranges = dynamic_cast<const mrpt::obs::CObservationRange*>(&observation)) {
@@ -140,8 +141,8 @@ SimplemapGridBound CheckSimplemapGridBound(const mrpt::maps::CSimpleMap& simple,
   const std::string field = Keyframe(extent.farthest_keyframe()) + " pose";
   const std::string span = "the grid MRPT builds from the simplemap's scans reaches x in [" + Metres(bound.x_min_m) +
                            ", " + Metres(bound.x_max_m) + "] m, y in [" + Metres(bound.y_min_m) + ", " +
-                           Metres(bound.y_max_m) + "] m (" + Metres(cells_x) + " x " + Metres(cells_y) +
-                           " cells at " + Metres(resolution_m) + " m; this keyframe's scans reach farthest)";
+                           Metres(bound.y_max_m) + "] m (" + Metres(cells_x) + " x " + Metres(cells_y) + " cells at " +
+                           Metres(resolution_m) + " m; this keyframe's scans reach farthest)";
   if (!(cells_x <= kMaxMapCellsPerSide) || !(cells_y <= kMaxMapCellsPerSide))
     throw InputError(path, 0, field,
                      span + ": each side must be at most " + std::to_string(kMaxMapCellsPerSide) + " cells");
@@ -149,8 +150,7 @@ SimplemapGridBound CheckSimplemapGridBound(const mrpt::maps::CSimpleMap& simple,
   bound.size_y = static_cast<long long>(cells_y);
   CheckMapSize(path, 0, field, static_cast<long>(bound.size_x), static_cast<long>(bound.size_y));
   const std::uint64_t cells = static_cast<std::uint64_t>(bound.size_x) * static_cast<std::uint64_t>(bound.size_y);
-  const std::uint64_t need =
-      BytesFor(cells, 2 * sizeof(mrpt::maps::COccupancyGridMap2D::cellType) + sizeof(CellState));
+  const std::uint64_t need = BytesFor(cells, 2 * sizeof(mrpt::maps::COccupancyGridMap2D::cellType) + sizeof(CellState));
   if (need > MemoryCapBytes()) throw InputError(path, 0, field, span + ": " + DescribeOverCap(need));
   return bound;
 }

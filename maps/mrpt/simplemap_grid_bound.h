@@ -13,7 +13,7 @@
 #include <string>
 
 namespace mrpt::maps {
-class CSimpleMap;          // declared only: this header stays free of MRPT
+class CSimpleMap;  // declared only: this header stays free of MRPT
 class COccupancyGridMap2D;
 }  // namespace mrpt::maps
 

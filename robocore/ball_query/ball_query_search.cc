@@ -36,10 +36,15 @@ bool InGrownBox(const double* q, const double* lo, const double* hi, std::size_t
 
 class Pass {
  public:
-  Pass(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, std::size_t k,
-       bool shrink, BallQueryVisits* visits)
-      : tree_(tree), sphere_(config.formulation == BallQueryFormulation::kPSphere), q_(query),
-        n_(tree.dimension()), k_(k), shrink_(shrink), visits_(visits) {}
+  Pass(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, std::size_t k, bool shrink,
+       BallQueryVisits* visits)
+      : tree_(tree),
+        sphere_(config.formulation == BallQueryFormulation::kPSphere),
+        q_(query),
+        n_(tree.dimension()),
+        k_(k),
+        shrink_(shrink),
+        visits_(visits) {}
 
   // Fills best (sorted) with the states within rho (at most k).
   void Run(double rho, std::vector<BallNeighbor>& best) {
@@ -152,8 +157,8 @@ class Pass {
 
 }  // namespace
 
-void BallNearestK(const BallQueryTree& tree, const BallQueryConfig& config, const double* query,
-                  std::size_t k, std::vector<BallNeighbor>& out, BallQueryVisits* visits) {
+void BallNearestK(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, std::size_t k,
+                  std::vector<BallNeighbor>& out, BallQueryVisits* visits) {
   out.clear();
   if (visits) visits->clear();
   if (k == 0 || tree.empty()) return;
@@ -167,8 +172,8 @@ void BallNearestK(const BallQueryTree& tree, const BallQueryConfig& config, cons
   }
 }
 
-void BallWithinRadius(const BallQueryTree& tree, const BallQueryConfig& config, const double* query,
-                      double radius, std::vector<BallNeighbor>& out, BallQueryVisits* visits) {
+void BallWithinRadius(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, double radius,
+                      std::vector<BallNeighbor>& out, BallQueryVisits* visits) {
   out.clear();
   if (visits) visits->clear();
   if (!(radius >= 0) || tree.empty()) return;

@@ -74,13 +74,13 @@ inline constexpr std::uint8_t kBallQueryNoState = 1;  // RETURN_IF #1: no state 
 // The k nearest states, sorted by (distance, sequence); fewer when the tree
 // holds fewer. `visits`, if given, is cleared and filled. The config must be
 // valid (checked by the caller; BallQueryConfig::IsValid).
-void BallNearestK(const BallQueryTree& tree, const BallQueryConfig& config, const double* query,
-                  std::size_t k, std::vector<BallNeighbor>& out, BallQueryVisits* visits = nullptr);
+void BallNearestK(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, std::size_t k,
+                  std::vector<BallNeighbor>& out, BallQueryVisits* visits = nullptr);
 
 // Every state with distance <= radius, sorted by (distance, sequence). A
 // negative or NaN radius finds nothing and fetches nothing.
-void BallWithinRadius(const BallQueryTree& tree, const BallQueryConfig& config, const double* query,
-                      double radius, std::vector<BallNeighbor>& out, BallQueryVisits* visits = nullptr);
+void BallWithinRadius(const BallQueryTree& tree, const BallQueryConfig& config, const double* query, double radius,
+                      std::vector<BallNeighbor>& out, BallQueryVisits* visits = nullptr);
 
 // OMPL's RealVectorStateSpace::distance on raw coordinates.
 inline double EuclideanDistance(const double* a, const double* b, std::size_t n) {

@@ -149,7 +149,8 @@ BallStateId BallQueryTree::Insert(const double* coordinates) {
 }
 
 void BallQueryTree::Remove(BallStateId id) {
-  if (!IsLive(id)) throw std::invalid_argument("BallQueryTree::Remove: state " + std::to_string(id) + " is not in the tree");
+  if (!IsLive(id))
+    throw std::invalid_argument("BallQueryTree::Remove: state " + std::to_string(id) + " is not in the tree");
   const int leaf = leaf_of_[id];
   RemoveLeaf(leaf);
   Release(leaf);
@@ -223,11 +224,10 @@ int BallQueryTree::Build(std::vector<BallStateId>& ids, std::size_t begin, std::
   }
   const std::size_t mid = begin + (end - begin) / 2;
   // Ties on the axis are broken by id, so the build is deterministic.
-  std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end,
-                   [&](BallStateId a, BallStateId b) {
-                     const double ca = Coordinates(a)[axis], cb = Coordinates(b)[axis];
-                     return ca < cb || (ca == cb && a < b);
-                   });
+  std::nth_element(ids.begin() + begin, ids.begin() + mid, ids.begin() + end, [&](BallStateId a, BallStateId b) {
+    const double ca = Coordinates(a)[axis], cb = Coordinates(b)[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
   const int a = Build(ids, begin, mid, node);
   const int b = Build(ids, mid, end, node);
   nodes_[node].child[0] = a;

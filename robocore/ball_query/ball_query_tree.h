@@ -71,9 +71,7 @@ class BallQueryTree {
   const double* Hi(int node) const { return Lo(node) + dimension_; }
 
   // Device layout.
-  static std::uint32_t NodeBytes(std::size_t dimension) {
-    return static_cast<std::uint32_t>(32 * dimension + 8);
-  }
+  static std::uint32_t NodeBytes(std::size_t dimension) { return static_cast<std::uint32_t>(32 * dimension + 8); }
   std::uint32_t node_bytes() const { return NodeBytes(dimension_); }
   std::size_t node_slots() const { return nodes_.size(); }  // device array length
 
@@ -96,8 +94,8 @@ class BallQueryTree {
   void RemoveLeaf(int leaf);
   void Rebuild();
   int Build(std::vector<BallStateId>& ids, std::size_t begin, std::size_t end, int parent);
-  double Extent(int node) const;                  // summed box extents
-  double UnionExtent(int node, int leaf) const;   // summed extents of the union
+  double Extent(int node) const;                 // summed box extents
+  double UnionExtent(int node, int leaf) const;  // summed extents of the union
 
   std::size_t dimension_;
   // States, by id.

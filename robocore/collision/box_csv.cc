@@ -12,9 +12,9 @@ namespace rc {
 namespace {
 
 const char* const kObbColumns[17] = {
-    "pos",          "joint",        "obb_center_x", "obb_center_y", "obb_center_z", "obb_axis_x1",
-    "obb_axis_y1",  "obb_axis_z1",  "obb_axis_x2",  "obb_axis_y2",  "obb_axis_z2",  "obb_axis_x3",
-    "obb_axis_y3",  "obb_axis_z3",  "obb_half_length_x", "obb_half_length_y", "obb_half_length_z"};
+    "pos",         "joint",       "obb_center_x",      "obb_center_y",      "obb_center_z",     "obb_axis_x1",
+    "obb_axis_y1", "obb_axis_z1", "obb_axis_x2",       "obb_axis_y2",       "obb_axis_z2",      "obb_axis_x3",
+    "obb_axis_y3", "obb_axis_z3", "obb_half_length_x", "obb_half_length_y", "obb_half_length_z"};
 const char* const kBoxColumns[6] = {"cx", "cy", "cz", "hx", "hy", "hz"};
 
 bool IsBlank(const std::string& line) { return line.find_first_not_of(" \t") == std::string::npos; }
@@ -73,11 +73,11 @@ std::vector<RobotObb> ReadObbCsv(std::istream& in, const std::string& file_name)
       for (int k = i; k < 3; ++k) {
         const double dot = r.obb.axes.col(i).dot(r.obb.axes.col(k));
         if (std::abs(dot - (i == k ? 1.0 : 0.0)) > kAxisTolerance)
-          reader.Fail(kObbColumns[5 + 3 * k],
-                      i == k ? "axis " + std::to_string(i + 1) + " is not a unit vector (|axis|^2 = " +
-                                   std::to_string(dot) + ")"
-                             : "axes " + std::to_string(i + 1) + " and " + std::to_string(k + 1) +
-                                   " are not orthogonal (dot = " + std::to_string(dot) + ")");
+          reader.Fail(kObbColumns[5 + 3 * k], i == k
+                                                  ? "axis " + std::to_string(i + 1) +
+                                                        " is not a unit vector (|axis|^2 = " + std::to_string(dot) + ")"
+                                                  : "axes " + std::to_string(i + 1) + " and " + std::to_string(k + 1) +
+                                                        " are not orthogonal (dot = " + std::to_string(dot) + ")");
       }
     out.push_back(r);
   }

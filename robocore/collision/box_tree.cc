@@ -33,11 +33,10 @@ std::uint32_t BuildMedian(std::vector<BuildNode>& pool, const std::vector<Aabbd>
   (max_c - min_c).maxCoeff(&axis);
   const std::size_t mid = lo + (hi - lo) / 2;
   // Ties broken by box index, so the tree does not depend on the sort.
-  std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi,
-                   [&](std::uint32_t a, std::uint32_t b) {
-                     const double ca = boxes[a].centre[axis], cb = boxes[b].centre[axis];
-                     return ca < cb || (ca == cb && a < b);
-                   });
+  std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi, [&](std::uint32_t a, std::uint32_t b) {
+    const double ca = boxes[a].centre[axis], cb = boxes[b].centre[axis];
+    return ca < cb || (ca == cb && a < b);
+  });
   const std::uint32_t left = BuildMedian(pool, boxes, order, lo, mid);
   const std::uint32_t right = BuildMedian(pool, boxes, order, mid, hi);
   pool[self].children = {left, right};

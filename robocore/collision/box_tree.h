@@ -37,10 +37,10 @@ inline constexpr std::uint32_t kNoBox = std::numeric_limits<std::uint32_t>::max(
 struct BoxTreeNode {
   Eigen::Vector3d lower = Eigen::Vector3d::Zero();  // m; contains every box below
   Eigen::Vector3d upper = Eigen::Vector3d::Zero();  // m
-  std::uint32_t first_child = 0;  // index in BoxTree::nodes; children are contiguous
-  std::uint32_t child_count = 0;  // 0 for a leaf
-  std::uint32_t box = kNoBox;     // leaf: index in BoxTree::boxes
-  std::uint32_t depth = 0;        // root = 0
+  std::uint32_t first_child = 0;                    // index in BoxTree::nodes; children are contiguous
+  std::uint32_t child_count = 0;                    // 0 for a leaf
+  std::uint32_t box = kNoBox;                       // leaf: index in BoxTree::boxes
+  std::uint32_t depth = 0;                          // root = 0
   bool is_leaf() const { return child_count == 0; }
 };
 

@@ -31,9 +31,9 @@ inline constexpr std::int8_t kNoNodeTested = -3;
 
 // One node fetch and its test.
 struct NodeVisit {
-  std::uint32_t node = 0;                 // index in the flat node array
-  std::int8_t exit = kSactOverlap;        // 0..14, kSactOverlap or kSactSphereSeparated
-  std::uint8_t axes_tested = 0;           // SACT axes the test ran (0..15)
+  std::uint32_t node = 0;           // index in the flat node array
+  std::int8_t exit = kSactOverlap;  // 0..14, kSactOverlap or kSactSphereSeparated
+  std::uint8_t axes_tested = 0;     // SACT axes the test ran (0..15)
   SactDecision decided_by = SactDecision::kAxes;
   bool overlaps() const { return exit == kSactOverlap; }
 };

@@ -38,8 +38,8 @@ namespace rc {
 using Vec3ld = Eigen::Matrix<long double, 3, 1>;
 
 struct ExactOverlap {
-  long double depth = 0;  // s*, m (see above)
-  Vec3ld witness = Vec3ld::Zero();  // m, world: a point of both boxes shrunk by s*
+  long double depth = 0;                        // s*, m (see above)
+  Vec3ld witness = Vec3ld::Zero();              // m, world: a point of both boxes shrunk by s*
   bool overlaps() const { return depth >= 0; }  // touching counts
 };
 

@@ -19,9 +19,9 @@ struct Obb {
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
   using Mat3 = Eigen::Matrix<Scalar, 3, 3>;
 
-  Vec3 centre = Vec3::Zero();      // m, world frame
-  Mat3 axes = Mat3::Identity();    // column i = box axis i in world coordinates (unit)
-  Vec3 half = Vec3::Zero();        // m, half extent along each box axis (>= 0)
+  Vec3 centre = Vec3::Zero();    // m, world frame
+  Mat3 axes = Mat3::Identity();  // column i = box axis i in world coordinates (unit)
+  Vec3 half = Vec3::Zero();      // m, half extent along each box axis (>= 0)
 
   template <typename To>
   Obb<To> Cast() const {

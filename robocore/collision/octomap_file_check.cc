@@ -10,8 +10,7 @@ namespace {
 
 class NodeStreamCheck {
  public:
-  NodeStreamCheck(std::istream& in, const std::string& path, bool binary)
-      : in_(in), path_(path), binary_(binary) {}
+  NodeStreamCheck(std::istream& in, const std::string& path, bool binary) : in_(in), path_(path), binary_(binary) {}
 
   // One node and its subtree, as OccupancyOcTreeBase::readBinaryNode (.bt:
   // two bytes, two bits per child, 11 = an inner child read next) or

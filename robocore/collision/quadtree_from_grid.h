@@ -17,8 +17,8 @@
 namespace rc {
 
 struct QuadtreeOptions {
-  double z_min_m = 0.0;  // m, bottom of every cell's box
-  double z_max_m = 2.0;  // m, top: taller than a mobile robot, so its footprint OBB meets a wall
+  double z_min_m = 0.0;              // m, bottom of every cell's box
+  double z_max_m = 2.0;              // m, top: taller than a mobile robot, so its footprint OBB meets a wall
   bool unknown_is_occupied = false;  // CellState::kUnknown as an obstacle
   bool IsValid(std::string* error) const;
 };

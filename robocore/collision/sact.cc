@@ -39,8 +39,7 @@ std::optional<SactResult> SactSpherePretest(const Obb<Scalar>& obb, const Aabb<S
 }
 
 template <typename Scalar>
-SactResult TestObbAabb(const Obb<Scalar>& obb, const Aabb<Scalar>& box,
-                       const SactOptions<Scalar>& options) {
+SactResult TestObbAabb(const Obb<Scalar>& obb, const Aabb<Scalar>& box, const SactOptions<Scalar>& options) {
   return TestPreparedObbAabb(PrepareSactObb(obb, options), box);
 }
 

@@ -74,8 +74,8 @@ namespace rc {
 
 inline constexpr int kSactAxisCount = 15;
 inline constexpr int kSactBoxNormalAxes = 6;
-inline constexpr std::int8_t kSactOverlap = -1;            // "no axis separates"
-inline constexpr std::int8_t kSactSphereSeparated = -2;    // outer sphere pre-test rejected
+inline constexpr std::int8_t kSactOverlap = -1;          // "no axis separates"
+inline constexpr std::int8_t kSactSphereSeparated = -2;  // outer sphere pre-test rejected
 
 // How the translation between the boxes is put into the OBB frame.
 enum class TranslationConvention : std::uint8_t {
@@ -111,8 +111,7 @@ struct SactResult {
 };
 
 template <typename Scalar>
-SactResult TestObbAabb(const Obb<Scalar>& obb, const Aabb<Scalar>& box,
-                       const SactOptions<Scalar>& options = {});
+SactResult TestObbAabb(const Obb<Scalar>& obb, const Aabb<Scalar>& box, const SactOptions<Scalar>& options = {});
 
 // The part of the pre-process that depends on the OBB alone (R = axes^T
 // and |R| + epsilon), computed once for a query that a traversal tests
@@ -151,7 +150,8 @@ std::optional<SactResult> SactSpherePretest(const Obb<Scalar>& obb, const Aabb<S
 // R_ij = A_i . B_j and t = the translation in A's frame. Inline: a
 // traversal calls it once per node.
 template <typename Scalar>
-[[gnu::always_inline]] inline SactResult TestPreparedObbAabb(const SactPreparedObb<Scalar>& p, const Aabb<Scalar>& box) {
+[[gnu::always_inline]] inline SactResult TestPreparedObbAabb(const SactPreparedObb<Scalar>& p,
+                                                             const Aabb<Scalar>& box) {
   using Vec3 = Eigen::Matrix<Scalar, 3, 1>;
   const SactOptions<Scalar>& options = p.options;
   if (options.sphere_pretests) {

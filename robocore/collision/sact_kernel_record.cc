@@ -22,7 +22,8 @@ class TouchedSectors {
  public:
   TouchedSectors(std::uint64_t node_count, std::uint64_t node_bytes, int sector_bytes) : node_bytes_(node_bytes) {
     while ((1 << shift_) < sector_bytes) ++shift_;
-    const std::uint64_t sectors = node_bytes == 0 || node_count == 0 ? 0 : ((node_count * node_bytes - 1) >> shift_) + 1;
+    const std::uint64_t sectors =
+        node_bytes == 0 || node_count == 0 ? 0 : ((node_count * node_bytes - 1) >> shift_) + 1;
     bits_.assign((sectors + 63) / 64, 0);
   }
   void Mark(std::uint32_t node) {
@@ -49,8 +50,8 @@ class TouchedSectors {
 // (fetch_offsets = the batch's visit offsets); exit_of maps a visit to its
 // exit. Addresses are kept for the queries `sample` keeps.
 template <typename ExitOf>
-KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program,
-                         StepProgramKind kind, const AddressSample& sample, ExitOf&& exit_of) {
+KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program, StepProgramKind kind,
+                         const AddressSample& sample, ExitOf&& exit_of) {
   KernelRecord record;
   record.program = std::move(program);
   record.step_kind = kind;
@@ -72,8 +73,7 @@ KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const Micr
   record.address_offsets.assign(n + 1, 0);
   for (std::size_t q = 0; q < n; ++q)
     record.address_offsets[q + 1] =
-        record.address_offsets[q] +
-        (sample.KeepsQuery(q) ? batch.visit_offsets[q + 1] - batch.visit_offsets[q] : 0);
+        record.address_offsets[q] + (sample.KeepsQuery(q) ? batch.visit_offsets[q + 1] - batch.visit_offsets[q] : 0);
   record.fetch_addresses.reserve(record.address_offsets.back());
   // Sectors the whole batch touched, numbered from the region's base (the
   // record's footprint_begin()).
@@ -114,8 +114,8 @@ bool KeepsSactExitContract(const MicroProgram& program, std::string* why) {
   if (!any_sact)
     return Fail(why, "program '" + program.name() + "' has no SACT section (no PRE, BOX or EDGE micro-op in its loop)");
   bool pre_seen = false;
-  int next_axis = 0;           // the axis whose test must come next
-  int axis_tested = -1;        // the highest axis tested so far, in order
+  int next_axis = 0;     // the axis whose test must come next
+  int axis_tested = -1;  // the highest axis tested so far, in order
   int return_ifs = 0;
   for (const MicroOp& op : loop) {
     const std::string where = "program '" + program.name() + "' line " + std::to_string(op.line) + ": ";
@@ -160,8 +160,7 @@ KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const
 template <typename Scalar>
 void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                           const CollisionOptions<Scalar>& options, const AddressSample& sample,
-                          std::vector<TraversalOutcome>* outcomes, KernelRecord* record,
-                          std::uint64_t base_address) {
+                          std::vector<TraversalOutcome>* outcomes, KernelRecord* record, std::uint64_t base_address) {
   std::string error;
   if (!options.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
   if (record && options.sact.sphere_pretests)
@@ -222,7 +221,8 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
     record->address_offsets.assign(obbs.size() + 1, 0);
     for (long i = 0; i < n; ++i)
       record->address_offsets[i + 1] =
-          record->address_offsets[i] + (sample.KeepsQuery(static_cast<std::size_t>(i)) ? (*outcomes)[i].nodes_visited : 0);
+          record->address_offsets[i] +
+          (sample.KeepsQuery(static_cast<std::size_t>(i)) ? (*outcomes)[i].nodes_visited : 0);
   }
   std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
   for (long b = 0; b < blocks; ++b) {
@@ -233,8 +233,7 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
 #pragma omp parallel for schedule(static) if (blocks > 1)
   for (long b = 0; b < blocks; ++b) {
     std::copy(block_exits[b].begin(), block_exits[b].end(), record->node_exits.begin() + exit_start[b]);
-    std::copy(block_addresses[b].begin(), block_addresses[b].end(),
-              record->fetch_addresses.begin() + address_start[b]);
+    std::copy(block_addresses[b].begin(), block_addresses[b].end(), record->fetch_addresses.begin() + address_start[b]);
   }
   record->touched_sectors = 0;
   if (mark) {
@@ -245,8 +244,8 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
 }
 
 template void CollideBatchRecorded(const FlatBoxTree<float>&, const std::vector<Obb<float>>&,
-                                   const CollisionOptions<float>&, const AddressSample&,
-                                   std::vector<TraversalOutcome>*, KernelRecord*, std::uint64_t);
+                                   const CollisionOptions<float>&, const AddressSample&, std::vector<TraversalOutcome>*,
+                                   KernelRecord*, std::uint64_t);
 template void CollideBatchRecorded(const FlatBoxTree<double>&, const std::vector<Obb<double>>&,
                                    const CollisionOptions<double>&, const AddressSample&,
                                    std::vector<TraversalOutcome>*, KernelRecord*, std::uint64_t);
@@ -270,9 +269,8 @@ KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<con
   if (!program) program = ShippedStepProgram(StepProgramKind::kSphereTest);
   std::string why;
   if (!KeepsSphereExitContract(*program, &why)) throw std::invalid_argument("SphereKernelRecord: " + why);
-  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, sample, [](const NodeVisit& v) {
-    return v.overlaps() ? kNoExit : std::uint8_t{0};
-  });
+  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, sample,
+                     [](const NodeVisit& v) { return v.overlaps() ? kNoExit : std::uint8_t{0}; });
 }
 
 }  // namespace rc

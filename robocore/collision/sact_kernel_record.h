@@ -51,8 +51,7 @@ bool KeepsSactExitContract(const MicroProgram& program, std::string* why);
 // Throws std::invalid_argument if the batch is not an OBB batch, used
 // sphere pre-tests, or `program` (default: the shipped SACT program) does
 // not keep the SACT exit contract.
-KernelRecord SactKernelRecord(const CollisionBatch& batch,
-                              std::shared_ptr<const MicroProgram> program = nullptr,
+KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program = nullptr,
                               const AddressSample& sample = AddressSample{});
 
 // CollideBatch and SactKernelRecord in one pass, without keeping the visits
@@ -79,8 +78,7 @@ bool KeepsSphereExitContract(const MicroProgram& program, std::string* why);
 // Throws std::invalid_argument if the batch is not a sphere batch
 // (CollideSphereBatch) or `program` (default: the shipped sphere program)
 // does not keep the sphere exit contract.
-KernelRecord SphereKernelRecord(const CollisionBatch& batch,
-                                std::shared_ptr<const MicroProgram> program = nullptr,
+KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program = nullptr,
                                 const AddressSample& sample = AddressSample{});
 
 // The same fetches with another step program and every node exit passed

@@ -51,8 +51,8 @@ bool Invert(Mat4 m, Mat4& inv) {
 
 // The first row not yet active that z + t p runs into (smallest t, then
 // smallest index: Bland's entering rule); -1 if none.
-int RatioTest(const std::vector<LpRow>& rows, const std::vector<bool>& active, const LpVector& z,
-              const LpVector& p, long double& step) {
+int RatioTest(const std::vector<LpRow>& rows, const std::vector<bool>& active, const LpVector& z, const LpVector& p,
+              long double& step) {
   const long double p_zero = kRelativeZero * MaxAbs(p);
   int entering = -1;
   for (int k = 0; k < static_cast<int>(rows.size()); ++k) {

@@ -32,9 +32,9 @@ struct LpRow {
 struct LpSolution {
   bool solved = false;
   LpVector z{};
-  long double value = 0;   // c . z
-  int pivots = 0;          // simplex pivots (0 for enumeration)
-  bool enumerated = false; // the fallback produced it
+  long double value = 0;    // c . z
+  int pivots = 0;           // simplex pivots (0 for enumeration)
+  bool enumerated = false;  // the fallback produced it
 };
 
 // maximize c . z subject to normal_k . z <= rhs_k for every row.

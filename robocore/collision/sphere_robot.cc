@@ -52,8 +52,7 @@ std::vector<Sphere<Scalar>> SphereCover(const Obb<Scalar>& obb, int spheres_per_
 
 template <typename Scalar>
 bool SphereOverlapsAabb(const Sphere<Scalar>& sphere, const Aabb<Scalar>& box) {
-  const Eigen::Matrix<Scalar, 3, 1> outside =
-      ((sphere.centre - box.centre).cwiseAbs() - box.half).cwiseMax(Scalar(0));
+  const Eigen::Matrix<Scalar, 3, 1> outside = ((sphere.centre - box.centre).cwiseAbs() - box.half).cwiseMax(Scalar(0));
   return outside.squaredNorm() <= sphere.radius * sphere.radius;
 }
 
@@ -114,15 +113,15 @@ SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std:
   return report;
 }
 
-#define RC_INSTANTIATE(Scalar)                                                                              \
-  template Sphere<Scalar> BoundingSphere(const Obb<Scalar>&);                                               \
-  template std::vector<Sphere<Scalar>> SphereCover(const Obb<Scalar>&, int);                                \
-  template bool SphereOverlapsAabb(const Sphere<Scalar>&, const Aabb<Scalar>&);                             \
-  template SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,  \
-                                               int, TraversalOrder, std::uint64_t);                         \
-  template TraversalOutcome CollideSphere(const FlatBoxTree<Scalar>&, const Sphere<Scalar>&, TraversalOrder, \
-                                          std::vector<NodeVisit>*);                                         \
-  template SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&, \
+#define RC_INSTANTIATE(Scalar)                                                                                   \
+  template Sphere<Scalar> BoundingSphere(const Obb<Scalar>&);                                                    \
+  template std::vector<Sphere<Scalar>> SphereCover(const Obb<Scalar>&, int);                                     \
+  template bool SphereOverlapsAabb(const Sphere<Scalar>&, const Aabb<Scalar>&);                                  \
+  template SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&, int, \
+                                               TraversalOrder, std::uint64_t);                                   \
+  template TraversalOutcome CollideSphere(const FlatBoxTree<Scalar>&, const Sphere<Scalar>&, TraversalOrder,     \
+                                          std::vector<NodeVisit>*);                                              \
+  template SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,     \
                                                 const CollisionOptions<Scalar>&, int);
 RC_INSTANTIATE(float)
 RC_INSTANTIATE(double)

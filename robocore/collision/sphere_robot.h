@@ -19,7 +19,7 @@ namespace rc {
 template <typename Scalar>
 struct Sphere {
   Eigen::Matrix<Scalar, 3, 1> centre = Eigen::Matrix<Scalar, 3, 1>::Zero();  // m
-  Scalar radius = 0;                                                        // m
+  Scalar radius = 0;                                                         // m
 };
 using Sphered = Sphere<double>;
 using Spheref = Sphere<float>;

@@ -4,9 +4,7 @@
 
 namespace rc {
 
-const char* ToString(TraversalOrder order) {
-  return order == TraversalOrder::kDepthFirst ? "dfs" : "bfs";
-}
+const char* ToString(TraversalOrder order) { return order == TraversalOrder::kDepthFirst ? "dfs" : "bfs"; }
 
 TraversalOrder ParseTraversalOrder(const std::string& name) {
   if (name == "dfs") return TraversalOrder::kDepthFirst;
@@ -88,17 +86,16 @@ CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<O
   return batch;
 }
 
-#define RC_INSTANTIATE(Scalar)                                                                           \
-  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                   \
-                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*);        \
-  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                   \
-                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*,         \
-                                       std::vector<std::uint32_t>*);                                     \
-  template bool CollidesBruteForce(const std::vector<Aabb<Scalar>>&, const Obb<Scalar>&,                 \
-                                   const SactOptions<Scalar>&);                                          \
-  template CollisionBatch CollideBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,      \
-                                       const CollisionOptions<Scalar>&, std::uint64_t);                  \
-  template void CollideBatchInto(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,            \
+#define RC_INSTANTIATE(Scalar)                                                                                        \
+  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                                \
+                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*);                     \
+  template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                                \
+                                       const CollisionOptions<Scalar>&, std::vector<NodeVisit>*,                      \
+                                       std::vector<std::uint32_t>*);                                                  \
+  template bool CollidesBruteForce(const std::vector<Aabb<Scalar>>&, const Obb<Scalar>&, const SactOptions<Scalar>&); \
+  template CollisionBatch CollideBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,                   \
+                                       const CollisionOptions<Scalar>&, std::uint64_t);                               \
+  template void CollideBatchInto(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,                         \
                                  const CollisionOptions<Scalar>&, CollisionBatch*, std::uint64_t);
 RC_INSTANTIATE(float)
 RC_INSTANTIATE(double)

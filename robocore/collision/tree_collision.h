@@ -55,8 +55,8 @@ enum class CollisionRobotModel : std::uint8_t { kObb, kSpheres };
 // A recorded batch. Memory: 8 bytes per visit + 16 per query.
 struct CollisionBatch {
   CollisionRobotModel robot_model = CollisionRobotModel::kObb;
-  std::vector<TraversalOutcome> outcomes;        // one per query, in input order
-  std::vector<std::uint64_t> visit_offsets{0};   // CSR: query i's visits are [offsets[i], offsets[i+1])
+  std::vector<TraversalOutcome> outcomes;       // one per query, in input order
+  std::vector<std::uint64_t> visit_offsets{0};  // CSR: query i's visits are [offsets[i], offsets[i+1])
   std::vector<NodeVisit> visits;
   std::uint64_t base_address = kDefaultTreeBase;  // bytes
   std::uint32_t node_bytes = 0;                   // bytes per node fetch

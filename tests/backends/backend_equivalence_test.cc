@@ -38,8 +38,7 @@ TEST_P(BackendEquivalence, SameHitsAsTheCpuReference) {
   EXPECT_EQ(cost.nodes_counted, cost.nodes) << "one PUSH per node visited";
   EXPECT_GT(cost.cycles, cost.launch_cycles);
   EXPECT_GT(cost.energy_joules, 0.0);
-  EXPECT_EQ(cost.memory.sector_requests,
-            cost.memory.l1_hits + cost.memory.l2_accesses);
+  EXPECT_EQ(cost.memory.sector_requests, cost.memory.l1_hits + cost.memory.l2_accesses);
   EXPECT_EQ(cost.memory.l2_accesses, cost.memory.l2_hits + cost.memory.dram_accesses);
   if (backend->specs().has_rt_unit)
     EXPECT_EQ(cost.memory.sector_requests, cost.nodes);  // one request per node fetch
@@ -47,17 +46,16 @@ TEST_P(BackendEquivalence, SameHitsAsTheCpuReference) {
     EXPECT_LE(cost.memory.sector_requests, cost.nodes);  // coalesced
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllBackendsAllKernels, BackendEquivalence,
-    ::testing::Combine(::testing::ValuesIn(Backend::Names()),
-                       ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda,
-                                         RayCastMethod::kRayMarching)),
-    [](const auto& info) {
-      std::string name = std::get<0>(info.param) + "_" + ToString(std::get<1>(info.param));
-      for (char& c : name)
-        if (c == '-') c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(AllBackendsAllKernels, BackendEquivalence,
+                         ::testing::Combine(::testing::ValuesIn(Backend::Names()),
+                                            ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda,
+                                                              RayCastMethod::kRayMarching)),
+                         [](const auto& info) {
+                           std::string name = std::get<0>(info.param) + "_" + ToString(std::get<1>(info.param));
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 TEST(BackendSpecs, DescribeEveryBackend) {
   for (const std::string& name : Backend::Names()) {

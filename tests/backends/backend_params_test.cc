@@ -30,10 +30,10 @@ TEST(BackendParameters, EveryFieldIsPrintedWithValueUnitAndSource) {
     EXPECT_FALSE(r.source.empty()) << r.key;
     EXPECT_TRUE(keys.insert(r.key).second) << "duplicate " << r.key;
   }
-  for (const char* key : {"gpu.sms", "gpu.l1_bytes", "gpu.l2_latency_cycles", "energy.dram_pj",
-                          "simt.instructions_per_element.DOT", "ttaplus.warp_buffer_warps",
-                          "ttaplus.interconnect_hop_cycles", "robocore.sact_latency_scale",
-                          "robocore.box_normal_cycles"})
+  for (const char* key :
+       {"gpu.sms", "gpu.l1_bytes", "gpu.l2_latency_cycles", "energy.dram_pj", "simt.instructions_per_element.DOT",
+        "ttaplus.warp_buffer_warps", "ttaplus.interconnect_hop_cycles", "robocore.sact_latency_scale",
+        "robocore.box_normal_cycles"})
     EXPECT_TRUE(keys.count(key)) << key;
   std::ostringstream out;
   PrintBackendParameters(out, p);
@@ -70,8 +70,7 @@ TEST(BackendParameters, UnknownKeyNamesFileAndKey) {
 TEST(BackendParameters, WrongTypeNamesTheKey) {
   EXPECT_EQ(ParseError(R"({"gpu": {"sms": "eight"}})").field(), "gpu.sms");
   EXPECT_EQ(ParseError(R"({"gpu": {"sms": 8.5}})").field(), "gpu.sms");
-  EXPECT_EQ(ParseError(R"({"robocore": {"sact_latency_scale": [2]}})").field(),
-            "robocore.sact_latency_scale");
+  EXPECT_EQ(ParseError(R"({"robocore": {"sact_latency_scale": [2]}})").field(), "robocore.sact_latency_scale");
 }
 
 TEST(BackendParameters, InvalidValuesAndBadJson) {

@@ -37,8 +37,8 @@ TEST(CacheHierarchy, LatenciesAddUpLevelByLevel) {
   EXPECT_EQ(gpu.DramExtraCycles(), 47);
   EXPECT_EQ(c.LatencyCycles(MemoryLevel::kDram), 227);
   EXPECT_EQ(c.Access(0, kBase), MemoryLevel::kDram);
-  EXPECT_EQ(c.Access(0, kBase + 31), MemoryLevel::kL1);  // same sector
-  EXPECT_EQ(c.Access(1, kBase), MemoryLevel::kL2);       // another SM's L1
+  EXPECT_EQ(c.Access(0, kBase + 31), MemoryLevel::kL1);    // same sector
+  EXPECT_EQ(c.Access(1, kBase), MemoryLevel::kL2);         // another SM's L1
   EXPECT_EQ(c.Access(0, kBase + 32), MemoryLevel::kDram);  // next sector: sectors fill one by one
 }
 
@@ -50,7 +50,7 @@ TEST(CacheHierarchy, FullyAssociativeL1EvictsTheLeastRecentlyUsedLine) {
   c.Access(0, line(0));
   c.Access(0, line(1));
   EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL1);  // order now 0, 1
-  c.Access(0, line(2));                                // evicts 1
+  c.Access(0, line(2));                               // evicts 1
   EXPECT_EQ(c.Access(0, line(0)), MemoryLevel::kL1);
   EXPECT_EQ(c.Access(0, line(1)), MemoryLevel::kL2);  // was evicted; evicts 2
   EXPECT_EQ(c.Access(0, line(2)), MemoryLevel::kL2);
@@ -58,7 +58,7 @@ TEST(CacheHierarchy, FullyAssociativeL1EvictsTheLeastRecentlyUsedLine) {
 
 TEST(CacheHierarchy, SetAssociativeL2EvictsWithinASet) {
   GpuParams gpu;
-  gpu.l1_bytes = gpu.line_bytes;        // one line: almost everything misses L1
+  gpu.l1_bytes = gpu.line_bytes;  // one line: almost everything misses L1
   gpu.l2_ways = 2;
   gpu.l2_bytes = 2 * 2 * gpu.line_bytes;  // 2 sets x 2 ways
   CacheHierarchy c(gpu, kBase, kBase + 16 * 128);
@@ -84,7 +84,8 @@ TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
   for (int i = 0; i < 100000; ++i) {
     // Mostly near recent lines, sometimes anywhere: hits and evictions.
     const int line = s.Uniform() < 0.8 ? static_cast<int>(s.Uniform() * 20) : static_cast<int>(s.Uniform() * lines);
-    stream.push_back(static_cast<std::uint32_t>(line * sectors_per_line + static_cast<int>(s.Uniform() * sectors_per_line)));
+    stream.push_back(
+        static_cast<std::uint32_t>(line * sectors_per_line + static_cast<int>(s.Uniform() * sectors_per_line)));
   }
   std::list<std::pair<int, unsigned>> lru;  // (line, sector mask), most recent first
   std::vector<std::uint8_t> expected;

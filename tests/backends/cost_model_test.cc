@@ -25,13 +25,11 @@ constexpr int kDramLatency = 20 + 160 + 47;  // L1 + L2 + (100 + 20) DRAM cycles
 KernelRecord OneWarpRecord(const std::string& loop_body) {
   KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n" + loop_body), StepProgramKind::kDdaStep,
                         test::ByteRegion(kBase, 64));
-  for (int lane = 0; lane < 32; ++lane)
-    b.AddQuery(std::vector<std::uint64_t>((lane % 4) + 1, kBase + lane));
+  for (int lane = 0; lane < 32; ++lane) b.AddQuery(std::vector<std::uint64_t>((lane % 4) + 1, kBase + lane));
   return b.Build();
 }
 
-BatchCost PriceOn(const std::string& name, const KernelRecord& record,
-                  const BackendParameters& params = {}) {
+BatchCost PriceOn(const std::string& name, const KernelRecord& record, const BackendParameters& params = {}) {
   return Backend::Create(name, params)->Price(record);
 }
 
@@ -99,8 +97,8 @@ TEST(RtUnitCost, PredicationVersusConditionalReturnOverABatch) {
     nodes += n;
   }
   const KernelRecord r = b.Build();
-  const BatchCost plain = PriceOn("ttaplus", r), p = PriceOn("ttaplus-p", r),
-                  cr = PriceOn("ttaplus-cr", r), robo = PriceOn("robocore", r);
+  const BatchCost plain = PriceOn("ttaplus", r), p = PriceOn("ttaplus-p", r), cr = PriceOn("ttaplus-cr", r),
+                  robo = PriceOn("robocore", r);
   const int mul = static_cast<int>(Opcode::kMul);
   EXPECT_EQ(plain.micro_ops[mul], 2 * nodes);
   EXPECT_EQ(p.micro_ops[mul], 2 * (nodes - 256));
@@ -216,8 +214,7 @@ TEST(Pricing, ASharedContextGivesTheSameCosts) {
 TEST(Pricing, WideNodesRequestEverySectorTheySpan) {
   MemoryRegion region = test::ByteRegion(kBase, 64);
   region.element_bytes = 64;  // two 32-byte sectors per node
-  KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n  ADD.1 x, x, y\n"), StepProgramKind::kSactTest,
-                        region);
+  KernelRecordBuilder b(test::Program("loop:\n  LOAD c, a\n  ADD.1 x, x, y\n"), StepProgramKind::kSactTest, region);
   for (int lane = 0; lane < 32; ++lane) b.AddQuery({kBase + 64 * static_cast<std::uint64_t>(lane % 4)});
   const KernelRecord r = b.Build();
   const BatchCost rt = PriceOn("ttaplus-cr", r), simt = PriceOn("simt", r);

@@ -131,14 +131,12 @@ TEST(SectionTiming, SactUnitsArePipelined) {
 
 TEST(FunctionUnitSimulator, ALoneThreadTakesItsAnalyticLatency) {
   const auto sact = ShippedStepProgram(StepProgramKind::kSactTest);
-  for (const DatapathConfig& config :
-       {RoboCore(), Tta(EarlyExitMode::kConditionalReturn), Tta(EarlyExitMode::kPredication),
-        Tta(EarlyExitMode::kNone)}) {
+  for (const DatapathConfig& config : {RoboCore(), Tta(EarlyExitMode::kConditionalReturn),
+                                       Tta(EarlyExitMode::kPredication), Tta(EarlyExitMode::kNone)}) {
     const SectionTiming s(Loop(sact), config);
     for (std::uint8_t e : {std::uint8_t{0}, std::uint8_t{4}, std::uint8_t{11}, kNoExit}) {
       const auto sim = SimulateFunctionUnit(s, {{e, 0}}, 2);
-      EXPECT_EQ(sim.threads[0].finish_cycle, s.Cost(e).cycles)
-          << ToString(config.exit_mode) << " exit " << int(e);
+      EXPECT_EQ(sim.threads[0].finish_cycle, s.Cost(e).cycles) << ToString(config.exit_mode) << " exit " << int(e);
       EXPECT_EQ(sim.hops, s.Cost(e).hops);
     }
   }
@@ -174,7 +172,7 @@ TEST(FunctionUnitSimulator, ArbiterGivesChainedSactPacketsPriority) {
   // Thread 1: load 100, PRE 100-114, BOX ready at 114 over the chain.
   const auto sim = SimulateFunctionUnit(s, {{kNoExit, 83}, {kNoExit, 100}}, 2);
   EXPECT_EQ(sim.chain_priority_wins, 1u);
-  EXPECT_EQ(sim.threads[0].finish_cycle, 114u + 3u + 12u);  // waits one BOX initiation (3)
+  EXPECT_EQ(sim.threads[0].finish_cycle, 114u + 3u + 12u);                // waits one BOX initiation (3)
   EXPECT_EQ(sim.threads[1].finish_cycle, 100u + s.Cost(kNoExit).cycles);  // never waits
 }
 

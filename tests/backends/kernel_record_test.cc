@@ -112,8 +112,7 @@ TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRayCasters, RecordTest,
-                         ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda,
-                                           RayCastMethod::kRayMarching),
+                         ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching),
                          [](const auto& info) { return ToString(info.param); });
 
 TEST(KernelRecord, AddressIsBasePlusIndexTimesElementSize) {
@@ -175,8 +174,7 @@ TEST(RoboCoreApi, ExecuteRecordsTheConfiguredProgramAndChecksTheDecode) {
   robocore.ConfigDecode({{FetchKind::kDistanceCell, 4}});
   EXPECT_THROW(robocore.ExecuteRoboCore(batch, scene, hits, record), std::invalid_argument);
   // A ray program needs the hit and end exits (RETURN_IF #0 and #1).
-  EXPECT_THROW(robocore.ConfigRoboCore(test::Program("loop:\n LOAD a, b\n RETURN_IF a\n")),
-               std::invalid_argument);
+  EXPECT_THROW(robocore.ConfigRoboCore(test::Program("loop:\n LOAD a, b\n RETURN_IF a\n")), std::invalid_argument);
 }
 
 }  // namespace

@@ -89,7 +89,7 @@ TEST(MicroProgramParser, WidthAxisAndLoadRules) {
   EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  BOX s, f, 99999999999999999999\n").field(), "axis");
   EXPECT_EQ(ParseError("  ADD a, b, c\n").field(), "opcode");  // before any label
   EXPECT_EQ(ParseError("prologue:\n  LOAD c, p\nloop:\n  LOAD c, p\n").line(), 2);
-  EXPECT_EQ(ParseError("loop:\n  ADD a, b, c\n").field(), "loop");  // no LOAD
+  EXPECT_EQ(ParseError("loop:\n  ADD a, b, c\n").field(), "loop");                 // no LOAD
   EXPECT_EQ(ParseError("loop:\n  ADD a, b, c\n  LOAD c, p\n").field(), "opcode");  // not first
   EXPECT_EQ(ParseError("loop:\n  LOAD c, p\n  LOAD d, q\n").field(), "loop");
 }
@@ -112,8 +112,7 @@ TEST(ShippedPrograms, EveryEmbeddedProgramEqualsItsFileAndParses) {
 }
 
 TEST(ShippedPrograms, RayProgramsKeepTheExitContractAndTheLeafHas14MicroOps) {
-  for (StepProgramKind k :
-       {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep, StepProgramKind::kRmStep}) {
+  for (StepProgramKind k : {StepProgramKind::kGridMarch, StepProgramKind::kDdaStep, StepProgramKind::kRmStep}) {
     const auto p = ShippedStepProgram(k);
     EXPECT_EQ(p->ReturnIfCount(ProgramSection::kLoop), 2) << p->name();
     // RETURN_IF #0 is the hit test right after the fetch and its compare.

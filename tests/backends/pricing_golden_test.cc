@@ -41,16 +41,14 @@ std::string Fingerprint(const BatchCost& c) {
     std::snprintf(buffer, sizeof buffer, "%a", v);
     return std::string(buffer);
   };
-  s << c.backend << " q=" << c.queries << " n=" << c.nodes << " cyc=" << c.cycles
-    << " launch=" << c.launch_cycles << " e=" << hex(c.energy_joules) << " s=" << hex(c.seconds)
-    << " eff=" << hex(c.simt_efficiency) << " mem=" << c.memory.sector_requests << '/'
-    << c.memory.l1_hits << '/' << c.memory.l2_accesses << '/' << c.memory.l2_hits << '/'
-    << c.memory.dram_accesses << " ops=";
+  s << c.backend << " q=" << c.queries << " n=" << c.nodes << " cyc=" << c.cycles << " launch=" << c.launch_cycles
+    << " e=" << hex(c.energy_joules) << " s=" << hex(c.seconds) << " eff=" << hex(c.simt_efficiency)
+    << " mem=" << c.memory.sector_requests << '/' << c.memory.l1_hits << '/' << c.memory.l2_accesses << '/'
+    << c.memory.l2_hits << '/' << c.memory.dram_accesses << " ops=";
   for (std::uint64_t n : c.micro_ops) s << n << ',';
-  s << " pred=" << c.predicated_off_micro_ops << " hops=" << c.interconnect_hops
-    << " ctrl=" << c.ctrl_exits << " push=" << c.nodes_counted << " wi=" << c.warp_instructions
-    << " ti=" << c.thread_instructions << " bound=" << c.bound << " l1=" << c.l1_model
-    << " l2=" << c.l2_model;
+  s << " pred=" << c.predicated_off_micro_ops << " hops=" << c.interconnect_hops << " ctrl=" << c.ctrl_exits
+    << " push=" << c.nodes_counted << " wi=" << c.warp_instructions << " ti=" << c.thread_instructions
+    << " bound=" << c.bound << " l1=" << c.l1_model << " l2=" << c.l2_model;
   return s.str();
 }
 
@@ -66,8 +64,7 @@ std::vector<std::string> PriceEveryBackend(const KernelRecord& record, const Bac
   return out;
 }
 
-KernelRecord RayRecord(int size_x, int size_y, RayCastMethod method, int particles, int beams,
-                       std::uint64_t seed) {
+KernelRecord RayRecord(int size_x, int size_y, RayCastMethod method, int particles, int beams, std::uint64_t seed) {
   const OccupancyGrid grid = test::RoomGrid(size_x, size_y, 0.1, 0.03, seed);
   const RayCastScene scene(grid, method);
   const RayBatch batch = test::FanBatch(grid, particles, beams, 10.0, seed + 1);
@@ -130,6 +127,9 @@ void Check(const GoldenCase& golden, const KernelRecord& record, const BackendPa
   for (std::size_t i = 0; i < actual.size(); ++i) EXPECT_EQ(actual[i], golden.expected[i]) << golden.name;
 }
 
+// The expected fingerprints below are pasted as RC_PRINT_PRICING_GOLDEN=1
+// prints them; clang-format would re-wrap them, so it leaves them alone.
+// clang-format off
 TEST(PricingGolden, DdaOnAGridLargerThanTheL1) {
   Check({"dda 400x300", {
     "simt q=5400 n=150802 cyc=46008 launch=5000 e=0x1.40b22470babb3p-13"
@@ -443,6 +443,8 @@ TEST(PricingGolden, SactWideNodesEveryExit) {
     " (set associative)",
   }}, SactRecord(), small);
 }
+
+// clang-format on
 
 }  // namespace
 }  // namespace rc

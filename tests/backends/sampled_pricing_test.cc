@@ -62,8 +62,8 @@ class SampledPricingTest : public ::testing::TestWithParam<Case> {};
 TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
   const OccupancyGrid grid = test::RoomGrid(400, 300, 0.05, 0.02, 3);
   const RayCastScene scene(grid, GetParam().method);
-  const RayBatch batch = GetParam().converged ? ConvergedBatch(grid, 0.2, 2000, 30)
-                                              : test::FanBatch(grid, 2000, 30, 10.0, 5);
+  const RayBatch batch =
+      GetParam().converged ? ConvergedBatch(grid, 0.2, 2000, 30) : test::FanBatch(grid, 2000, 30, 10.0, 5);
   std::vector<RayHit> hits;
   KernelRecord exact, sampled;
   CastRayBatchRecorded(scene, batch, hits, exact);
@@ -83,10 +83,10 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
     const double energy_error = std::abs(b[i].energy_joules - a[i].energy_joules) / a[i].energy_joules;
     if (std::getenv("RC_PRINT_SAMPLED_ERRORS"))
       std::printf("%s %-10s cycles %llu vs %llu (%.3f%%), energy %.3g vs %.3g (%.3f%%), dram %llu vs %llu\n",
-                GetParam().name.c_str(), a[i].backend.c_str(), (unsigned long long)b[i].cycles,
-                (unsigned long long)a[i].cycles, 100 * cycles_error, b[i].energy_joules, a[i].energy_joules,
-                100 * energy_error, (unsigned long long)b[i].memory.dram_accesses,
-                (unsigned long long)a[i].memory.dram_accesses);
+                  GetParam().name.c_str(), a[i].backend.c_str(), (unsigned long long)b[i].cycles,
+                  (unsigned long long)a[i].cycles, 100 * cycles_error, b[i].energy_joules, a[i].energy_joules,
+                  100 * energy_error, (unsigned long long)b[i].memory.dram_accesses,
+                  (unsigned long long)a[i].memory.dram_accesses);
     EXPECT_LE(cycles_error, kCycleBound) << a[i].backend;
     EXPECT_LE(energy_error, kEnergyBound) << a[i].backend;
     EXPECT_EQ(b[i].queries, a[i].queries);
@@ -96,14 +96,14 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    DelibotBatches, SampledPricingTest,
-    ::testing::Values(Case{"march_spread", RayCastMethod::kMarch, false}, Case{"dda_spread", RayCastMethod::kDda, false},
-                      Case{"rm_spread", RayCastMethod::kRayMarching, false},
-                      Case{"march_converged", RayCastMethod::kMarch, true},
-                      Case{"dda_converged", RayCastMethod::kDda, true},
-                      Case{"rm_converged", RayCastMethod::kRayMarching, true}),
-    [](const auto& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(DelibotBatches, SampledPricingTest,
+                         ::testing::Values(Case{"march_spread", RayCastMethod::kMarch, false},
+                                           Case{"dda_spread", RayCastMethod::kDda, false},
+                                           Case{"rm_spread", RayCastMethod::kRayMarching, false},
+                                           Case{"march_converged", RayCastMethod::kMarch, true},
+                                           Case{"dda_converged", RayCastMethod::kDda, true},
+                                           Case{"rm_converged", RayCastMethod::kRayMarching, true}),
+                         [](const auto& info) { return info.param.name; });
 
 TEST(SampledPricing, RefusesASampleTakenForAnotherPlacement) {
   const OccupancyGrid grid = test::RoomGrid(100, 80, 0.05, 0.02, 3);

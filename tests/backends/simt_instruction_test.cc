@@ -21,16 +21,16 @@
 #include "robocore/collision/tree_collision.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/shipped_programs.h"
-#include "test_scenes.h"
 #include "support/input_error_expectations.h"
+#include "test_scenes.h"
 
 namespace rc {
 namespace {
 
-constexpr StepProgramKind kAllKinds[] = {
-    StepProgramKind::kGridMarch,  StepProgramKind::kDdaStep,       StepProgramKind::kRmStep,
-    StepProgramKind::kSactTest,   StepProgramKind::kSphereTest,    StepProgramKind::kBallQueryPRay,
-    StepProgramKind::kBallQueryPSphere};
+constexpr StepProgramKind kAllKinds[] = {StepProgramKind::kGridMarch,       StepProgramKind::kDdaStep,
+                                         StepProgramKind::kRmStep,          StepProgramKind::kSactTest,
+                                         StepProgramKind::kSphereTest,      StepProgramKind::kBallQueryPRay,
+                                         StepProgramKind::kBallQueryPSphere};
 
 bool IsRayKind(StepProgramKind k) {
   return k == StepProgramKind::kGridMarch || k == StepProgramKind::kDdaStep || k == StepProgramKind::kRmStep;
@@ -89,8 +89,8 @@ TEST(SimtInstructionTable, MalformedTablesAreInputErrorsNamingTheKey) {
       "fp64_div","int_div","sfu","load","store","branch","other"], "programs": )";
   const std::string counts = R"({"fp32":1,"fp64":0,"int":0,"fp32_div":0,"fp64_div":0,"int_div":0,"sfu":0,
       "load":1,"store":0,"branch":1,"other":0})";
-  const std::string kernel = R"({"kernel": "k", "registers": 20, "ptx": {"prologue": )" + counts +
-                             R"(, "loop": )" + counts + R"(, "epilogue": )" + counts + "}}";
+  const std::string kernel = R"({"kernel": "k", "registers": 20, "ptx": {"prologue": )" + counts + R"(, "loop": )" +
+                             counts + R"(, "epilogue": )" + counts + "}}";
   const std::string good = head + R"({"dda_step.asm": {"fp32": )" + kernel + R"(, "fp64": )" + kernel + "}}}";
   const SimtInstructionTable t = SimtInstructionTable::Parse(good, "t.json");
   ASSERT_NE(t.Find("dda_step.asm", true, SimtBeamLeaf::kNone), nullptr);
@@ -159,7 +159,7 @@ TEST(SimtInstructionMix, BeamLeafDefaultsToTheRtUnitsLeafAndExactCostsMore) {
 }
 
 TEST(SimtInstructionMix, HostPrecisionFollowsTheKernelThatRan) {
-  const SimtBackend simt = Simt();  // simt.precision = host
+  const SimtBackend simt = Simt();                                               // simt.precision = host
   EXPECT_TRUE(simt.InstructionMix(OneWarp(StepProgramKind::kDdaStep, 2)).fp64);  // the ray casters are double
   // The collision kernel in float and in double, run through CollideBatch.
   std::vector<Aabbd> boxes;
@@ -211,7 +211,8 @@ TEST(SimtInstructionMix, Fp64CostsMoreCyclesThanFp32) {
 // adds its fallback count to the compiled kernel.
 TEST(SimtInstructionMix, ProgramsWithoutACompiledKernelUseTheDeclaredFallback) {
   const SimtBackend simt = Simt();
-  const std::string text = "loop:\n  LOAD c, p\n  PUSH v\n  CMP.2 b, c, f\n  RETURN_IF b\n  ADD.2 p, p, d\n  RETURN_IF b\n";
+  const std::string text =
+      "loop:\n  LOAD c, p\n  PUSH v\n  CMP.2 b, c, f\n  RETURN_IF b\n  ADD.2 p, p, d\n  RETURN_IF b\n";
   const auto custom = test::Program(text, "custom.asm");
   KernelRecordBuilder b(custom, StepProgramKind::kDdaStep, test::ByteRegion(std::uint64_t{1} << 32, 64));
   b.AddQuery({std::uint64_t{1} << 32});
@@ -248,19 +249,17 @@ TEST(SimtInstructionMix, RegistersFromTheKernelSetTheResidentWarps) {
   const CompiledKernel* sact = SimtInstructionTable::Shipped().Find("sact_obb_aabb.asm", true, SimtBeamLeaf::kNone);
   ASSERT_NE(sact, nullptr);
   // 32768 registers per SM / (registers x 32 threads), at most 32 warps.
-  EXPECT_EQ(p.simt.ResidentWarps(p.gpu, sact->registers),
-            std::min(32, 32768 / (sact->registers * 32)));
+  EXPECT_EQ(p.simt.ResidentWarps(p.gpu, sact->registers), std::min(32, 32768 / (sact->registers * 32)));
   p.simt.registers_per_thread = 16;
   EXPECT_EQ(SimtBackend(p).InstructionMix(OneWarp(StepProgramKind::kSactTest, 1)).registers, 16);
 }
 
 TEST(SimtParameters, PrecisionAndIsaAreNamedChoicesInTheOverrideFile) {
-  const BackendParameters p =
-      ParseBackendParameters(R"({"simt": {"precision": "fp32", "isa": "sass"}})", "p.json");
+  const BackendParameters p = ParseBackendParameters(R"({"simt": {"precision": "fp32", "isa": "sass"}})", "p.json");
   EXPECT_EQ(p.simt.precision, SimtPrecision::kFp32);
   EXPECT_EQ(p.simt.isa, SimtIsa::kSass);
-  for (const char* bad : {R"({"simt": {"precision": "double"}})", R"({"simt": {"precision": 64}})",
-                          R"({"simt": {"isa": "ptxas"}})"}) {
+  for (const char* bad :
+       {R"({"simt": {"precision": "double"}})", R"({"simt": {"precision": 64}})", R"({"simt": {"isa": "ptxas"}})"}) {
     const InputError e = test::InputErrorFrom([&] { ParseBackendParameters(bad, "p.json"); }, bad);
     EXPECT_NE(std::string(e.what()).find("expected one of"), std::string::npos) << e.what();
     EXPECT_EQ(e.field().rfind("simt.", 0), 0u) << e.field();

@@ -20,8 +20,7 @@ OccupancyGrid RoomGrid(int sx, int sy, double r, double clutter, std::uint64_t s
   return g;
 }
 
-RayBatch FanBatch(const OccupancyGrid& g, int particles, int beams, double max_range_m,
-                  std::uint64_t seed) {
+RayBatch FanBatch(const OccupancyGrid& g, int particles, int beams, double max_range_m, std::uint64_t seed) {
   RayBatch batch;
   batch.max_range_m = max_range_m;
   RandomStream s(seed, StreamPurpose::kTest, 12, 0);

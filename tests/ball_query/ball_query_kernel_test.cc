@@ -140,9 +140,8 @@ TEST(BallQueryKernel, RadiusQueryEdgeCases) {
   EXPECT_TRUE(out.empty());
   BallWithinRadius(tree, BallQueryConfig{}, q, INFINITY, out, &v);
   EXPECT_EQ(out.size(), 100u);
-  EXPECT_TRUE(std::is_sorted(out.begin(), out.end(), [](const BallNeighbor& a, const BallNeighbor& b) {
-    return a.distance < b.distance;
-  }));
+  EXPECT_TRUE(std::is_sorted(out.begin(), out.end(),
+                             [](const BallNeighbor& a, const BallNeighbor& b) { return a.distance < b.distance; }));
 }
 
 TEST(BallQueryRecorder, SameDataGivesTheSameRecord) {

@@ -15,8 +15,8 @@
 #include "nn_test_space.h"
 #include "robocore/micro_program.h"
 #include "robocore/shipped_programs.h"
-#include "workloads/movebot/backend_nearest_neighbors.h"
 #include "support/input_error_expectations.h"
+#include "workloads/movebot/backend_nearest_neighbors.h"
 
 namespace rc {
 namespace {
@@ -68,7 +68,8 @@ struct QueryRun {
 QueryRun Queries(NnTestSpace& space, BallQueryFormulation f) {
   BallQueryConfig config;
   config.formulation = f;
-  BackendNearestNeighbors<State> nn(config, [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 5);
+  BackendNearestNeighbors<State> nn(
+      config, [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 5);
   nn.setDistanceFunction([&](const State& a, const State& b) { return space.Distance(a, b); });
   std::mt19937_64 rng(11);
   for (int i = 0; i < 2000; ++i) nn.add(space.Make(rng, -1.57, 1.57));

@@ -42,7 +42,8 @@ class NearestNeighborsVsLinear : public testing::TestWithParam<Case> {
  protected:
   NearestNeighborsVsLinear()
       : space_(GetParam().dimension),
-        nn_(Config(), [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); },
+        nn_(
+            Config(), [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); },
             GetParam().dimension) {
     auto distance = [this](const State& a, const State& b) { return space_.Distance(a, b); };
     nn_.setDistanceFunction(distance);
@@ -179,8 +180,8 @@ INSTANTIATE_TEST_SUITE_P(BothFormulations, NearestNeighborsVsLinear,
 
 TEST(BackendNearestNeighbors, RejectsADistanceThatIsNotEuclidean) {
   NnTestSpace space(3);
-  BackendNearestNeighbors<State> nn(BallQueryConfig{},
-                                    [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 3);
+  BackendNearestNeighbors<State> nn(
+      BallQueryConfig{}, [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 3);
   nn.setDistanceFunction([](const State& a, const State& b) {  // L1: not what the kernel computes
     double d = 0;
     for (int i = 0; i < 3; ++i) d += std::abs(NnTestSpace::Values(a)[i] - NnTestSpace::Values(b)[i]);
@@ -227,8 +228,8 @@ TEST(BackendNearestNeighbors, BadConfigurationIsAClearError) {
 
 TEST(BackendNearestNeighbors, RejectsANonFiniteCoordinate) {
   NnTestSpace space(2);
-  BackendNearestNeighbors<State> nn(BallQueryConfig{},
-                                    [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 2);
+  BackendNearestNeighbors<State> nn(
+      BallQueryConfig{}, [](const State& s) { return static_cast<const double*>(NnTestSpace::Values(s)); }, 2);
   std::mt19937_64 rng(3);
   State s = space.Make(rng, 0, 1);
   NnTestSpace::Values(s)[1] = std::nan("");

@@ -95,7 +95,8 @@ Outcome Plan(Nn which, bool k_nearest, bool prune) {
   planner->setProblemDefinition(pdef);
   planner->setup();
   int checks = 0;
-  const ob::PlannerStatus status = planner->solve(ob::PlannerTerminationCondition([&checks] { return ++checks > 800; }));
+  const ob::PlannerStatus status =
+      planner->solve(ob::PlannerTerminationCondition([&checks] { return ++checks > 800; }));
   EXPECT_TRUE(status == ob::PlannerStatus::EXACT_SOLUTION || status == ob::PlannerStatus::APPROXIMATE_SOLUTION);
   Outcome out;
   out.iterations = planner->numIterations();

@@ -34,13 +34,13 @@ std::string ReadSource(const std::string& relative) {
 TEST(ArtifactPreset, HoldsTheArtifactsValues) {
   const BackendPreset p = ArtifactPreset();
   EXPECT_EQ(p.name, "artifact");
-  EXPECT_EQ(p.backend.gpu.l1_bytes, 8192);      // -gpgpu_cache:dl1 S:1:128:64
-  EXPECT_EQ(p.backend.gpu.l2_bytes, 524288);    // 4 sub-partitions x S:64:128:16
+  EXPECT_EQ(p.backend.gpu.l1_bytes, 8192);    // -gpgpu_cache:dl1 S:1:128:64
+  EXPECT_EQ(p.backend.gpu.l2_bytes, 524288);  // 4 sub-partitions x S:64:128:16
   EXPECT_EQ(p.backend.simt.precision, SimtPrecision::kFp64);
-  EXPECT_EQ(p.backend.robocore.unit.latencies.box_normal_cycles, 16);  // clusterA
-  EXPECT_EQ(p.backend.robocore.unit.latencies.edge_edge_cycles, 16);   // clusterB
-  EXPECT_EQ(p.backend.robocore.unit.latencies.pre_process_cycles, 16); // clusterC
-  EXPECT_EQ(p.backend.ttaplus.unit.latencies.box_normal_cycles, 12);   // dot
+  EXPECT_EQ(p.backend.robocore.unit.latencies.box_normal_cycles, 16);   // clusterA
+  EXPECT_EQ(p.backend.robocore.unit.latencies.edge_edge_cycles, 16);    // clusterB
+  EXPECT_EQ(p.backend.robocore.unit.latencies.pre_process_cycles, 16);  // clusterC
+  EXPECT_EQ(p.backend.ttaplus.unit.latencies.box_normal_cycles, 12);    // dot
   // The SACT clusters take a packet every cycle (-gpgpu_rt_init_cycles 1).
   const DatapathConfig d = p.backend.robocore.Datapath();
   EXPECT_EQ(d.pre_process_initiation_cycles, 1);

@@ -80,8 +80,8 @@ const char* const kAll = " (all scenes)";
 
 std::vector<std::string> SactRows(const std::string& suffix) {
   std::vector<std::string> rows;
-  for (const char* r : {kVsCuda, kVsCudaLaunch, kCrVsTta, kRoboVsCr, kPredication, kEnergy, kEarlyExit, kHalf,
-                        kDouble, kParallel, kTwo, kSpheres})
+  for (const char* r : {kVsCuda, kVsCudaLaunch, kCrVsTta, kRoboVsCr, kPredication, kEnergy, kEarlyExit, kHalf, kDouble,
+                        kParallel, kTwo, kSpheres})
     rows.push_back(r + suffix);
   return rows;
 }
@@ -89,7 +89,8 @@ std::vector<std::string> SactRows(const std::string& suffix) {
 std::vector<std::string> ExpectedRows(const std::vector<std::string>& runs) {
   std::vector<std::string> rows;
   for (const std::string& run : runs)
-    for (const char* vs : {"CUDA", "TTA+"}) rows.push_back("DeliBot MCL, whole run (" + run + ", march), RoboCore vs " + vs);
+    for (const char* vs : {"CUDA", "TTA+"})
+      rows.push_back("DeliBot MCL, whole run (" + run + ", march), RoboCore vs " + vs);
   for (const char* m : {"march", "dda", "rm"})
     for (const char* vs : {"CUDA", "TTA+"}) rows.push_back(std::string("DeliBot MCL (") + m + "), RoboCore vs " + vs);
   for (const char* scene : {"cubby", "merged cubby", "dresser", "tabletop"})
@@ -162,8 +163,7 @@ TEST_F(CalibrationTest, EveryOursMovesWithTheParametersItIsPricedFrom) {
       {R"({"simt": {"isa": "sass", "fp32_latency_cycles": 12, "fp32_initiation_cycles": 6, "fp64_latency_cycles": 24,
                     "fp64_initiation_cycles": 12, "other_latency_cycles": 3, "other_initiation_cycles": 3}})",
        {"DeliBot MCL (march), RoboCore vs CUDA", "DeliBot MCL (dda), RoboCore vs CUDA",
-        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres,
-        std::string(kVsCuda) + kAll}},
+        "DeliBot MCL (rm), RoboCore vs CUDA", kVsCuda, kVsCudaLaunch, kEnergy, kSpheres, std::string(kVsCuda) + kAll}},
       {R"({"robocore": {"cmp_cycles": 4, "return_cycles": 3, "box_normal_cycles": 20, "edge_edge_cycles": 18,
                         "pre_process_cycles": 30}})",
        {"DeliBot MCL (march), RoboCore vs TTA+", "DeliBot MCL (dda), RoboCore vs TTA+",
@@ -227,8 +227,8 @@ TEST_F(CalibrationTest, FullyParallelNodeCostsOneRound) {
   const KernelRecord parallel = VariantRecord(workloads_->sact, FullyParallelSact(), datapath.latencies);
   const ProgramTiming timing(*parallel.program, nullptr, datapath);
   ASSERT_EQ(timing.loop.return_count(), 1);
-  const std::uint32_t round = static_cast<std::uint32_t>(datapath.latencies.pre_process_cycles +
-                                                         datapath.latencies.edge_edge_cycles);
+  const std::uint32_t round =
+      static_cast<std::uint32_t>(datapath.latencies.pre_process_cycles + datapath.latencies.edge_edge_cycles);
   EXPECT_EQ(timing.loop.Cost(0).cycles, round);
   EXPECT_GT(timing.loop.Cost(kNoExit).cycles, round);  // + PUSH
   for (std::uint8_t exit : parallel.node_exits) EXPECT_TRUE(exit == 0 || exit == kNoExit);

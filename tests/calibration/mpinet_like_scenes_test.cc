@@ -20,8 +20,7 @@ TEST(MpinetLikeScenes, OctreesHave1000To2000NodesAtTheFirstLadderStepThatReaches
     EXPECT_LE(octree.octree_nodes, kMaxOctreeNodes) << ToString(kind);
     const double coarser = octree.resolution_m * std::pow(2.0, 0.25);
     if (coarser <= kCoarsestResolution * 1.0001)
-      EXPECT_LT(VoxelizeScene(MakeMpinetLikeScene(kind, 7), coarser).octree_nodes, kMinOctreeNodes)
-          << ToString(kind);
+      EXPECT_LT(VoxelizeScene(MakeMpinetLikeScene(kind, 7), coarser).octree_nodes, kMinOctreeNodes) << ToString(kind);
     // The box tree holds every occupied leaf, so it has more nodes than cells.
     EXPECT_GT(octree.tree.nodes.size(), octree.octree_nodes) << ToString(kind);
   }
@@ -82,8 +81,7 @@ TEST(MpinetLikeScenes, QueriesArePosesAimedAcrossTheSceneAndDeterministic) {
   const std::vector<Obbd> q = JitteredArmQueries(poses, 5, octree, 11);
   ASSERT_EQ(q.size(), 5u * 3u);
   EXPECT_EQ(q.size(), JitteredArmQueries(poses, 5, octree, 11).size());
-  for (std::size_t i = 0; i < q.size(); ++i)
-    EXPECT_EQ(q[i].centre, JitteredArmQueries(poses, 5, octree, 11)[i].centre);
+  for (std::size_t i = 0; i < q.size(); ++i) EXPECT_EQ(q[i].centre, JitteredArmQueries(poses, 5, octree, 11)[i].centre);
   for (int k = 0; k < 5; ++k) {
     const Eigen::Vector3d robot_frame = q[static_cast<std::size_t>(3 * k + 1)].centre + octree.offset_m;
     const double azimuth = std::atan2(robot_frame.y(), robot_frame.x());

@@ -76,11 +76,10 @@ TEST(Sensitivity, TheQuickSubsetCoversTheParametersTheIssueNames) {
   const Sensitivity all = SweepParameters(BackendParameters{}, FakeMeasure);
   EXPECT_LT(s.parameters_swept, all.parameters_swept);
   const std::string csv = SensitivityCsvText(s);
-  for (const char* key : {"robocore.pre_process_initiation_cycles", "robocore.warp_buffer_warps",
-                          "robocore.sector_requests_per_cycle", "simt.l1_sectors_per_cycle",
-                          "robocore.op_units_per_kind_per_set", "gpu.kernel_launch_cycles",
-                          "robocore.program_config_cycles_per_micro_op", "simt.precision", "simt.isa",
-                          "gpu.warps_per_block"})
+  for (const char* key :
+       {"robocore.pre_process_initiation_cycles", "robocore.warp_buffer_warps", "robocore.sector_requests_per_cycle",
+        "simt.l1_sectors_per_cycle", "robocore.op_units_per_kind_per_set", "gpu.kernel_launch_cycles",
+        "robocore.program_config_cycles_per_micro_op", "simt.precision", "simt.isa", "gpu.warps_per_block"})
     EXPECT_NE(csv.find(std::string(",") + key + ","), std::string::npos) << key;
   EXPECT_EQ(csv.find(",gpu.sms,"), std::string::npos) << "the paper's SM count is not an assumption";
 }

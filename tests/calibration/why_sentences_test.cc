@@ -113,7 +113,8 @@ TEST(WhySentences, TheSentenceFollowsTheMeasuredBound) {
 
   const BackendPreset throughput = ParseBackendPreset(
       R"({"robocore": {"warp_buffer_warps": 64, "pre_process_initiation_cycles": 14,
-                 "box_normal_initiation_cycles": 12, "edge_edge_initiation_cycles": 12}})", "throughput.json");
+                 "box_normal_initiation_cycles": 12, "edge_edge_initiation_cycles": 12}})",
+      "throughput.json");
   // Each report is kept: a row of a temporary report dies with it.
   const CalibrationReport unit = Calibrate(w, artifact, throughput);
   const std::string& unit_why = Row(unit, row).why;
@@ -123,7 +124,8 @@ TEST(WhySentences, TheSentenceFollowsTheMeasuredBound) {
 
   const BackendPreset one_scheduler =
       ParseBackendPreset(R"({"simt": {"schedulers_per_sm": 1}, "gpu": {"max_warps_per_sm": 64,
-                            "registers_per_sm": 131072}})", "one.json");
+                            "registers_per_sm": 131072}})",
+                         "one.json");
   const CalibrationReport simt = Calibrate(w, artifact, one_scheduler);
   const std::string& simt_why = Row(simt, row).why;
   EXPECT_EQ(simt_why.find("the CUDA cores are latency-bound"), std::string::npos) << simt_why;

@@ -57,10 +57,23 @@ TEST(CarribotCommand, AllScenariosOfAMapMatchTheirOptima) {
   ASSERT_EQ(RunCarribot({"--map", map, "--scen", map + ".scen", "--timeline", dir.Path("t.csv")}), 0);
   const CsvContents t = ReadCsv(dir.Path("t.csv"));
   ASSERT_EQ(t.rows.size(), 290u);
-  const std::vector<std::string> header = {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells",
-                                           "path_length_m", "optimal_length_cells", "turns", "expanded",
-                                           "collision_queries", "kernel_launches", "kernel_queries",
-                                           "nodes_per_query", "wall_s", "status"};
+  const std::vector<std::string> header = {"scenario",
+                                           "bucket",
+                                           "sx",
+                                           "sy",
+                                           "gx",
+                                           "gy",
+                                           "path_length_cells",
+                                           "path_length_m",
+                                           "optimal_length_cells",
+                                           "turns",
+                                           "expanded",
+                                           "collision_queries",
+                                           "kernel_launches",
+                                           "kernel_queries",
+                                           "nodes_per_query",
+                                           "wall_s",
+                                           "status"};
   ASSERT_EQ(t.header, header);  // a point robot runs no kernel: no pricing columns
   for (const auto& row : t.rows) {
     EXPECT_EQ(row[16], "found");
@@ -115,17 +128,18 @@ TEST(CarribotCommand, UnreachableGoalExitsWithThreeAndStillWritesTheTimeline) {
 // per-expansion launch on every backend, and adaptive names its choice.
 TEST(CarribotCommand, EveryBackendPlansTheSamePathAndPricesEveryLaunch) {
   test::TempDir dir;
-  const std::string map = dir.Write("open.map", "type octile\nheight 6\nwidth 10\nmap\n"
-                                                "..........\n..........\n....@.....\n....@.....\n"
-                                                "..........\n..........\n");
+  const std::string map = dir.Write("open.map",
+                                    "type octile\nheight 6\nwidth 10\nmap\n"
+                                    "..........\n..........\n....@.....\n....@.....\n"
+                                    "..........\n..........\n");
   std::string first_path;
   for (const std::string backend : {"adaptive", "oracle", "static:simt", "static:ttaplus", "static:ttaplus-p",
                                     "static:ttaplus-cr", "static:robocore"}) {
     const std::string path = dir.Path(backend + "_p.csv"), timeline = dir.Path(backend + "_t.csv");
-    ASSERT_EQ(RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2",
-                           "--collision-mode", "per-expansion", "--backend", backend, "--path", path, "--timeline",
-                           timeline}),
-              0)
+    ASSERT_EQ(
+        RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2", "--collision-mode",
+                     "per-expansion", "--backend", backend, "--path", path, "--timeline", timeline}),
+        0)
         << backend;
     std::ifstream in(path);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -142,9 +156,8 @@ TEST(CarribotCommand, EveryBackendPlansTheSamePathAndPricesEveryLaunch) {
       EXPECT_EQ("static:" + Cell(t, 0, "backend"), backend);
     }
   }
-  EXPECT_EQ(RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2", "--backend",
-                         "gpu"}),
-            2);
+  EXPECT_EQ(
+      RunCarribot({"--map", map, "--start", "1,1", "--goal", "8,4", "--footprint", "0.6x1.2", "--backend", "gpu"}), 2);
 }
 
 // --offset moves start and goal by cells of the scaled map, after the
@@ -152,8 +165,9 @@ TEST(CarribotCommand, EveryBackendPlansTheSamePathAndPricesEveryLaunch) {
 // (3, 2), a cell no start X,Y can name (every scaled start is even).
 TEST(CarribotCommand, OffsetMovesStartAndGoalInScaledCells) {
   test::TempDir dir;
-  const std::string map = dir.Write("open.map", "type octile\nheight 4\nwidth 6\nmap\n"
-                                                "......\n......\n......\n......\n");
+  const std::string map = dir.Write("open.map",
+                                    "type octile\nheight 4\nwidth 6\nmap\n"
+                                    "......\n......\n......\n......\n");
   const std::string timeline = dir.Path("t.csv");
   ASSERT_EQ(RunCarribot({"--map", map, "--map-scale", "2", "--start", "1,1", "--goal", "4,2", "--offset", "1,0",
                          "--timeline", timeline}),
@@ -177,17 +191,17 @@ TEST(CarribotCommand, UsageErrorsExitWithTwo) {
   const std::string den = test::SharedDataPath("movingai/den312d.map");
   const std::string scen = den + ".scen";
   const std::vector<std::vector<std::string>> cases = {
-      {"--map", map},                                                       // neither --scen nor --start/--goal
-      {"--map", map, "--start", "0,0"},                                     // --start without --goal
-      {"--map", den, "--scen", scen, "--start", "1,1", "--goal", "2,2"},    // both
-      {"--map", map, "--start", "9,0", "--goal", "0,0"},                    // outside the map
-      {"--map", map, "--start", "0,0", "--goal", "1,1", "--headings", "8"}, // --headings needs --footprint
+      {"--map", map},                                                        // neither --scen nor --start/--goal
+      {"--map", map, "--start", "0,0"},                                      // --start without --goal
+      {"--map", den, "--scen", scen, "--start", "1,1", "--goal", "2,2"},     // both
+      {"--map", map, "--start", "9,0", "--goal", "0,0"},                     // outside the map
+      {"--map", map, "--start", "0,0", "--goal", "1,1", "--headings", "8"},  // --headings needs --footprint
       {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1by2"},
       {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1x2", "--headings", "12"},
       {"--map", map, "--start", "0,0", "--goal", "1,1", "--footprint", "1x2", "--start-heading", "8"},
       {"--map", map, "--start", "0,0", "--goal", "1,1", "--weight", "0.5"},
-      {"--map", den, "--scen", scen, "--path", dir.Path("p.csv")},          // a path needs one query
-      {"--map", den, "--scen", scen, "--scenario", "290"},                  // only 290 scenarios
+      {"--map", den, "--scen", scen, "--path", dir.Path("p.csv")},  // a path needs one query
+      {"--map", den, "--scen", scen, "--scenario", "290"},          // only 290 scenarios
   };
   for (const auto& args : cases) {
     std::string joined;

@@ -40,8 +40,8 @@ std::vector<CarribotQuery> RandomQueries(const OccupancyGrid& grid, int count, u
   return queries;
 }
 
-const char* const kPolicies[] = {"static:simt",       "static:ttaplus", "static:ttaplus-p", "static:ttaplus-cr",
-                                 "static:robocore",   "adaptive",       "oracle"};
+const char* const kPolicies[] = {
+    "static:simt", "static:ttaplus", "static:ttaplus-p", "static:ttaplus-cr", "static:robocore", "adaptive", "oracle"};
 
 // Every --backend value: the same paths and counters, the same per-backend
 // prices (shadow costing), and the chosen backend's cycles in the row.
@@ -80,8 +80,9 @@ TEST(CarribotRun, EveryBackendPolicyGivesIdenticalPathsAndPrices) {
         for (std::size_t k = 0; k < b.pricing.costs.size(); ++k)
           EXPECT_EQ(a.pricing.costs[k].cycles, b.pricing.costs[k].cycles);
         if (b.pricing.priced) {
-          const BatchCost& chosen = b.pricing.costs[std::find(run.pricing.backends.begin(), run.pricing.backends.end(),
-                                                              b.pricing.backend) - run.pricing.backends.begin()];
+          const BatchCost& chosen =
+              b.pricing.costs[std::find(run.pricing.backends.begin(), run.pricing.backends.end(), b.pricing.backend) -
+                              run.pricing.backends.begin()];
           EXPECT_GT(chosen.cycles, 0u);
           EXPECT_EQ(b.pricing.chosen_cycles,
                     static_cast<double>(chosen.cycles) + (b.pricing.switched ? run.pricing.switch_cost_cycles : 0.0));
@@ -139,7 +140,8 @@ TEST(CarribotRun, AnIterationCostsTheSumOfItsLaunches) {
     EXPECT_EQ(it.costs[b].cycles, cycles) << ledger.backend_names()[b];
     EXPECT_NEAR(it.costs[b].energy_joules, energy, 1e-12 * energy);
     // Each launch pays the kernel launch.
-    EXPECT_GE(it.costs[b].launch_cycles, launches.size() * static_cast<std::uint64_t>(BackendParameters{}.gpu.kernel_launch_cycles));
+    EXPECT_GE(it.costs[b].launch_cycles,
+              launches.size() * static_cast<std::uint64_t>(BackendParameters{}.gpu.kernel_launch_cycles));
   }
   for (const KernelRecord& r : launches) queries += r.query_count(), nodes += r.total_nodes();
   EXPECT_DOUBLE_EQ(it.nodes_per_query, static_cast<double>(nodes) / queries);
@@ -173,7 +175,8 @@ TEST(CarribotRun, HardCasesThroughTheKernel) {
   };
   for (const Case& c : cases) {
     for (const FootprintCheckMode mode : {FootprintCheckMode::kPrecomputed, FootprintCheckMode::kPerExpansion}) {
-      SCOPED_TRACE(std::string(c.name) + (mode == FootprintCheckMode::kPrecomputed ? ", precomputed" : ", per expansion"));
+      SCOPED_TRACE(std::string(c.name) +
+                   (mode == FootprintCheckMode::kPrecomputed ? ", precomputed" : ", per expansion"));
       CarribotQuery q;
       q.start = c.start;
       q.goal = c.goal;

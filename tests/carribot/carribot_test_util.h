@@ -14,8 +14,10 @@ inline OccupancyGrid GridFromRows(const std::vector<std::string>& rows, double r
   OccupancyGrid grid(static_cast<int>(rows.front().size()), static_cast<int>(rows.size()), resolution_m);
   for (int y = 0; y < grid.size_y(); ++y)
     for (int x = 0; x < grid.size_x(); ++x)
-      grid.Set(x, y, rows[y][x] == '.' ? CellState::kFree : rows[y][x] == '@' ? CellState::kOccupied
-                                                                               : CellState::kUnknown);
+      grid.Set(x, y,
+               rows[y][x] == '.'   ? CellState::kFree
+               : rows[y][x] == '@' ? CellState::kOccupied
+                                   : CellState::kUnknown);
   return grid;
 }
 

@@ -59,7 +59,8 @@ TEST(FootprintStencils, FootprintsEqualBruteForceClipping) {
             test::BoxPolygon({0, 0}, shape.length_cells / 2, shape.width_cells / 2, HeadingAxis(h, n));
         for (int dx = -8; dx <= 8; ++dx)
           for (int dy = -8; dy <= 8; ++dy)
-            if (test::PolygonTouchesSquare(poly, {dx - 0.5, dy - 0.5}, {dx + 0.5, dy + 0.5})) expected.push_back({dx, dy});
+            if (test::PolygonTouchesSquare(poly, {dx - 0.5, dy - 0.5}, {dx + 0.5, dy + 0.5}))
+              expected.push_back({dx, dy});
         EXPECT_EQ(s.footprint(h).Offsets(), CellStencil(expected).Offsets())
             << shape.length_cells << " x " << shape.width_cells << " heading " << h << "/" << n;
       }

@@ -26,8 +26,7 @@ inline ::testing::AssertionResult CheckerMatchesExactConfigurationSpace(Footprin
           first = "cell (" + std::to_string(ix) + ", " + std::to_string(iy) + ") heading " + std::to_string(h) +
                   ": exact says " + (exact.IsFree(ix, iy, h) ? "free" : "collision");
   if (differences == 0)
-    return ::testing::AssertionSuccess() << exact.CountFree() << " free states of "
-                                         << exact.free_states().size();
+    return ::testing::AssertionSuccess() << exact.CountFree() << " free states of " << exact.free_states().size();
   return ::testing::AssertionFailure() << checker.name() << " differs from the exact configuration space on "
                                        << differences << " states; first: " << first;
 }

@@ -59,15 +59,15 @@ TEST(FootprintGeometry, TranslatedBoxAgreesWithHullClipping) {
     const RandomBox b = DrawBox(rng);
     const Vec2 d{double(step(rng)), double(step(rng))};
     test::Polygon points = test::BoxPolygon(b.center, b.box.half_length, b.box.half_width, b.box.axis);
-    for (const Vec2 p : test::BoxPolygon({b.center.x + d.x, b.center.y + d.y}, b.box.half_length,
-                                         b.box.half_width, b.box.axis))
+    for (const Vec2 p :
+         test::BoxPolygon({b.center.x + d.x, b.center.y + d.y}, b.box.half_length, b.box.half_width, b.box.axis))
       points.push_back(p);
     const test::Polygon hull = test::ConvexHull(points);
     for (int ix = -3; ix < 10; ++ix)
       for (int iy = -3; iy < 10; ++iy)
-        ASSERT_EQ(SweptBoxTouchesSquare(b.box, d, RelativeSquare(ix, iy, b.center)),
-                  test::PolygonTouchesSquare(hull.empty() ? points : hull, {double(ix), double(iy)},
-                                             {ix + 1.0, iy + 1.0}))
+        ASSERT_EQ(
+            SweptBoxTouchesSquare(b.box, d, RelativeSquare(ix, iy, b.center)),
+            test::PolygonTouchesSquare(hull.empty() ? points : hull, {double(ix), double(iy)}, {ix + 1.0, iy + 1.0}))
             << "trial " << trial << " cell " << ix << "," << iy;
   }
 }
@@ -94,10 +94,11 @@ TEST(FootprintGeometry, TurnAgreesWithDenseSampling) {
           const double a = start + turn * k / kSamples;
           const Vec2 axis{std::cos(a), std::sin(a)};
           const Vec2 lo{double(ix), double(iy)}, hi{ix + 1.0, iy + 1.0};
-          hit = test::PolygonTouchesSquare(test::BoxPolygon(b.center, b.box.half_length, b.box.half_width, axis), lo, hi);
-          near = near || test::PolygonTouchesSquare(
-                             test::BoxPolygon(b.center, b.box.half_length + slack, b.box.half_width + slack, axis),
-                             lo, hi);
+          hit =
+              test::PolygonTouchesSquare(test::BoxPolygon(b.center, b.box.half_length, b.box.half_width, axis), lo, hi);
+          near = near ||
+                 test::PolygonTouchesSquare(
+                     test::BoxPolygon(b.center, b.box.half_length + slack, b.box.half_width + slack, axis), lo, hi);
         }
         const bool exact = RotationSweepTouchesSquare(b.box, end_axis, RelativeSquare(ix, iy, b.center));
         if (hit) {

@@ -35,7 +35,8 @@ std::string CheckMotionBySampling(RasterizedFootprintChecker& checker, const Pat
   const int n = f.heading_count;
   const int turn = ((b.heading - a.heading) % n + n) % n;
   const bool is_turn = a.x == b.x && a.y == b.y;
-  if (is_turn ? (turn != 1 && turn != n - 1) : (a.heading != b.heading || std::abs(a.x - b.x) > 1 || std::abs(a.y - b.y) > 1))
+  if (is_turn ? (turn != 1 && turn != n - 1)
+              : (a.heading != b.heading || std::abs(a.x - b.x) > 1 || std::abs(a.y - b.y) > 1))
     return "consecutive states are not one motion apart";
   const double angle_a = kTwoPi * a.heading / n;
   const double angle_step = turn == 1 ? kTwoPi / n : -kTwoPi / n;
@@ -56,8 +57,8 @@ void ExpectValidFootprintPath(const OccupancyGrid& grid, const PlanResult& r, co
   for (std::size_t i = 0; i + 1 < r.path.size(); ++i) {
     const std::string problem = CheckMotionBySampling(checker, r.path[i], r.path[i + 1], f, 64);
     ASSERT_TRUE(problem.empty()) << "motion " << i << " (" << r.path[i].x << ", " << r.path[i].y << ", "
-                                 << r.path[i].heading << ") -> (" << r.path[i + 1].x << ", " << r.path[i + 1].y
-                                 << ", " << r.path[i + 1].heading << "): " << problem;
+                                 << r.path[i].heading << ") -> (" << r.path[i + 1].x << ", " << r.path[i + 1].y << ", "
+                                 << r.path[i + 1].heading << "): " << problem;
   }
   EXPECT_GE(r.translation_cells, point_optimum - 1e-6);  // .scen lengths carry 8 decimals
   EXPECT_GE(r.length_cells, r.translation_cells);

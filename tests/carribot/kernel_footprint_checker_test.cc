@@ -87,7 +87,7 @@ TEST(KernelFootprintChecker, AgreesWithTheReferenceOnRandomPoses) {
   }
   EXPECT_GT(collisions, 400);
   EXPECT_LT(collisions, 3800);
-  EXPECT_EQ(kernel.batches(), 1u);  // one call, one launch
+  EXPECT_EQ(kernel.batches(), 1u);                   // one call, one launch
   EXPECT_LT(kernel.kernel_queries(), poses.size());  // centres outside the map never reach the kernel
 }
 
@@ -102,9 +102,9 @@ TEST(KernelFootprintChecker, TheOutsideOfTheMapIsBlocked) {
     return c == 1;
   };
   EXPECT_FALSE(collides(3.0, 2.0, 2.9, 1.9));
-  EXPECT_TRUE(collides(3.0, 2.0, 3.0, 1.0));   // touches x = 0 and x = 6
-  EXPECT_TRUE(collides(3.0, 2.0, 1.0, 2.0));   // touches y = 0 and y = 4
-  EXPECT_TRUE(collides(0.5, 0.5, 0.5, 0.0));   // a segment touching the left edge
+  EXPECT_TRUE(collides(3.0, 2.0, 3.0, 1.0));  // touches x = 0 and x = 6
+  EXPECT_TRUE(collides(3.0, 2.0, 1.0, 2.0));  // touches y = 0 and y = 4
+  EXPECT_TRUE(collides(0.5, 0.5, 0.5, 0.0));  // a segment touching the left edge
   EXPECT_FALSE(collides(0.5, 0.5, 0.49, 0.49));
   EXPECT_TRUE(collides(-0.5, 2.0, 0.0, 0.0));  // centre outside: no kernel query
   EXPECT_TRUE(collides(6.0, 2.0, 0.0, 0.0));   // centre on the boundary

@@ -61,7 +61,8 @@ std::vector<Mismatch> PlanAll(const OccupancyGrid& grid, const std::vector<Movin
   std::thread a(worker), b(worker);
   a.join();
   b.join();
-  std::sort(mismatches.begin(), mismatches.end(), [](const Mismatch& x, const Mismatch& y) { return x.index < y.index; });
+  std::sort(mismatches.begin(), mismatches.end(),
+            [](const Mismatch& x, const Mismatch& y) { return x.index < y.index; });
   return mismatches;
 }
 

@@ -40,9 +40,8 @@ TEST(MovingAiScenarioReader, VersionLineIsRequired) {
   EXPECT_TRUE(ThrowsInputError([&] { ReadMovingAiScenarios(dir.Write("a.scen", "")); }, 1, "version", "empty"));
   EXPECT_TRUE(ThrowsInputError([&] { ReadMovingAiScenarios(dir.Write("b.scen", "version 2\n")); }, 1, "version",
                                "not supported"));
-  EXPECT_TRUE(ThrowsInputError(
-      [&] { ReadMovingAiScenarios(dir.Write("c.scen", "0\tm.map\t4\t3\t0\t0\t3\t2\t1\n")); }, 1, "version",
-      "expected 'version 1'"));
+  EXPECT_TRUE(ThrowsInputError([&] { ReadMovingAiScenarios(dir.Write("c.scen", "0\tm.map\t4\t3\t0\t0\t3\t2\t1\n")); },
+                               1, "version", "expected 'version 1'"));
 }
 
 struct BadLine {

@@ -112,11 +112,7 @@ TEST(PlannerEdgeCases, GoalHeadingIsHonoured) {
   const std::vector<std::string> map = {
       "@@@@@@@@@@@@",  // y = 0
       "............",  // the corridor, y = 1
-      "@@@@@@@.....",
-      "@@@@@@@.....",
-      "@@@@@@@.....",
-      "@@@@@@@.....",
-      "@@@@@@@@@@@@",
+      "@@@@@@@.....", "@@@@@@@.....", "@@@@@@@.....", "@@@@@@@.....", "@@@@@@@@@@@@",
   };
   const auto planner = GridPlanner::Create(GridFromRows(map), FootprintOptions(0.5, 2.5));
   const PlanResult reversed = planner->Plan({2, 1, 0}, {2, 1, 4});

@@ -31,8 +31,7 @@ const char* Name(SceneKind k) {
 
 BoxTree MakeScene(SceneKind kind) {
   switch (kind) {
-    case SceneKind::kBoxTree:
-      return BuildMedianSplitTree(test::RandomScene(150, 11));
+    case SceneKind::kBoxTree: return BuildMedianSplitTree(test::RandomScene(150, 11));
     case SceneKind::kQuadtree: {
       OccupancyGrid grid(48, 40, 0.1);
       RandomStream r(12, StreamPurpose::kTest, 8, 0);
@@ -107,16 +106,16 @@ TEST_P(CollisionBackendAgreement, SameAnswersAsTheCpuReference) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    EveryBackendEveryScene, CollisionBackendAgreement,
-    ::testing::Combine(::testing::ValuesIn(Backend::Names()),
-                       ::testing::Values(SceneKind::kBoxTree, SceneKind::kQuadtree, SceneKind::kOctree)),
-    [](const auto& info) {
-      std::string name = std::get<0>(info.param) + "_" + Name(std::get<1>(info.param));
-      for (char& c : name)
-        if (c == '-') c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(EveryBackendEveryScene, CollisionBackendAgreement,
+                         ::testing::Combine(::testing::ValuesIn(Backend::Names()),
+                                            ::testing::Values(SceneKind::kBoxTree, SceneKind::kQuadtree,
+                                                              SceneKind::kOctree)),
+                         [](const auto& info) {
+                           std::string name = std::get<0>(info.param) + "_" + Name(std::get<1>(info.param));
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace rc

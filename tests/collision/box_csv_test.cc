@@ -6,8 +6,8 @@
 
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
-#include "support/test_data.h"
 #include "support/input_error_expectations.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {

@@ -204,9 +204,10 @@ TEST(SphereRobot, SphereContainsTheObbAndTreeEqualsBruteForce) {
     EXPECT_EQ(CollideSphere(flat, s, TraversalOrder::kDepthFirst).collides, brute);
   }
   const SphereRobotReport report = CompareSphereRobot(flat, obbs, CollisionOptions<double>{});
-  std::printf("[ sphere robot ] %zu queries: %zu OBB collisions, %zu sphere collisions, %zu false (%.1f%%), %zu missed\n",
-              report.queries, report.obb_collisions, report.sphere_collisions, report.false_collisions,
-              100 * report.false_collision_rate(), report.missed_collisions);
+  std::printf(
+      "[ sphere robot ] %zu queries: %zu OBB collisions, %zu sphere collisions, %zu false (%.1f%%), %zu missed\n",
+      report.queries, report.obb_collisions, report.sphere_collisions, report.false_collisions,
+      100 * report.false_collision_rate(), report.missed_collisions);
   EXPECT_EQ(report.missed_collisions, 0u);
   EXPECT_GT(report.false_collisions, 0u);
   EXPECT_EQ(report.sphere_collisions, report.obb_collisions + report.false_collisions);

@@ -17,8 +17,8 @@ using Mat3 = Eigen::Matrix3d;
 
 TEST(ExactReference, IdenticalBoxesOverlapByTheSmallestHalfExtent) {
   const Mat3 axes = Mat3::Identity();
-  const ExactOverlap e = ExactObbAabbOverlap(Obbd{Vec3(1, 2, 3), axes, Vec3(0.5, 0.2, 0.9)},
-                                             Aabbd{Vec3(1, 2, 3), Vec3(0.5, 0.2, 0.9)});
+  const ExactOverlap e =
+      ExactObbAabbOverlap(Obbd{Vec3(1, 2, 3), axes, Vec3(0.5, 0.2, 0.9)}, Aabbd{Vec3(1, 2, 3), Vec3(0.5, 0.2, 0.9)});
   EXPECT_NEAR(static_cast<double>(e.depth), 0.2, 1e-15);
 }
 
@@ -36,12 +36,12 @@ TEST(ExactReference, CubeTurnedFortyFiveDegrees) {
   // s both reach (1 - s)(1 + sqrt 2), so s* = 1 - d / (1 + sqrt 2).
   const Mat3 axes = Eigen::AngleAxisd(M_PI / 4, Vec3::UnitZ()).matrix();
   for (double d : {1.0, 2.0, 2.4, 3.0, 5.0}) {
-    const ExactOverlap e = ExactObbAabbOverlap(Obbd{Vec3::Zero(), axes, Vec3(1, 1, 1)}, Aabbd{Vec3(d, 0, 0), Vec3(1, 1, 1)});
+    const ExactOverlap e =
+        ExactObbAabbOverlap(Obbd{Vec3::Zero(), axes, Vec3(1, 1, 1)}, Aabbd{Vec3(d, 0, 0), Vec3(1, 1, 1)});
     EXPECT_NEAR(static_cast<double>(e.depth), 1 - d / (1 + std::sqrt(2.0)), 1e-14) << d;
     // The witness lies in both boxes shrunk by s*.
     const Vec3ld w = e.witness;
-    for (int i = 0; i < 3; ++i)
-      EXPECT_LE(std::fabs(axes.col(i).cast<long double>().dot(w)), 1 - e.depth + 1e-15L);
+    for (int i = 0; i < 3; ++i) EXPECT_LE(std::fabs(axes.col(i).cast<long double>().dot(w)), 1 - e.depth + 1e-15L);
     EXPECT_LE(std::fabs(w[0] - d), 1 - e.depth + 1e-15L);
   }
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "overlap_oracle.h"
 #include "robocore/collision/box_csv.h"
 #include "robocore/collision/collision_summary.h"
 #include "robocore/collision/exact_overlap_reference.h"
@@ -15,7 +16,6 @@
 #include "robocore/kernel_record.h"
 #include "robocore/micro_op.h"
 #include "robocore/shipped_programs.h"
-#include "overlap_oracle.h"
 #include "support/test_data.h"
 
 namespace rc {
@@ -37,8 +37,8 @@ void PrintStudy(const char* title, const CollisionSummary& s) {
     if (b.queries) std::printf(" [%u-%u] %llu", b.lo, b.hi, (unsigned long long)b.queries);
   std::printf("\n    node tests by exit:");
   for (int slot = 0; slot < kExitSlots; ++slot)
-    if (s.node_test_exits[slot]) std::printf(" %s %llu", SactAxisName(ExitOfSlot(slot)).c_str(),
-                                             (unsigned long long)s.node_test_exits[slot]);
+    if (s.node_test_exits[slot])
+      std::printf(" %s %llu", SactAxisName(ExitOfSlot(slot)).c_str(), (unsigned long long)s.node_test_exits[slot]);
   std::printf("\n    stages: PRE %llu BOX %llu EDGE %llu\n", (unsigned long long)s.pre_process,
               (unsigned long long)s.box_normal, (unsigned long long)s.edge_edge);
 }
@@ -77,17 +77,19 @@ TEST(MpnetShelf, TreeEqualsBruteForceAndTheExactUnion) {
     exact_disagreements += exact_union != brute;
     collisions += brute;
   }
-  std::printf("[ mpnet x shelf ] %zu boxes, %zu nodes of %u B (artifact: 432 B); %d of %zu OBBs collide; "
-              "vs the exact reference: %d of %zu OBB/box pairs and %d union answers differ (all in the epsilon band)\n",
-              scene.size(), flat.nodes().size(), flat.node_bytes(), collisions, obbs.size(), pair_disagreements,
-              obbs.size() * scene.size(), exact_disagreements);
+  std::printf(
+      "[ mpnet x shelf ] %zu boxes, %zu nodes of %u B (artifact: 432 B); %d of %zu OBBs collide; "
+      "vs the exact reference: %d of %zu OBB/box pairs and %d union answers differ (all in the epsilon band)\n",
+      scene.size(), flat.nodes().size(), flat.node_bytes(), collisions, obbs.size(), pair_disagreements,
+      obbs.size() * scene.size(), exact_disagreements);
   PrintStudy("dfs, double", Summarize(batch));
   PrintStudy("bfs, double", Summarize(batch_bfs));
   PrintStudy("dfs, float", Summarize(batch_f));
   const SphereRobotReport spheres = CompareSphereRobot(flat, obbs, dfs);
-  std::printf("[ sphere robot ] %zu false collisions of %zu queries (%.1f%%; %.1f%% of the collision-free), %zu missed\n",
-              spheres.false_collisions, spheres.queries, 100 * spheres.false_collision_rate(),
-              100 * spheres.false_rate_among_free(), spheres.missed_collisions);
+  std::printf(
+      "[ sphere robot ] %zu false collisions of %zu queries (%.1f%%; %.1f%% of the collision-free), %zu missed\n",
+      spheres.false_collisions, spheres.queries, 100 * spheres.false_collision_rate(),
+      100 * spheres.false_rate_among_free(), spheres.missed_collisions);
   EXPECT_EQ(spheres.missed_collisions, 0u);
   // The scene is built to give both answers on these poses.
   EXPECT_GT(collisions, 5);

@@ -92,8 +92,7 @@ bool FindCommonPoint(const Obbd& obb, const Aabbd& box) {
     p = b + (p - b).cwiseMax(-hb).cwiseMin(hb);  // onto shrunk B
     if (in_a(p)) return true;
     V q = a;  // onto shrunk A
-    for (int i = 0; i < 3; ++i)
-      q += std::clamp(Column(obb, i).dot(p - a), -ha[i], ha[i]) * Column(obb, i);
+    for (int i = 0; i < 3; ++i) q += std::clamp(Column(obb, i).dot(p - a), -ha[i], ha[i]) * Column(obb, i);
     p = q;
     if (in_b(p)) return true;
   }

@@ -139,11 +139,11 @@ void Place(ObbAabbPair& p, RandomStream& r) {
 
 PairFamily DrawFamily(RandomStream& r) {
   const double u = r.Uniform();
-  return u < 0.4 ? PairFamily::kGeneric
-         : u < 0.5 ? PairFamily::kVertexVertex
+  return u < 0.4    ? PairFamily::kGeneric
+         : u < 0.5  ? PairFamily::kVertexVertex
          : u < 0.65 ? PairFamily::kEdgeEdge
-         : u < 0.8 ? PairFamily::kVertexOnFace
-                   : PairFamily::kParallel;
+         : u < 0.8  ? PairFamily::kVertexOnFace
+                    : PairFamily::kParallel;
 }
 
 double DrawGap(RandomStream& r, double scale) {

@@ -28,8 +28,8 @@ struct ObbAabbPair {
   Obbd obb;
   Aabbd box;
   PairFamily family = PairFamily::kGeneric;
-  double gap = 0;     // m, the constructed gap (contact families); > 0 apart
-  double scale = 1;   // m
+  double gap = 0;    // m, the constructed gap (contact families); > 0 apart
+  double scale = 1;  // m
 };
 
 ObbAabbPair GeneratePair(std::uint64_t seed, std::uint64_t index);

@@ -70,8 +70,9 @@ TEST(SactHardCases, TouchingFacesOverlapAtEveryScaleAndFarFromTheOrigin) {
 TEST(SactHardCases, ParallelEdgesNeverSeparateOnTheirDegenerateCrossAxis) {
   // With an OBB axis (anti)parallel to a world axis, that edge x edge axis is
   // a zero vector; the epsilon must keep it from separating anything.
-  const Mat3 rotations[] = {Mat3::Identity(), -Mat3::Identity(), Rot(Vec3::UnitZ(), 0.7), Rot(Vec3::UnitX(), -2.1),
-                            Rot(Vec3(1, 2, 3), 1e-12), Rot(Vec3(3, -1, 2), 1e-9), Rot(Vec3(-2, 1, 1), 1e-6)};
+  const Mat3 rotations[] = {Mat3::Identity(),         -Mat3::Identity(),         Rot(Vec3::UnitZ(), 0.7),
+                            Rot(Vec3::UnitX(), -2.1), Rot(Vec3(1, 2, 3), 1e-12), Rot(Vec3(3, -1, 2), 1e-9),
+                            Rot(Vec3(-2, 1, 1), 1e-6)};
   int tested = 0;
   for (const Mat3& axes : rotations)
     for (int k = 0; k < 400; ++k) {

@@ -76,11 +76,11 @@ struct Stats {
     std::printf("[ %s ] %llu pairs; truth from %llu axis certificates, %llu point certificates, %llu LPs\n", title,
                 (unsigned long long)pairs, (unsigned long long)axis_certificates,
                 (unsigned long long)point_certificates, (unsigned long long)lp);
-    std::printf("    disagreements: %llu false overlaps (max |s*| = %.3Lg S = %.3Lg M), %llu false separations "
-                "(max s* = %.3Lg M); outside the band: %llu\n",
-                (unsigned long long)false_overlaps, max_false_overlap_per_s, max_false_overlap_per_m,
-                (unsigned long long)false_separations, max_false_separation_per_m,
-                (unsigned long long)outside_band);
+    std::printf(
+        "    disagreements: %llu false overlaps (max |s*| = %.3Lg S = %.3Lg M), %llu false separations "
+        "(max s* = %.3Lg M); outside the band: %llu\n",
+        (unsigned long long)false_overlaps, max_false_overlap_per_s, max_false_overlap_per_m,
+        (unsigned long long)false_separations, max_false_separation_per_m, (unsigned long long)outside_band);
     for (int f = 0; f < kPairFamilyCount; ++f)
       std::printf("    %-15s %8llu pairs, %7llu disagreements\n", ToString(static_cast<PairFamily>(f)),
                   (unsigned long long)family_pairs[f], (unsigned long long)family_disagreements[f]);
@@ -117,8 +117,8 @@ void CountVerdict(const Truth& t, Stats& s) {
 struct PropertyRun {
   Stats d, f;
 };
-PropertyRun RunPairs(std::uint64_t seed, std::uint64_t count, const SactOptions<double>& double_options, bool with_float,
-                const Band& double_band = kDoubleBand) {
+PropertyRun RunPairs(std::uint64_t seed, std::uint64_t count, const SactOptions<double>& double_options,
+                     bool with_float, const Band& double_band = kDoubleBand) {
   const int threads = std::max(1, omp_get_max_threads());
   std::vector<PropertyRun> per_thread(threads);
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)

@@ -15,8 +15,8 @@
 #include "robocore/collision/quadtree_from_grid.h"
 #include "robocore/collision/tree_collision.h"
 #include "scene_test_util.h"
-#include "support/temp_dir.h"
 #include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 
 namespace rc {
 namespace {
@@ -170,8 +170,7 @@ TEST(OctreeFromOctoMap, LoadsBtAndOtFiles) {
 // Findings of tests/fuzz: OctoMap reads the node stream by unbounded
 // recursion, and a truncated stream leaves its child mask uninitialized.
 TEST(OctreeFromOctoMapBadInput, NodeStreamDeeperThanAnOcTreeOrTruncated) {
-  const std::string header =
-      "# Octomap OcTree binary file\n# (comment)\nid OcTree\nsize 3\nres 0.1\ndata\n";
+  const std::string header = "# Octomap OcTree binary file\n# (comment)\nid OcTree\nsize 3\nres 0.1\ndata\n";
   const std::string deep = test::ProgramTempPath("deep.bt");
   std::ofstream(deep, std::ios::binary) << header << std::string(200, '\xff');  // every child an inner node
   const InputError e = test::InputErrorFrom([&] { LoadOctoMapFile(deep); }, deep);

@@ -90,11 +90,12 @@ TEST(SphereProgram, SpheresAreConservativeAndTheFalseRateIsMeasured) {
     const SphereRobotReport report = CompareSphereRobot(tree, obbs, CollisionOptions<double>{}, n);
     EXPECT_EQ(report.missed_collisions, sact_band_misses);
     EXPECT_EQ(report.sphere_nodes, spheres.spheres.visits.size());
-    std::printf("[ sphere robot, random scene ] %d sphere(s) per OBB: %zu false collisions of %zu OBBs vs the SACT "
-                "(%.1f%%), %zu exact collisions, %zu false vs the exact reference; %llu sphere node visits vs %llu "
-                "for OBBs\n",
-                n, report.false_collisions, report.queries, 100 * report.false_collision_rate(), exact_collisions,
-                false_collisions, (unsigned long long)report.sphere_nodes, (unsigned long long)report.obb_nodes);
+    std::printf(
+        "[ sphere robot, random scene ] %d sphere(s) per OBB: %zu false collisions of %zu OBBs vs the SACT "
+        "(%.1f%%), %zu exact collisions, %zu false vs the exact reference; %llu sphere node visits vs %llu "
+        "for OBBs\n",
+        n, report.false_collisions, report.queries, 100 * report.false_collision_rate(), exact_collisions,
+        false_collisions, (unsigned long long)report.sphere_nodes, (unsigned long long)report.obb_nodes);
     EXPECT_GT(report.false_collisions, 0u) << "spheres are larger than the OBB: some false collisions";
     EXPECT_LT(report.false_collision_rate(), 0.5);
   }
@@ -150,10 +151,11 @@ TEST(SphereProgram, MpnetObbsAgainstTheShelf) {
   const FlatBoxTree<double> tree(BuildMedianSplitTree(scene));
   for (int n : {1, 2, 4}) {
     const SphereRobotReport report = CompareSphereRobot(tree, obbs, CollisionOptions<double>{}, n);
-    std::printf("[ sphere robot, mpnet x shelf ] %d sphere(s) per OBB: %zu false collisions of %zu OBBs (%.1f%%; "
-                "%.1f%% of the collision-free), %zu missed\n",
-                n, report.false_collisions, report.queries, 100 * report.false_collision_rate(),
-                100 * report.false_rate_among_free(), report.missed_collisions);
+    std::printf(
+        "[ sphere robot, mpnet x shelf ] %d sphere(s) per OBB: %zu false collisions of %zu OBBs (%.1f%%; "
+        "%.1f%% of the collision-free), %zu missed\n",
+        n, report.false_collisions, report.queries, 100 * report.false_collision_rate(),
+        100 * report.false_rate_among_free(), report.missed_collisions);
     EXPECT_EQ(report.missed_collisions, 0u);
     EXPECT_EQ(report.queries, obbs.size());
   }

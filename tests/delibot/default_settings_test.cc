@@ -26,14 +26,13 @@ class TaggedModel final : public SensorModel {
  public:
   explicit TaggedModel(double tag) : tag_(tag) {}
   std::string name() const override { return "tag" + std::to_string(static_cast<int>(-tag_)); }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                      const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     ++calls;
     log_likelihoods.assign(particles.size(), tag_);
   }
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                               const BeamSelection&, std::vector<double>& log_likelihoods,
-                               SensorUpdateWork&) override {
+                               const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     ++selection_calls;
     log_likelihoods.assign(particles.size(), 10.0 * tag_);
   }
@@ -80,8 +79,8 @@ class PlacesModel final : public SensorModel {
   std::vector<Pose2> live_places;
   int calls = 0;
   std::string name() const override { return "places"; }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                      const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     ++calls;
     log_likelihoods.assign(particles.size(), -1000.0);
     for (std::size_t i = 0; i < particles.size(); ++i)

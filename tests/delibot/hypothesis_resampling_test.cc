@@ -112,7 +112,8 @@ TEST(HypothesisResamplingTest, KeepsATrailingHypothesisAliveWithItsTrueMass) {
   // of the resampled set matches the input's within a slot's share.
   double mean_in = 0.0, mean_out = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) mean_in += std::exp(lw[i]) * particles[i].x;
-  for (std::size_t s = 0; s < r.ancestors.size(); ++s) mean_out += std::exp(r.log_weights[s]) * particles[r.ancestors[s]].x;
+  for (std::size_t s = 0; s < r.ancestors.size(); ++s)
+    mean_out += std::exp(r.log_weights[s]) * particles[r.ancestors[s]].x;
   EXPECT_NEAR(mean_out, mean_in, 0.01);
 }
 
@@ -161,8 +162,8 @@ RowResample ResampleARow(const std::vector<double>& masses, double u) {
     ADD_FAILURE() << out.clusters.count << " clusters for " << masses.size() << " hypotheses";
     return out;
   }
-  out.resampled = HypothesisPreservingResample(WeightsWithMasses(out.clusters, masses), out.clusters, 1000,
-                                               {20, 100.0}, Offsets(u));
+  out.resampled = HypothesisPreservingResample(WeightsWithMasses(out.clusters, masses), out.clusters, 1000, {20, 100.0},
+                                               Offsets(u));
   out.tally = Tally(out.clusters, out.resampled);
   return out;
 }

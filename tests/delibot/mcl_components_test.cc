@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/log_domain.h"
+#include "synthetic_world.h"
 #include "workloads/delibot/beam_sensor_model.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/likelihood_field_model.h"
@@ -16,7 +17,6 @@
 #include "workloads/delibot/motion_model.h"
 #include "workloads/delibot/pose_estimate.h"
 #include "workloads/delibot/resampling.h"
-#include "synthetic_world.h"
 
 namespace rc {
 namespace {
@@ -107,9 +107,8 @@ TEST(MclInitialSetTest, FirstSensorUpdateShrinksTheInitialSetToTheWorkingSize) {
   o.beams.beam_step = 6;
   BeamModelParams beam;
   beam.max_range_m = 12.0;
-  MonteCarloLocalizer mcl(g, std::make_unique<BeamSensorModel>(
-                                 std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), beam),
-                          o);
+  MonteCarloLocalizer mcl(
+      g, std::make_unique<BeamSensorModel>(std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), beam), o);
   mcl.InitializeUniform();
   EXPECT_EQ(mcl.particles().size(), 6000u);
   const MclStepResult first = mcl.Update(run.trace.scans[0], run.trace.geometry, 0);
@@ -129,14 +128,13 @@ TEST(MclInitialSetTest, FirstSensorUpdateShrinksTheInitialSetToTheWorkingSize) {
 class CallCountingModel final : public SensorModel {
  public:
   std::string name() const override { return "counting"; }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                      const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     ++ordinary;
     log_likelihoods.assign(particles.size(), 0.0);
   }
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                               const BeamSelection&, std::vector<double>& log_likelihoods,
-                               SensorUpdateWork&) override {
+                               const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     ++selection;
     selection_set_size = particles.size();
     log_likelihoods.assign(particles.size(), 0.0);
@@ -193,8 +191,10 @@ TEST(MclFreeSpaceTest, ParticlesMovedOutOfFreeSpaceGetZeroWeight) {
       const bool free = g.IsFreePoint(p.x, p.y);
       outside += free ? 0 : 1;
       const double w = std::exp(mcl.log_weights()[i]);
-      if (reject && !free) EXPECT_EQ(w, 0.0) << i;
-      else EXPECT_GT(w, 0.0) << i;
+      if (reject && !free)
+        EXPECT_EQ(w, 0.0) << i;
+      else
+        EXPECT_GT(w, 0.0) << i;
     }
     EXPECT_GT(outside, 0);
     EXPECT_LT(outside, o.particle_count);
@@ -260,8 +260,8 @@ TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
   EXPECT_NEAR(BeamCubeProbability(p, 3.0, 3.0), p.z_hit + floor, 1e-12);
   EXPECT_NEAR(BeamCubeProbability(p, 3.4, 3.0), p.z_hit * std::exp(-0.5 * 4.0) + floor, 1e-12);
   EXPECT_NEAR(BeamCubeProbability(p, 2.0, 3.0),
-              p.z_hit * std::exp(-0.5 * 25.0) + p.z_short * p.lambda_short_per_m * std::exp(-p.lambda_short_per_m * 2.0) +
-                  floor,
+              p.z_hit * std::exp(-0.5 * 25.0) +
+                  p.z_short * p.lambda_short_per_m * std::exp(-p.lambda_short_per_m * 2.0) + floor,
               1e-12);
   EXPECT_NEAR(BeamCubeProbability(p, 7.0, p.max_range_m), p.z_hit + p.z_max, 1e-12);
   EXPECT_NEAR(BeamCubeProbability(p, 7.0, 1.0), p.z_hit * std::exp(-0.5 * 400.0) + p.z_max, 1e-12);
@@ -285,9 +285,8 @@ TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
   double cube_sum = 1.0;
   for (int k = 0; k < beams.Count(run.trace.geometry.beam_count); ++k) {
     const int i = k * beams.beam_step;
-    const double expected = CastRay(*scene, sensor.x, sensor.y, sensor.theta + run.trace.geometry.BeamAngle(i),
-                                    p.max_range_m)
-                                .range_m;
+    const double expected =
+        CastRay(*scene, sensor.x, sensor.y, sensor.theta + run.trace.geometry.BeamAngle(i), p.max_range_m).range_m;
     cube_sum += std::pow(BeamCubeProbability(p, scan.ranges_m[static_cast<std::size_t>(i)], expected), 3);
   }
   EXPECT_NEAR(ll[1], std::log(cube_sum), 1e-9);

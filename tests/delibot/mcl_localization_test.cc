@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_world.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
-#include "synthetic_world.h"
 
 namespace rc {
 namespace {
@@ -58,8 +58,8 @@ TEST(MclLocalizationTest, TrackingFromAKnownStartKeepsMedianErrorBelowTenCentime
 std::pair<test::SyntheticRun, std::size_t> KidnappedRun() {
   const OccupancyGrid g = test::AsymmetricRoom();
   test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 13);
-  const test::SyntheticRun second =
-      test::DriveThrough(g, {{6.0, 3.0, 0}, {6.0, 1.0, 0}, {11.0, 1.0, 0}, {11.0, 4.0, 0}, {8.0, 4.0, 0}, {8.0, 7.5, 0}}, 0.15, 0.03, 14);
+  const test::SyntheticRun second = test::DriveThrough(
+      g, {{6.0, 3.0, 0}, {6.0, 1.0, 0}, {11.0, 1.0, 0}, {11.0, 4.0, 0}, {8.0, 4.0, 0}, {8.0, 7.5, 0}}, 0.15, 0.03, 14);
   const std::size_t kidnap_at = run.trace.scans.size();
   const Pose2 last_odom = run.trace.scans.back().odometry;
   const Pose2 first_odom = second.trace.scans.front().odometry;

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_world.h"
 #include "workloads/delibot/mcl_options.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
-#include "synthetic_world.h"
 
 namespace rc {
 namespace {
@@ -23,8 +23,8 @@ class PlacesModel final : public SensorModel {
  public:
   std::vector<Pose2> live_places;
   std::string name() const override { return "places"; }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&,
-                      const BeamSelection&, std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
     log_likelihoods.assign(particles.size(), -1000.0);
     for (std::size_t i = 0; i < particles.size(); ++i)
       for (const Pose2& place : live_places) {
@@ -35,8 +35,8 @@ class PlacesModel final : public SensorModel {
 };
 
 struct GrowthRun {
-  std::vector<std::size_t> sizes;   // particles after each update
-  std::vector<int> alive;           // hypotheses alive at each update
+  std::vector<std::size_t> sizes;  // particles after each update
+  std::vector<int> alive;          // hypotheses alive at each update
 };
 
 // Updates 0-2 see three places alive, updates 3-5 only the first.

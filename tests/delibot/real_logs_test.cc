@@ -20,8 +20,8 @@
 //   half of every log and holds at every later checkpoint.
 // - Every beam at beam step 1 keeps every weight finite on all four logs.
 // robotdata1 is left out of the recipe's global check: two of three seeds
-// lock onto the door 6 m west of the truth (docs/real_logs.md); with nav2's update gating, its cube-sum likelihood or the
-// hypothesis floor it localizes, and that is checked.
+// lock onto the door 6 m west of the truth (docs/real_logs.md); with nav2's update gating, its cube-sum likelihood or
+// the hypothesis floor it localizes, and that is checked.
 #include <algorithm>
 #include <cmath>
 #include <ostream>
@@ -208,7 +208,8 @@ TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
   EXPECT_LT(claim, static_cast<long>(r.rows.size()) / 2);
   // The claim waited for rivals: one was alive at some update before it.
   int most_alive_before_claim = 0;
-  for (long k = 0; k < claim; ++k) most_alive_before_claim = std::max(most_alive_before_claim, r.rows[k].hypotheses_alive);
+  for (long k = 0; k < claim; ++k)
+    most_alive_before_claim = std::max(most_alive_before_claim, r.rows[k].hypotheses_alive);
   EXPECT_GT(most_alive_before_claim, 1);
   for (const Checkpoint& c : GetParam().checkpoints)
     if (c.record >= claim) {
@@ -217,8 +218,7 @@ TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
-                         ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4),
-                         PrintName);
+                         ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4), PrintName);
 
 // At a fixed size the floor holds only particle_count / (2 * floor)
 // hypotheses: at robotdata1's second update 17 places are within 21 nats,

@@ -25,11 +25,11 @@ inline OccupancyGrid AsymmetricRoom() {
   wall(0, 78, 119, 79);
   wall(0, 0, 1, 79);
   wall(118, 0, 119, 79);
-  wall(40, 2, 41, 45);   // inner wall from the bottom
-  wall(41, 44, 70, 45);  // its horizontal arm
-  wall(85, 20, 88, 23);  // pillar
-  wall(20, 60, 22, 62);  // pillar
-  wall(95, 55, 110, 70); // box
+  wall(40, 2, 41, 45);                                             // inner wall from the bottom
+  wall(41, 44, 70, 45);                                            // its horizontal arm
+  wall(85, 20, 88, 23);                                            // pillar
+  wall(20, 60, 22, 62);                                            // pillar
+  wall(95, 55, 110, 70);                                           // box
   for (int y = 30; y < 40; ++y) g.Set(0, y, CellState::kUnknown);  // a patch of unknown
   return g;
 }
@@ -41,8 +41,8 @@ struct SyntheticRun {
 
 // Drives through waypoints (straight segments) and records a scan every
 // step_m metres; odometry equals truth in a rotated, shifted frame.
-inline SyntheticRun DriveThrough(const OccupancyGrid& g, const std::vector<Pose2>& waypoints,
-                                 double step_m, double range_noise_m, std::uint64_t seed) {
+inline SyntheticRun DriveThrough(const OccupancyGrid& g, const std::vector<Pose2>& waypoints, double step_m,
+                                 double range_noise_m, std::uint64_t seed) {
   SyntheticRun run;
   run.trace.format = "synthetic";
   run.trace.geometry.max_range_m = 20.0;
@@ -56,7 +56,8 @@ inline SyntheticRun DriveThrough(const OccupancyGrid& g, const std::vector<Pose2
     const int steps = std::max(1, static_cast<int>(len / step_m));
     for (int s = 0; s < steps; ++s, ++k) {
       Pose2 p{a.x + (b.x - a.x) * s / steps, a.y + (b.y - a.y) * s / steps, heading};
-      if (!g.IsFreePoint(p.x, p.y) || !g.IsFreePoint(SensorPose(p, run.trace.geometry).x, SensorPose(p, run.trace.geometry).y))
+      if (!g.IsFreePoint(p.x, p.y) ||
+          !g.IsFreePoint(SensorPose(p, run.trace.geometry).x, SensorPose(p, run.trace.geometry).y))
         throw std::logic_error("synthetic route passes through an obstacle");
       LaserScan scan;
       scan.time_s = 0.1 * k;

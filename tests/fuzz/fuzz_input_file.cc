@@ -58,8 +58,7 @@ std::string WriteInputFile(const std::string& name, std::string_view bytes) {
   return path;
 }
 
-void SplitInput(std::string_view input, std::string_view separator, std::string_view* first,
-                std::string_view* second) {
+void SplitInput(std::string_view input, std::string_view separator, std::string_view* first, std::string_view* second) {
   const std::size_t at = input.find(separator);
   if (at == std::string_view::npos) {
     *first = input;

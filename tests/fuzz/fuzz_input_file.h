@@ -28,8 +28,7 @@ std::string WriteInputFile(const std::string& name, std::string_view bytes);
 // Splits an input at the first occurrence of `separator`: a target that
 // needs two files (a ROS YAML and its image) takes both from one input.
 // Without the separator, everything is `first` and `second` is empty.
-void SplitInput(std::string_view input, std::string_view separator, std::string_view* first,
-                std::string_view* second);
+void SplitInput(std::string_view input, std::string_view separator, std::string_view* first, std::string_view* second);
 
 // Runs `parse`; swallows InputError and UsageError, rethrows everything else
 // (libFuzzer then reports the uncaught exception as a crash).

@@ -4,8 +4,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::string path = rc::fuzz::WriteInputFile(data[0] % 2 ? "map.gridmap.gz" : "map.gridmap",
-                                                    rc::fuzz::AsText(data + 1, size - 1));
+  const std::string path =
+      rc::fuzz::WriteInputFile(data[0] % 2 ? "map.gridmap.gz" : "map.gridmap", rc::fuzz::AsText(data + 1, size - 1));
   rc::fuzz::ExpectParsedOrInputError([&] { rc::fuzz::RequireValidGrid(rc::LoadMrptGridmap(path).grid); });
   return 0;
 }

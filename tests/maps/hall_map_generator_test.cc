@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "common/input_error.h"
-#include "maps/grid_connectivity.h"
 #include "map_test_util.h"
+#include "maps/grid_connectivity.h"
 
 namespace rc {
 namespace {

@@ -79,8 +79,7 @@ TEST(ImageMapLoader, MissingOrUndecodableImageIsAnInputErrorNamingIt) {
   test::TempDir dir;
   ImageMapOptions o;
   o.resolution_m = 0.1;
-  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(dir.Path("absent.png"), o); }, 0, "",
-                               "cannot open image file"));
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(dir.Path("absent.png"), o); }, 0, "", "cannot open image file"));
   const std::string junk = dir.Write("junk.png", "not a png");
   EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(junk, o); }, 0, "", "cannot decode"));
 }

@@ -100,8 +100,7 @@ TEST(MapLoader, FormatOverrideIgnoresTheExtension) {
 TEST(MapLoader, UnknownExtensionIsAnInputError) {
   test::TempDir dir;
   const auto path = dir.Write("m.txt", kMovingAi);
-  EXPECT_TRUE(
-      ThrowsInputError([&] { LoadMap(path); }, 0, "extension", "unknown map extension '.txt'"));
+  EXPECT_TRUE(ThrowsInputError([&] { LoadMap(path); }, 0, "extension", "unknown map extension '.txt'"));
   const auto bare = dir.Write("noextension", kMovingAi);
   EXPECT_TRUE(ThrowsInputError([&] { LoadMap(bare); }, 0, "extension", "unknown map extension"));
 }

@@ -67,41 +67,29 @@ struct MalformedCase {
 };
 
 const MalformedCase kMovingAiMalformedCases[] = {
-    MalformedCase{"short_row", kHeader + "....\n...\n....\n", 6, "map row 1",
-                  "has 3 characters, expected width 4"},
+    MalformedCase{"short_row", kHeader + "....\n...\n....\n", 6, "map row 1", "has 3 characters, expected width 4"},
     MalformedCase{"long_row", kHeader + ".....\n", 5, "map row 0", "has 5 characters"},
     MalformedCase{"trailing_space", kHeader + "....\n.... \n", 6, "map row 1", "has 5"},
-    MalformedCase{"too_few_rows", kHeader + "....\n....\n", 7, "map row 2",
-                  "file ends after 2 of 3 rows"},
+    MalformedCase{"too_few_rows", kHeader + "....\n....\n", 7, "map row 2", "file ends after 2 of 3 rows"},
     MalformedCase{"too_many_rows", kHeader + "....\n....\n....\n....\n", 8, "trailing data",
                   "content after the last of 3 map rows"},
     MalformedCase{"unknown_character", kHeader + "....\n..X.\n....\n", 6, "map row 1, column 2",
                   "unknown terrain character 'X'"},
-    MalformedCase{"space_character", kHeader + "....\n. ..\n....\n", 6, "map row 1, column 1",
-                  "space"},
+    MalformedCase{"space_character", kHeader + "....\n. ..\n....\n", 6, "map row 1, column 1", "space"},
     MalformedCase{"missing_type", "height 3\nwidth 4\nmap\n", 3, "type", "missing 'type octile'"},
     MalformedCase{"missing_height", "type octile\nwidth 4\nmap\n", 3, "height", "missing"},
     MalformedCase{"missing_width", "type octile\nheight 3\nmap\n", 3, "width", "missing"},
-    MalformedCase{"missing_map_line", "type octile\nheight 3\nwidth 4\n", 4, "map",
-                  "file ends before the 'map' line"},
+    MalformedCase{"missing_map_line", "type octile\nheight 3\nwidth 4\n", 4, "map", "file ends before the 'map' line"},
     MalformedCase{"empty_file", "", 1, "map", "file ends before"},
     MalformedCase{"not_a_movingai_map", "mapsize_x 30\n", 1, "header", "unknown header line"},
-    MalformedCase{"other_type", "type tile\nheight 3\nwidth 4\nmap\n", 1, "type",
-                  "'tile' is not 'octile'"},
-    MalformedCase{"duplicate_height", "type octile\nheight 3\nheight 3\n", 3, "height",
-                  "appears twice"},
-    MalformedCase{"zero_height", "type octile\nheight 0\nwidth 4\nmap\n", 2, "height",
-                  "outside [1,"},
-    MalformedCase{"negative_width", "type octile\nheight 3\nwidth -4\nmap\n", 3, "width",
-                  "outside [1,"},
-    MalformedCase{"text_width", "type octile\nheight 3\nwidth four\nmap\n", 3, "width",
-                  "not an integer"},
-    MalformedCase{"impossible_size", "type octile\nheight 100000\nwidth 100000\nmap\n", 4, "map",
-                  "exceeds the limit"},
-    MalformedCase{"huge_side", "type octile\nheight 3\nwidth 100001\nmap\n", 3, "width",
-                  "outside [1, 100000]"},
-    MalformedCase{"map_with_value", "type octile\nheight 3\nwidth 4\nmap 1\n", 4, "map",
-                  "'map' alone"}};
+    MalformedCase{"other_type", "type tile\nheight 3\nwidth 4\nmap\n", 1, "type", "'tile' is not 'octile'"},
+    MalformedCase{"duplicate_height", "type octile\nheight 3\nheight 3\n", 3, "height", "appears twice"},
+    MalformedCase{"zero_height", "type octile\nheight 0\nwidth 4\nmap\n", 2, "height", "outside [1,"},
+    MalformedCase{"negative_width", "type octile\nheight 3\nwidth -4\nmap\n", 3, "width", "outside [1,"},
+    MalformedCase{"text_width", "type octile\nheight 3\nwidth four\nmap\n", 3, "width", "not an integer"},
+    MalformedCase{"impossible_size", "type octile\nheight 100000\nwidth 100000\nmap\n", 4, "map", "exceeds the limit"},
+    MalformedCase{"huge_side", "type octile\nheight 3\nwidth 100001\nmap\n", 3, "width", "outside [1, 100000]"},
+    MalformedCase{"map_with_value", "type octile\nheight 3\nwidth 4\nmap 1\n", 4, "map", "'map' alone"}};
 
 TEST(MovingAiMapLoader, ThrowsInputErrorAtLineAndField) {
   for (const MalformedCase& c : kMovingAiMalformedCases) {
@@ -113,8 +101,7 @@ TEST(MovingAiMapLoader, ThrowsInputErrorAtLineAndField) {
 }
 
 TEST(MovingAiMapLoader, MissingFileIsAnInputError) {
-  EXPECT_TRUE(
-      ThrowsInputError([] { LoadMovingAiMap("/nonexistent/a.map"); }, 0, "", "cannot open"));
+  EXPECT_TRUE(ThrowsInputError([] { LoadMovingAiMap("/nonexistent/a.map"); }, 0, "", "cannot open"));
 }
 
 }  // namespace

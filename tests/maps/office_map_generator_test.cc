@@ -7,8 +7,8 @@
 #include <deque>
 
 #include "common/input_error.h"
-#include "maps/grid_connectivity.h"
 #include "map_test_util.h"
+#include "maps/grid_connectivity.h"
 
 namespace rc {
 namespace {
@@ -62,10 +62,8 @@ TEST(OfficeMapGenerator, EveryFreeCellReachesEveryOtherAndTheBorderIsClosed) {
       EXPECT_EQ(ReachableFromFirstFree(g), g.CountCells(CellState::kFree));
       EXPECT_EQ(CountFreeComponents(g), 1u);
       std::size_t free_border_cells = 0;
-      for (int ix = 0; ix < g.size_x(); ++ix)
-        free_border_cells += g.IsFree(ix, 0) + g.IsFree(ix, g.size_y() - 1);
-      for (int iy = 0; iy < g.size_y(); ++iy)
-        free_border_cells += g.IsFree(0, iy) + g.IsFree(g.size_x() - 1, iy);
+      for (int ix = 0; ix < g.size_x(); ++ix) free_border_cells += g.IsFree(ix, 0) + g.IsFree(ix, g.size_y() - 1);
+      for (int iy = 0; iy < g.size_y(); ++iy) free_border_cells += g.IsFree(0, iy) + g.IsFree(g.size_x() - 1, iy);
       EXPECT_EQ(free_border_cells, 0u);
     }
   }

@@ -21,8 +21,7 @@ using test::ThrowsInputError;
 
 // A binary PGM from rows of grey values, top row first.
 std::string Pgm(const std::vector<std::vector<int>>& rows) {
-  std::string out =
-      "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n255\n";
+  std::string out = "P5\n" + std::to_string(rows[0].size()) + " " + std::to_string(rows.size()) + "\n255\n";
   for (const auto& row : rows)
     for (int v : row) out += static_cast<char>(v);
   return out;
@@ -101,8 +100,7 @@ TEST(RosMapIo, ThresholdsAtZeroAndOneMakePureColoursUnknown) {
 TEST(RosMapIo, NegateMakesDarkPixelsFree) {
   test::TempDir dir;
   dir.Write("m.pgm", Pgm({{0, 255, 128}}));
-  const RosMap map =
-      LoadRosMap(dir.Write("m.yaml", Replace(Yaml("m.pgm"), "negate: 0", "negate: true")));
+  const RosMap map = LoadRosMap(dir.Write("m.yaml", Replace(Yaml("m.pgm"), "negate: 0", "negate: true")));
   EXPECT_TRUE(map.metadata.thresholds.negate);
   EXPECT_EQ(test::Picture(map.grid), ".#?\n");
 }
@@ -117,8 +115,7 @@ TEST(RosMapIo, AlphaIsAveragedInTrinaryModeOnly) {
   image.at<cv::Vec4b>(0, 1) = {255, 255, 255, 255};  // opaque white
   ASSERT_TRUE(cv::imwrite(dir.Path("m.png"), image));
   EXPECT_EQ(test::Picture(LoadRosMap(dir.Write("t.yaml", Yaml("m.png"))).grid), "?.\n");
-  EXPECT_EQ(test::Picture(LoadRosMap(dir.Write("s.yaml", Yaml("m.png", "mode: scale\n"))).grid),
-            "..\n");
+  EXPECT_EQ(test::Picture(LoadRosMap(dir.Write("s.yaml", Yaml("m.png", "mode: scale\n"))).grid), "..\n");
 }
 
 TEST(RosMapIo, ColourPixelsUseTheMeanOfTheirChannels) {
@@ -185,9 +182,7 @@ TEST(RosMapIo, SaveThenLoadGivesTheSameGridAndOrigin) {
   EXPECT_EQ(static_cast<unsigned char>(pixels[6]), 205);   // (6, 3): top row, last column
   EXPECT_EQ(static_cast<unsigned char>(pixels[21]), 0);    // (0, 0): bottom row, first column
   EXPECT_EQ(static_cast<unsigned char>(pixels[22]), 254);  // (1, 0)
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
-                          std::filesystem::directory_iterator()),
-            2);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 2);
 }
 
 TEST(RosMapIo, SaveUsesTheGivenImageNameAndRejectsFolders) {
@@ -217,56 +212,40 @@ struct YamlCase {
 const std::string kGood = Yaml("m.pgm");
 
 const YamlCase kRosMapMalformedCases[] = {
-    YamlCase{"missing_resolution", Replace(kGood, "resolution: 0.05\n", ""), 0, "resolution",
-             "missing required key"},
+    YamlCase{"missing_resolution", Replace(kGood, "resolution: 0.05\n", ""), 0, "resolution", "missing required key"},
     YamlCase{"missing_image", Replace(kGood, "image: m.pgm\n", ""), 0, "image", "missing"},
     YamlCase{"missing_negate", Replace(kGood, "negate: 0\n", ""), 0, "negate", "missing"},
-    YamlCase{"missing_free_thresh", Replace(kGood, "free_thresh: 0.196\n", ""), 0, "free_thresh",
-             "missing"},
-    YamlCase{"empty_resolution", Replace(kGood, "resolution: 0.05", "resolution:"), 2, "resolution",
-             "has no value"},
+    YamlCase{"missing_free_thresh", Replace(kGood, "free_thresh: 0.196\n", ""), 0, "free_thresh", "missing"},
+    YamlCase{"empty_resolution", Replace(kGood, "resolution: 0.05", "resolution:"), 2, "resolution", "has no value"},
     YamlCase{"zero_resolution", Replace(kGood, "0.05", "0"), 2, "resolution", "must be positive"},
-    YamlCase{"negative_resolution", Replace(kGood, "0.05", "-0.05"), 2, "resolution",
-             "must be positive"},
+    YamlCase{"negative_resolution", Replace(kGood, "0.05", "-0.05"), 2, "resolution", "must be positive"},
     YamlCase{"nan_resolution", Replace(kGood, "0.05", ".nan"), 2, "resolution", "not finite"},
     YamlCase{"inf_resolution", Replace(kGood, "0.05", ".inf"), 2, "resolution", "not finite"},
-    YamlCase{"text_resolution", Replace(kGood, "0.05", "fine"), 2, "resolution",
-             "'fine' is not a number"},
-    YamlCase{"list_resolution", Replace(kGood, "0.05", "[0.05]"), 2, "resolution",
-             "expected a number"},
-    YamlCase{"short_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, 2.25]"), 3, "origin",
-             "three numbers"},
-    YamlCase{"scalar_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "0"), 3, "origin",
-             "three numbers"},
-    YamlCase{"nan_in_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, .NaN, 0.3]"), 3,
-             "origin[1]", "not finite"},
-    YamlCase{"origin_on_its_own_lines",
-             Replace(kGood, "[-1.5, 2.25, 0.3]", "\n  - 0\n  - 0\n  - yaw"), 6, "origin[2]",
+    YamlCase{"text_resolution", Replace(kGood, "0.05", "fine"), 2, "resolution", "'fine' is not a number"},
+    YamlCase{"list_resolution", Replace(kGood, "0.05", "[0.05]"), 2, "resolution", "expected a number"},
+    YamlCase{"short_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, 2.25]"), 3, "origin", "three numbers"},
+    YamlCase{"scalar_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "0"), 3, "origin", "three numbers"},
+    YamlCase{"nan_in_origin", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, .NaN, 0.3]"), 3, "origin[1]", "not finite"},
+    YamlCase{"origin_on_its_own_lines", Replace(kGood, "[-1.5, 2.25, 0.3]", "\n  - 0\n  - 0\n  - yaw"), 6, "origin[2]",
              "'yaw' is not a number"},
-    YamlCase{"free_above_occupied", Replace(kGood, "free_thresh: 0.196", "free_thresh: 0.7"), 6,
-             "free_thresh", "must be below occupied_thresh"},
-    YamlCase{"free_equals_occupied", Replace(kGood, "free_thresh: 0.196", "free_thresh: 0.65"), 6,
-             "free_thresh", "must be below occupied_thresh"},
-    YamlCase{"occupied_above_one", Replace(kGood, "occupied_thresh: 0.65", "occupied_thresh: 1.5"),
-             5, "occupied_thresh", "in [0, 1]"},
-    YamlCase{"free_negative", Replace(kGood, "free_thresh: 0.196", "free_thresh: -0.1"), 6,
-             "free_thresh", "in [0, 1]"},
-    YamlCase{"nan_threshold", Replace(kGood, "occupied_thresh: 0.65", "occupied_thresh: .nan"), 5,
-             "occupied_thresh", "not finite"},
-    YamlCase{"negate_two", Replace(kGood, "negate: 0", "negate: 2"), 4, "negate",
-             "not 0, 1, false or true"},
-    YamlCase{"negate_word", Replace(kGood, "negate: 0", "negate: maybe"), 4, "negate",
-             "not 0, 1, false or true"},
+    YamlCase{"free_above_occupied", Replace(kGood, "free_thresh: 0.196", "free_thresh: 0.7"), 6, "free_thresh",
+             "must be below occupied_thresh"},
+    YamlCase{"free_equals_occupied", Replace(kGood, "free_thresh: 0.196", "free_thresh: 0.65"), 6, "free_thresh",
+             "must be below occupied_thresh"},
+    YamlCase{"occupied_above_one", Replace(kGood, "occupied_thresh: 0.65", "occupied_thresh: 1.5"), 5,
+             "occupied_thresh", "in [0, 1]"},
+    YamlCase{"free_negative", Replace(kGood, "free_thresh: 0.196", "free_thresh: -0.1"), 6, "free_thresh", "in [0, 1]"},
+    YamlCase{"nan_threshold", Replace(kGood, "occupied_thresh: 0.65", "occupied_thresh: .nan"), 5, "occupied_thresh",
+             "not finite"},
+    YamlCase{"negate_two", Replace(kGood, "negate: 0", "negate: 2"), 4, "negate", "not 0, 1, false or true"},
+    YamlCase{"negate_word", Replace(kGood, "negate: 0", "negate: maybe"), 4, "negate", "not 0, 1, false or true"},
     YamlCase{"unknown_mode", kGood + "mode: fancy\n", 7, "mode", "not trinary, scale or raw"},
-    YamlCase{"raw_with_negate", Replace(kGood, "negate: 0", "negate: 1") + "mode: raw\n", 4,
-             "negate", "raw mode"},
+    YamlCase{"raw_with_negate", Replace(kGood, "negate: 0", "negate: 1") + "mode: raw\n", 4, "negate", "raw mode"},
     YamlCase{"misspelt_key", kGood + "mdoe: scale\n", 7, "mdoe", "unknown key"},
     YamlCase{"duplicate_key", kGood + "resolution: 0.1\n", 7, "resolution", "appears twice"},
     YamlCase{"empty_image", Replace(kGood, "image: m.pgm", "image: ''"), 1, "image", "is empty"},
-    YamlCase{"missing_image_file", Replace(kGood, "m.pgm", "absent.pgm"), 1, "image",
-             "does not exist"},
-    YamlCase{"syntax_error", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, 2.25, 0.3"), 4, "",
-             "YAML syntax error"},
+    YamlCase{"missing_image_file", Replace(kGood, "m.pgm", "absent.pgm"), 1, "image", "does not exist"},
+    YamlCase{"syntax_error", Replace(kGood, "[-1.5, 2.25, 0.3]", "[-1.5, 2.25, 0.3"), 4, "", "YAML syntax error"},
     YamlCase{"not_a_mapping", "- image\n- resolution\n", 1, "", "expected a mapping"},
     YamlCase{"empty_file", "", 0, "", "expected a mapping"}};
 

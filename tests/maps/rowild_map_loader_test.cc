@@ -4,9 +4,9 @@
 
 #include <fstream>
 
+#include "maps/cmu_map_loader.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
-#include "maps/cmu_map_loader.h"
 #include "support/test_data.h"
 
 namespace rc {
@@ -48,8 +48,7 @@ TEST(RowildMapLoader, POccupiedConventionInvertsKnownCells) {
 TEST(RowildMapLoader, BlankLinesInsideTheHeaderAreAccepted) {
   // RoWild's stream extraction skips them too.
   test::TempDir dir;
-  const auto path = dir.Write(
-      "blank.dat", std::string("\nmapsize_x 30\n\nmapsize_y 20\nresolution 10\n") + kSmallRows);
+  const auto path = dir.Write("blank.dat", std::string("\nmapsize_x 30\n\nmapsize_y 20\nresolution 10\n") + kSmallRows);
   EXPECT_EQ(LoadRowildMap(path).size_x(), 3);
 }
 
@@ -64,21 +63,15 @@ struct MalformedCase {
 const std::string kHeader = kSmallHeader;
 
 const MalformedCase kRowildMalformedCases[] = {
-    MalformedCase{"truncated", kHeader + "1 0\n0 1\n", 6, "map row 2",
-                  "file ends after 2 of 3 rows"},
+    MalformedCase{"truncated", kHeader + "1 0\n0 1\n", 6, "map row 2", "file ends after 2 of 3 rows"},
     MalformedCase{"empty_file", "", 1, "mapsize_x", "file ends before"},
     MalformedCase{"header_only", kHeader, 4, "map row 0", "file ends after 0 of 3 rows"},
-    MalformedCase{"short_row", kHeader + "1 0\n0\n1 1\n", 5, "map row 1",
-                  "has 1 values, expected 2"},
+    MalformedCase{"short_row", kHeader + "1 0\n0\n1 1\n", 5, "map row 1", "has 1 values, expected 2"},
     MalformedCase{"long_row", kHeader + "1 0 1\n", 4, "map row 0", "has 3 values, expected 2"},
-    MalformedCase{"blank_line_before_rows", kHeader + "\n1 0\n0 1\n1 1\n", 4, "map row 0",
-                  "has 0 values"},
-    MalformedCase{"nan_value", kHeader + "1 nan\n0 1\n1 1\n", 4, "map row 0, column 1",
-                  "not finite"},
-    MalformedCase{"text_value", kHeader + "1 0\n0 x\n1 1\n", 5, "map row 1, column 1",
-                  "not a number"},
-    MalformedCase{"value_above_one", kHeader + "1 0\n0 1.5\n1 1\n", 5, "map row 1, column 1",
-                  "neither a probability"},
+    MalformedCase{"blank_line_before_rows", kHeader + "\n1 0\n0 1\n1 1\n", 4, "map row 0", "has 0 values"},
+    MalformedCase{"nan_value", kHeader + "1 nan\n0 1\n1 1\n", 4, "map row 0, column 1", "not finite"},
+    MalformedCase{"text_value", kHeader + "1 0\n0 x\n1 1\n", 5, "map row 1, column 1", "not a number"},
+    MalformedCase{"value_above_one", kHeader + "1 0\n0 1.5\n1 1\n", 5, "map row 1, column 1", "neither a probability"},
     MalformedCase{"value_minus_half", kHeader + "1 0\n0 1\n-0.5 1\n", 6, "map row 2, column 0",
                   "neither a probability"},
     MalformedCase{"wrong_key_order", "mapsize_y 20\nmapsize_x 30\nresolution 10\n", 1, "mapsize_x",
@@ -86,22 +79,18 @@ const MalformedCase kRowildMalformedCases[] = {
     MalformedCase{"cmu_header", "robot_specifications->resolution 10\n", 1, "mapsize_x",
                   "found 'robot_specifications->resolution'"},
     MalformedCase{"missing_value", "mapsize_x\n", 1, "mapsize_x", "exactly one integer"},
-    MalformedCase{"fractional_resolution", "mapsize_x 30\nmapsize_y 20\nresolution 10.5\n", 3,
-                  "resolution", "not an integer"},
-    MalformedCase{"zero_resolution", "mapsize_x 30\nmapsize_y 20\nresolution 0\n", 3, "resolution",
+    MalformedCase{"fractional_resolution", "mapsize_x 30\nmapsize_y 20\nresolution 10.5\n", 3, "resolution",
+                  "not an integer"},
+    MalformedCase{"zero_resolution", "mapsize_x 30\nmapsize_y 20\nresolution 0\n", 3, "resolution", "outside [1,"},
+    MalformedCase{"negative_resolution", "mapsize_x 30\nmapsize_y 20\nresolution -10\n", 3, "resolution",
                   "outside [1,"},
-    MalformedCase{"negative_resolution", "mapsize_x 30\nmapsize_y 20\nresolution -10\n", 3,
-                  "resolution", "outside [1,"},
-    MalformedCase{"zero_extent", "mapsize_x 0\nmapsize_y 20\nresolution 10\n", 1, "mapsize_x",
-                  "outside [1,"},
+    MalformedCase{"zero_extent", "mapsize_x 0\nmapsize_y 20\nresolution 10\n", 1, "mapsize_x", "outside [1,"},
     MalformedCase{"partial_cell", "mapsize_x 35\nmapsize_y 20\nresolution 10\n", 1, "mapsize_x",
                   "not a whole number of 10 cm cells"},
-    MalformedCase{"impossible_size", "mapsize_x 9000000\nmapsize_y 20\nresolution 1\n", 1,
-                  "mapsize_x", "impossible"},
-    MalformedCase{"too_many_cells", "mapsize_x 5000000\nmapsize_y 5000000\nresolution 100\n", 1,
-                  "mapsize_x", "exceeds the limit"},
-    MalformedCase{"trailing_data", kHeader + kSmallRows + "\n0 0\n", 8, "trailing data",
-                  "extra content"}};
+    MalformedCase{"impossible_size", "mapsize_x 9000000\nmapsize_y 20\nresolution 1\n", 1, "mapsize_x", "impossible"},
+    MalformedCase{"too_many_cells", "mapsize_x 5000000\nmapsize_y 5000000\nresolution 100\n", 1, "mapsize_x",
+                  "exceeds the limit"},
+    MalformedCase{"trailing_data", kHeader + kSmallRows + "\n0 0\n", 8, "trailing data", "extra content"}};
 
 TEST(RowildMapLoader, ThrowsInputErrorAtLineAndField) {
   for (const MalformedCase& c : kRowildMalformedCases) {
@@ -113,8 +102,7 @@ TEST(RowildMapLoader, ThrowsInputErrorAtLineAndField) {
 }
 
 TEST(RowildMapLoader, MissingFileIsAnInputErrorForTheWholeFile) {
-  EXPECT_TRUE(
-      ThrowsInputError([] { LoadRowildMap("/nonexistent/map.dat"); }, 0, "", "cannot open"));
+  EXPECT_TRUE(ThrowsInputError([] { LoadRowildMap("/nonexistent/map.dat"); }, 0, "", "cannot open"));
 }
 
 // wean.dat rewritten with RoWild's header must give the very same grid.

@@ -51,8 +51,7 @@ TEST_F(WeanConvention, DefaultPFreeMakesTheCorridorFreeAndTheHallOpen) {
   const OccupancyGrid& g = *as_free_;
   ASSERT_EQ(g.size_x(), 800);
   ASSERT_EQ(g.size_y(), 800);
-  for (const auto& c : kCorridorCells)
-    EXPECT_EQ(g.At(c[0], c[1]), CellState::kFree) << c[0] << "," << c[1];
+  for (const auto& c : kCorridorCells) EXPECT_EQ(g.At(c[0], c[1]), CellState::kFree) << c[0] << "," << c[1];
   // The open areas are metres across (measured: 4.9 m), room for 5 m readings.
   EXPECT_GT(MostOpenFreeCell(g), 3.0f);
 }
@@ -60,8 +59,7 @@ TEST_F(WeanConvention, DefaultPFreeMakesTheCorridorFreeAndTheHallOpen) {
 TEST_F(WeanConvention, PoccupiedPutsWallsInTheCorridorAndNoOpenSpaceRemains) {
   RC_REQUIRE_SHARED_DATA("wean/wean.dat");
   const OccupancyGrid& g = *as_occupied_;
-  for (const auto& c : kCorridorCells)
-    EXPECT_EQ(g.At(c[0], c[1]), CellState::kOccupied) << c[0] << "," << c[1];
+  for (const auto& c : kCorridorCells) EXPECT_EQ(g.At(c[0], c[1]), CellState::kOccupied) << c[0] << "," << c[1];
   // The "free" space is now the walls: nowhere is more than about a metre
   // from an obstacle (measured: 1.3 m).
   EXPECT_LT(MostOpenFreeCell(g), 1.5f);

@@ -11,11 +11,11 @@
 #include "backends/calibration/sact_kernel_record.h"
 #include "common/input_error.h"
 #include "robocore/collision/exact_overlap_reference.h"
+#include "support/input_error_expectations.h"
 #include "support/test_data.h"
 #include "workloads/movebot/arm_scene.h"
 #include "workloads/movebot/locobot_arm.h"
 #include "workloads/movebot/obstacle_file.h"
-#include "support/input_error_expectations.h"
 
 namespace rc {
 namespace {
@@ -66,7 +66,8 @@ TEST(LocobotArm, LinkAxesStayOrthonormalAndLimitsAreChecked) {
 }
 
 TEST(ObstacleFile, ReadsRowildFormatWithCommentsAndRotations) {
-  std::istringstream in("# a comment\n\n0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6\n0.0, 0.0, 1.5707963267948966, 0, 0, 0, 1, 1, 0\n");
+  std::istringstream in(
+      "# a comment\n\n0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6\n0.0, 0.0, 1.5707963267948966, 0, 0, 0, 1, 1, 0\n");
   const auto obstacles = ReadObstacleFile(in, "obs.txt");
   ASSERT_EQ(obstacles.size(), 2u);
   EXPECT_EQ(obstacles[0].line, 3);
@@ -128,8 +129,8 @@ TEST(ArmScene, RotatedAndAlignedObstaclesAnswerAsTheExactReference) {
     o.box.centre = {pos(rng), pos(rng), pos(rng) + 0.3};
     o.box.half = {size(rng), size(rng), size(rng)};
     if (i % 3 != 0)  // two thirds rotated, a third axis-aligned; two share a rotation
-      o.box.axes = (Eigen::AngleAxisd(i % 3 == 1 ? 0.7 : angle(rng), Eigen::Vector3d(1, 2, 3).normalized()))
-                       .toRotationMatrix();
+      o.box.axes =
+          (Eigen::AngleAxisd(i % 3 == 1 ? 0.7 : angle(rng), Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
     obstacles.push_back(o);
   }
   const ArmScene scene = ArmScene::FromObstacles(obstacles);

@@ -11,9 +11,9 @@
 #include "delibot/synthetic_world.h"
 #include "maps/mrpt/mrpt_map_dispatch.h"
 #include "mrpt/mrpt_test_data.h"
+#include "support/temp_dir.h"
 #include "traces/mrpt/mrpt_rawlog_reader.h"
 #include "workloads/delibot/mrpt/delibot_engine.h"
-#include "support/temp_dir.h"
 
 namespace rc {
 namespace {

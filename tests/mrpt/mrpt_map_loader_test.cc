@@ -3,9 +3,9 @@
 // archives that must become InputErrors.
 #include <cmath>
 #include <cstdint>
-#include <iostream>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 
 #include <gtest/gtest.h>
@@ -169,15 +169,16 @@ std::string InputErrorText(Load&& load) {
 // zlib reports a corrupt stream as -1, which reached the reader as SIZE_MAX
 // bytes read (an out-of-bounds copy).
 TEST(MrptArchiveBadInput, CorruptGzipStream) {
-  const std::string path = WriteBytes("corrupt.gridmap.gz", std::string("\x1f\x8b\x08\x00", 4) + std::string(60, '\x7f'));
+  const std::string path =
+      WriteBytes("corrupt.gridmap.gz", std::string("\x1f\x8b\x08\x00", 4) + std::string(60, '\x7f'));
   EXPECT_NE(InputErrorText([&] { LoadMrptGridmap(path); }).find("corrupt gzip stream"), std::string::npos);
 }
 
 // MRPT allocated the keyframe count of the header before finding the file
 // too short: minutes of allocation for 79 bytes.
 TEST(MrptArchiveBadInput, SimplemapClaimingMoreKeyframesThanBytes) {
-  const std::string path =
-      WriteBytes("huge.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 1) + Uint32(1000000000) + std::string(40, '\0'));
+  const std::string path = WriteBytes("huge.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 1) + Uint32(1000000000) +
+                                                            std::string(40, '\0'));
   EXPECT_NE(InputErrorText([&] { LoadMrptSimplemap(path); }).find("1000000000 keyframes"), std::string::npos);
 }
 
@@ -199,10 +200,9 @@ std::string Serialized(const mrpt::serialization::CSerializable& object) {
 // A version-0 simplemap keyframe whose pose is not a 2D pose PDF (here a
 // 3D one): MRPT read it as a null pointer and converted it to 3D through it.
 TEST(MrptArchiveBadInput, Version0SimplemapWithA3dPoseIsAnInputError) {
-  const std::string path =
-      WriteBytes("v0_3d_pose.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 0) + Uint32(1) +
-                                             Serialized(mrpt::poses::CPose3DPDFGaussian()) +
-                                             Serialized(mrpt::obs::CSensoryFrame()));
+  const std::string path = WriteBytes("v0_3d_pose.simplemap", ObjectHead("mrpt::maps::CSimpleMap", 0) + Uint32(1) +
+                                                                  Serialized(mrpt::poses::CPose3DPDFGaussian()) +
+                                                                  Serialized(mrpt::obs::CSensoryFrame()));
   const std::string text = InputErrorText([&] { LoadMrptSimplemap(path); });
   EXPECT_NE(text.find("keyframe pose 0 (not a mrpt::poses::CPosePDF)"), std::string::npos) << text;
   EXPECT_NE(text.find("'mrpt::poses::CPose3DPDFGaussian'"), std::string::npos) << text;
@@ -314,8 +314,7 @@ TEST(SimplemapGridBound, NegativeOrNanRangesAreInputErrors) {
     simple.get(1, pose, frame);
     frame->getObservationByClass<mrpt::obs::CObservation2DRangeScan>()->setScanRange(2, bad);
     const std::string path = SaveSimplemap("negative.simplemap", simple);
-    const InputError e =
-        test::InputErrorFrom([&] { LoadMrptSimplemap(path, 0.25); }, "range " + std::to_string(bad));
+    const InputError e = test::InputErrorFrom([&] { LoadMrptSimplemap(path, 0.25); }, "range " + std::to_string(bad));
     EXPECT_EQ(e.field(), "keyframe 1 observation 0 range 2");
     EXPECT_NE(std::string(e.what()).find("is not a distance"), std::string::npos) << e.what();
   }

@@ -1,7 +1,7 @@
 // MRPT .rawlog input: MRPT's own example log, both rawlog forms, and the
 // corrupt and truncated archives that must become InputErrors.
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -43,7 +43,7 @@ InputError ReadingError(const std::string& path) {
 SensorTrace SmallTrace() {
   const OccupancyGrid g = test::AsymmetricRoom();
   SensorTrace trace = test::DriveThrough(g, test::RoomTour(), 0.5, 0.02, 3).trace;
-  for (auto& scan : trace.scans) scan.time_s += 1.2e9;  // a realistic epoch time
+  for (auto& scan : trace.scans) scan.time_s += 1.2e9;                          // a realistic epoch time
   trace.scans[2].ranges_m[7] = static_cast<float>(trace.geometry.max_range_m);  // one "no return"
   return trace;
 }
@@ -107,7 +107,7 @@ TEST(MrptRawlogReader, BothFormsGiveTheSameTrace) {
   TraceReadStats stats;
   const SensorTrace from_observations = ReadMrptRawlog(observations, {}, &stats);
   EXPECT_EQ(stats.odometry_records, static_cast<long>(trace.scans.size()));  // CObservationOdometry
-  ExpectSameTrace(trace, from_observations, 1e-9);  // absolute poses, double precision
+  ExpectSameTrace(trace, from_observations, 1e-9);                           // absolute poses, double precision
   // The actions form stores increments, composed back on reading.
   ExpectSameTrace(trace, ReadMrptRawlog(actions), 1e-5);
 }

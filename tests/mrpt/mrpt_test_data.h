@@ -12,9 +12,9 @@ inline std::string MrptDatasetPath(const std::string& name) { return "/usr/share
 
 }  // namespace rc::test
 
-#define RC_REQUIRE_MRPT_DATASET(name)                                                             \
-  do {                                                                                            \
-    if (!std::filesystem::exists(::rc::test::MrptDatasetPath(name)))                              \
-      GTEST_SKIP() << "MRPT dataset absent: " << ::rc::test::MrptDatasetPath(name)                \
-                   << " (install mrpt-common, see scripts/setup)";                                \
+#define RC_REQUIRE_MRPT_DATASET(name)                                              \
+  do {                                                                             \
+    if (!std::filesystem::exists(::rc::test::MrptDatasetPath(name)))               \
+      GTEST_SKIP() << "MRPT dataset absent: " << ::rc::test::MrptDatasetPath(name) \
+                   << " (install mrpt-common, see scripts/setup)";                 \
   } while (0)

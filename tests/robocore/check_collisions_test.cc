@@ -86,7 +86,8 @@ TEST(CheckCollisions, ResultsAreCollideBatchsAndTheRecordIsSactKernelRecords) {
   RoboCoreContext configured;
   configured.ConfigRoboCore(ShippedStepProgram(StepProgramKind::kSactTest));
   configured.ConfigDecode({{FetchKind::kTreeNode, 32}});
-  const FlatBoxTree<float> tree_f(BuildMedianSplitTree(std::vector<Aabbd>(w.tree.boxes().begin(), w.tree.boxes().end())));
+  const FlatBoxTree<float> tree_f(
+      BuildMedianSplitTree(std::vector<Aabbd>(w.tree.boxes().begin(), w.tree.boxes().end())));
   std::vector<Obbf> obbs_f;
   for (const Obbd& o : w.obbs) obbs_f.push_back(o.Cast<float>());
   CollisionOptions<float> bfs;
@@ -114,7 +115,11 @@ TEST(CheckCollisions, RejectsAProgramWithoutASactSection) {
   // SACT micro-ops out of stage order are caught at configuration.
   std::string text = "loop:\n LOAD box, node\n PRE f, obb, box\n";
   for (int k = 0; k < 15; ++k)
-    text += std::string(k < 6 ? " BOX s, f, " : " EDGE s, f, ") + std::to_string(k < 6 ? (k == 0 ? 1 : k == 1 ? 0 : k) : k - 6) +
+    text += std::string(k < 6 ? " BOX s, f, " : " EDGE s, f, ") +
+            std::to_string(k < 6 ? (k == 0   ? 1
+                                    : k == 1 ? 0
+                                             : k)
+                                 : k - 6) +
             "\n RETURN_IF s\n";
   EXPECT_THROW(robocore.ConfigRoboCore(Program(text + " PUSH o\n")), std::invalid_argument);
   // A RETURN_IF before its axis is tested.

@@ -29,8 +29,9 @@ OccupancyGrid RandomGrid(int sx, int sy, double r, double occupied_fraction, std
   for (int x = 0; x < sx; ++x)
     for (int y = 0; y < sy; ++y) {
       const double u = s.Uniform();
-      g.Set(x, y, u < occupied_fraction ? CellState::kOccupied
-                                        : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
+      g.Set(x, y,
+            u < occupied_fraction ? CellState::kOccupied
+                                  : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
     }
   return g;
 }
@@ -78,8 +79,8 @@ void ExpectHitsEqualSingleQueries(const RayCastScene& scene, const RayBatch& bat
     const RayHit single = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m);
     // Bit for bit, not merely ==: -0.0f and 0.0f would compare equal.
     ASSERT_EQ(std::memcmp(&hits[i].range_m, &single.range_m, sizeof(float)), 0)
-        << what << " " << ToString(scene.method()) << " query " << i << " (" << q.origin_x_m << ", "
-        << q.origin_y_m << ", " << q.angle_rad << "): " << hits[i].range_m << " vs " << single.range_m;
+        << what << " " << ToString(scene.method()) << " query " << i << " (" << q.origin_x_m << ", " << q.origin_y_m
+        << ", " << q.angle_rad << "): " << hits[i].range_m << " vs " << single.range_m;
     ASSERT_EQ(hits[i].nodes, single.nodes) << what << " " << ToString(scene.method()) << " query " << i;
   }
 }

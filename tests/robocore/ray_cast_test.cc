@@ -22,8 +22,9 @@ OccupancyGrid RandomGrid(int sx, int sy, double r, double occupied_fraction, std
   for (int x = 0; x < sx; ++x)
     for (int y = 0; y < sy; ++y) {
       const double u = s.Uniform();
-      g.Set(x, y, u < occupied_fraction ? CellState::kOccupied
-                                        : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
+      g.Set(x, y,
+            u < occupied_fraction ? CellState::kOccupied
+                                  : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
     }
   return g;
 }

@@ -80,8 +80,8 @@ TEST(DelibotScheduleTest, InjectionCheckCastsArePriced) {
   s.mcl.injection_check_updates = 10;
   const DelibotResult r = RunDelibot(grid, trace.trace, nullptr, s);
   ASSERT_TRUE(r.priced);
-  const std::uint64_t update_rays = static_cast<std::uint64_t>(s.mcl.particle_count) *
-                                    s.mcl.beams.Count(trace.trace.geometry.beam_count);
+  const std::uint64_t update_rays =
+      static_cast<std::uint64_t>(s.mcl.particle_count) * s.mcl.beams.Count(trace.trace.geometry.beam_count);
   int checked_rows = 0;
   for (const DelibotRow& row : r.rows) {
     if (row.rays == 0) continue;

@@ -28,9 +28,9 @@ namespace rc {
 namespace {
 
 struct SceneDecisions {
-  std::vector<int> adaptive_switches;   // iterations at which adaptive switched
-  std::vector<int> oracle_changes;      // priced iterations at which the oracle's choice changed
-  int simt_wins = 0, robocore_wins = 0; // updates on which each is cheaper (the pair's oracle, no switch cost)
+  std::vector<int> adaptive_switches;       // iterations at which adaptive switched
+  std::vector<int> oracle_changes;          // priced iterations at which the oracle's choice changed
+  int simt_wins = 0, robocore_wins = 0;     // updates on which each is cheaper (the pair's oracle, no switch cost)
   double min_ratio = 0.0, max_ratio = 0.0;  // simt / robocore cycles per update
 };
 
@@ -88,8 +88,8 @@ void ExpectDecisions(const DelibotResult& r, const Expected& e, const std::strin
   const std::string what = scene + " " + ToString(e.caster);
   EXPECT_EQ(d.adaptive_switches, e.adaptive_switches) << what << ": adaptive switched at " << Show(d.adaptive_switches);
   EXPECT_EQ(d.oracle_changes, e.oracle_changes) << what << ": the oracle changed at " << Show(d.oracle_changes);
-  EXPECT_EQ(d.simt_wins, e.simt_wins) << what << ": simt/robocore per update in [" << d.min_ratio << ", "
-                                      << d.max_ratio << "]";
+  EXPECT_EQ(d.simt_wins, e.simt_wins) << what << ": simt/robocore per update in [" << d.min_ratio << ", " << d.max_ratio
+                                      << "]";
   EXPECT_EQ(d.robocore_wins, e.robocore_wins) << what;
   EXPECT_LE(r.pricing.gap_to_oracle_percent, max_gap_percent) << what;
   EXPECT_EQ(r.pricing.oracle_lasting_changes_followed, r.pricing.oracle_lasting_changes) << what;

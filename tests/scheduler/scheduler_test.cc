@@ -110,7 +110,8 @@ TEST(SchedulerTest, ParsesCandidates) {
 TEST(SchedulerTest, AdaptiveFollowsThePreviousIterationsCheapestCandidate) {
   // Candidates {simt, robocore}; robocore cheaper in iterations 3-7.
   std::vector<std::vector<double>> cycles;
-  for (int i = 0; i < 12; ++i) cycles.push_back(i >= 3 && i < 8 ? std::vector<double>{100, 60} : std::vector<double>{60, 100});
+  for (int i = 0; i < 12; ++i)
+    cycles.push_back(i >= 3 && i < 8 ? std::vector<double>{100, 60} : std::vector<double>{60, 100});
   SchedulerOptions o = ParseSchedulerPolicy("adaptive", {"simt", "robocore"});
   o.switch_cost_cycles = 0.0;
   OnlineScheduler s(o, {"simt", "robocore"});
@@ -134,7 +135,8 @@ TEST(SchedulerTest, AdaptiveSwitchesOnlyOnceTheSavingsPayForTheSwitch) {
   EXPECT_EQ(SwitchIterations(s, Costs(cycles)), (std::vector<int>{4}));
   // Savings that alternate with losses never add up: no switch.
   std::vector<std::vector<double>> alternating;
-  for (int i = 0; i < 20; ++i) alternating.push_back(i % 2 ? std::vector<double>{110, 100} : std::vector<double>{100, 130});
+  for (int i = 0; i < 20; ++i)
+    alternating.push_back(i % 2 ? std::vector<double>{110, 100} : std::vector<double>{100, 130});
   OnlineScheduler t(o, {"simt", "robocore"});
   EXPECT_TRUE(SwitchIterations(t, Costs(alternating)).empty());
 }

@@ -16,8 +16,7 @@ using test::MakeRoomWithDoor;
 
 // Samples every segment of the polyline at most `step_m` apart (end points
 // included) and returns the smallest exact clearance seen.
-double MinClearanceAlong(const OccupancyGrid& grid, const std::vector<RoutePoint>& polyline,
-                         double step_m) {
+double MinClearanceAlong(const OccupancyGrid& grid, const std::vector<RoutePoint>& polyline, double step_m) {
   double worst = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i + 1 < polyline.size(); ++i) {
     const RoutePoint& a = polyline[i];
@@ -33,9 +32,7 @@ double MinClearanceAlong(const OccupancyGrid& grid, const std::vector<RoutePoint
   return worst;
 }
 
-bool SamePoint(const RoutePoint& a, const RoutePoint& b) {
-  return a.x_m == b.x_m && a.y_m == b.y_m;
-}
+bool SamePoint(const RoutePoint& a, const RoutePoint& b) { return a.x_m == b.x_m && a.y_m == b.y_m; }
 
 TEST(FreeSpaceRoute, RouteIsCollisionFreeForTheDiscAtEverySample) {
   const OccupancyGrid grid = MakeRoomWithDoor();
@@ -48,8 +45,7 @@ TEST(FreeSpaceRoute, RouteIsCollisionFreeForTheDiscAtEverySample) {
     const FreeSpaceRoute route = PlanFreeSpaceRoute(grid, options);
     ASSERT_GE(route.waypoints.size(), 2u);
     ASSERT_GE(route.polyline.size(), 2u);
-    EXPECT_GE(MinClearanceAlong(grid, route.polyline, 0.01), options.robot_radius_m - 1e-9)
-        << "seed " << seed;
+    EXPECT_GE(MinClearanceAlong(grid, route.polyline, 0.01), options.robot_radius_m - 1e-9) << "seed " << seed;
     // The polyline starts and ends at the waypoints and visits each in order.
     EXPECT_TRUE(SamePoint(route.polyline.front(), route.waypoints.front()));
     EXPECT_TRUE(SamePoint(route.polyline.back(), route.waypoints.back()));
@@ -112,10 +108,10 @@ TEST(FreeSpaceRoute, PathBetweenRoomsGoesThroughTheDoorAndIsShort) {
 TEST(FreeSpaceRoute, SegmentCheckRejectsWallsAndAcceptsTheDoor) {
   const OccupancyGrid grid = MakeRoomWithDoor();
   const ReachableFreeSpace space(grid, 0.2);
-  EXPECT_FALSE(space.SegmentIsReachable({3.0, 1.0}, {7.0, 1.0}));   // through the wall
-  EXPECT_TRUE(space.SegmentIsReachable({3.0, 4.0}, {7.0, 4.0}));    // through the door
-  EXPECT_FALSE(space.SegmentIsReachable({3.0, 3.65}, {7.0, 3.65})); // door, but too close to its edge
-  EXPECT_FALSE(space.IsReachablePoint({0.1, 4.0}));                 // touching the outer wall
+  EXPECT_FALSE(space.SegmentIsReachable({3.0, 1.0}, {7.0, 1.0}));    // through the wall
+  EXPECT_TRUE(space.SegmentIsReachable({3.0, 4.0}, {7.0, 4.0}));     // through the door
+  EXPECT_FALSE(space.SegmentIsReachable({3.0, 3.65}, {7.0, 3.65}));  // door, but too close to its edge
+  EXPECT_FALSE(space.IsReachablePoint({0.1, 4.0}));                  // touching the outer wall
   EXPECT_FALSE(space.IsReachablePoint({-1.0, 4.0}));
 }
 
@@ -125,8 +121,7 @@ TEST(FreeSpaceRoute, SameSeedSameRouteOtherSeedOtherRoute) {
   const FreeSpaceRoute a = PlanFreeSpaceRoute(grid, options);
   const FreeSpaceRoute b = PlanFreeSpaceRoute(grid, options);
   ASSERT_EQ(a.polyline.size(), b.polyline.size());
-  for (std::size_t i = 0; i < a.polyline.size(); ++i)
-    EXPECT_TRUE(SamePoint(a.polyline[i], b.polyline[i]));
+  for (std::size_t i = 0; i < a.polyline.size(); ++i) EXPECT_TRUE(SamePoint(a.polyline[i], b.polyline[i]));
   options.seed = 2;
   const FreeSpaceRoute c = PlanFreeSpaceRoute(grid, options);
   EXPECT_FALSE(SamePoint(a.waypoints[0], c.waypoints[0]) && SamePoint(a.waypoints[1], c.waypoints[1]));

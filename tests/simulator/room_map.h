@@ -10,8 +10,7 @@
 namespace rc::test {
 
 // Marks the cells whose centres fall inside [x0, x1) x [y0, y1) (m).
-inline void FillRect(OccupancyGrid& grid, double x0, double y0, double x1, double y1,
-                     CellState state) {
+inline void FillRect(OccupancyGrid& grid, double x0, double y0, double x1, double y1, CellState state) {
   const double r = grid.resolution_m();
   for (int ix = 0; ix < grid.size_x(); ++ix)
     for (int iy = 0; iy < grid.size_y(); ++iy) {

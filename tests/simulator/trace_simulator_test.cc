@@ -34,8 +34,7 @@ std::vector<float> DdaRanges(const OccupancyGrid& grid, const Pose2& truth, cons
   NoFetchVisitor none;
   std::vector<float> out;
   for (int i = 0; i < g.beam_count; ++i)
-    out.push_back(CastDda(grid, sensor.x, sensor.y, sensor.theta + g.BeamAngle(i), g.max_range_m, none)
-                      .range_m);
+    out.push_back(CastDda(grid, sensor.x, sensor.y, sensor.theta + g.BeamAngle(i), g.max_range_m, none).range_m);
   return out;
 }
 
@@ -257,10 +256,10 @@ TEST(TraceSimulator, ExplicitOdometryStartIsUsed) {
 
 // Per-beam statistics of readings against the exact ranges.
 struct BeamComparison {
-  long returns = 0;          // beams whose exact range is a real return
-  long at_max = 0;           // ... read as max range
-  long shorter = 0;          // ... read shorter than exact by > 1 mm
-  long longer = 0;           // ... read longer than exact by > 1 mm
+  long returns = 0;  // beams whose exact range is a real return
+  long at_max = 0;   // ... read as max range
+  long shorter = 0;  // ... read shorter than exact by > 1 mm
+  long longer = 0;   // ... read longer than exact by > 1 mm
   long shorter_with_shorter_neighbour = 0;
   double sum_error = 0.0, sum_squared_error = 0.0;
   double sum_short_fraction = 0.0;

@@ -59,8 +59,7 @@ template <typename F>
     if (e.line() != line || e.field() != field || what.find(problem_part) == std::string::npos)
       return ::testing::AssertionFailure()
              << "InputError mismatch: got line " << e.line() << ", field '" << e.field() << "', message '" << what
-             << "'; expected line " << line << ", field '" << field << "', message containing '" << problem_part
-             << "'";
+             << "'; expected line " << line << ", field '" << field << "', message containing '" << problem_part << "'";
     return ::testing::AssertionSuccess() << what;
   } catch (const std::exception& e) {
     return ::testing::AssertionFailure() << "threw a different exception: " << e.what();

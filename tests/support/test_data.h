@@ -15,9 +15,9 @@ inline std::string SharedDataPath(const std::string& relative) {
 
 }  // namespace rc::test
 
-#define RC_REQUIRE_SHARED_DATA(relative)                                              \
-  do {                                                                                \
-    if (!std::filesystem::exists(::rc::test::SharedDataPath(relative)))               \
+#define RC_REQUIRE_SHARED_DATA(relative)                                             \
+  do {                                                                               \
+    if (!std::filesystem::exists(::rc::test::SharedDataPath(relative)))              \
       GTEST_SKIP() << "shared data absent: " << ::rc::test::SharedDataPath(relative) \
-                   << " (expected ../shared/data beside the project root)";           \
+                   << " (expected ../shared/data beside the project root)";          \
   } while (0)

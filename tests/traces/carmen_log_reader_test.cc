@@ -39,8 +39,8 @@ struct Flaser {
   std::vector<std::string> Fields() const {
     std::vector<std::string> f = {"FLASER", std::to_string(declared_beams)};
     f.insert(f.end(), ranges.begin(), ranges.end());
-    for (double v : {odom_x + offset_m * std::cos(odom_theta), odom_y + offset_m * std::sin(odom_theta),
-                     odom_theta, odom_x, odom_y, odom_theta, ts})
+    for (double v : {odom_x + offset_m * std::cos(odom_theta), odom_y + offset_m * std::sin(odom_theta), odom_theta,
+                     odom_x, odom_y, odom_theta, ts})
       f.push_back(Num(v));
     f.push_back("robot-host");
     f.push_back(Num(ts + 0.01));
@@ -64,8 +64,8 @@ struct RobotLaser {
   double max_range = 30.0;
 
   std::vector<std::string> Fields() const {
-    std::vector<std::string> f = {"ROBOTLASER1", "0", Num(-kPi / 2), Num(kPi), Num(kPi / 360),
-                                  Num(max_range), "0.01", "0", std::to_string(beams)};
+    std::vector<std::string> f = {"ROBOTLASER1", "0", Num(-kPi / 2),        Num(kPi), Num(kPi / 360), Num(max_range),
+                                  "0.01",        "0", std::to_string(beams)};
     f.insert(f.end(), beams, "4.25");
     f.push_back(std::to_string(remissions));
     f.insert(f.end(), remissions, "0.5");
@@ -78,8 +78,7 @@ struct RobotLaser {
   std::string Text() const { return Join(Fields()); }
 };
 
-const std::string kHeader =
-    "# CARMEN Logfile\n# file format is one message per line\n";
+const std::string kHeader = "# CARMEN Logfile\n# file format is one message per line\n";
 const std::string kOdom = "ODOM 1.0 2.0 0.5 0.1 0.0 0.0 999.9 robot-host 1000.0\n";
 
 TEST(CarmenLogReader, FlaserRecordsWithDefaultGeometry) {
@@ -88,9 +87,8 @@ TEST(CarmenLogReader, FlaserRecordsWithDefaultGeometry) {
   a.ranges[0] = "0.66";
   b.ts = 1000.5;
   b.odom_x = 1.5;
-  const std::string path =
-      dir.Write("run.clf", kHeader + "PARAM robot_use_sonar off\n" + kOdom + a.Text() +
-                               "RAWLASER1 0 -1.57 3.14 0.017 81.9 0.01 0 0 0\n" + b.Text());
+  const std::string path = dir.Write("run.clf", kHeader + "PARAM robot_use_sonar off\n" + kOdom + a.Text() +
+                                                    "RAWLASER1 0 -1.57 3.14 0.017 81.9 0.01 0 0 0\n" + b.Text());
   TraceReadStats stats;
   const SensorTrace trace = ReadCarmenLog(path, {}, &stats);
   EXPECT_EQ(trace.format, "carmen");
@@ -128,9 +126,10 @@ TEST(CarmenLogReader, OddBeamCountsSpanBothEnds) {
 
 TEST(CarmenLogReader, ParamsSetFlaserResolutionAndMaxRange) {
   TempDir dir;
-  const std::string path = dir.Write(
-      "params.clf", "PARAM laser_front_laser_resolution 0.5 0.0 host 0.0\n"
-                    "PARAM robot_front_laser_max 50.0\n" + WithBeams(361).Text());
+  const std::string path = dir.Write("params.clf",
+                                     "PARAM laser_front_laser_resolution 0.5 0.0 host 0.0\n"
+                                     "PARAM robot_front_laser_max 50.0\n" +
+                                         WithBeams(361).Text());
   const SensorTrace trace = ReadCarmenLog(path);
   EXPECT_DOUBLE_EQ(trace.geometry.angle_increment_rad, 0.5 * kPi / 180);
   EXPECT_DOUBLE_EQ(trace.geometry.max_range_m, 50.0);
@@ -291,8 +290,7 @@ TEST(CarmenLogReaderBadInput, ParamChangesGeometryAfterFirstScan) {
   TempDir dir;
   Flaser b;
   b.ts = 2000.0;
-  const std::string path = dir.Write("late_param.clf", Flaser().Text() +
-                                                           "PARAM robot_front_laser_max 40\n" + b.Text());
+  const std::string path = dir.Write("late_param.clf", Flaser().Text() + "PARAM robot_front_laser_max 40\n" + b.Text());
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 2, "robot_front_laser_max");
 }
 

@@ -8,9 +8,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_data.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "traces/cmu_laser_geometry.h"
 #include "traces/record_fields.h"
 
@@ -79,8 +79,8 @@ TEST(CmuLogReader, ZeroRangeIsAValidReading) {
 TEST(CmuLogReader, GeometryIsTheWeanLaser) {
   const LaserGeometry g = CmuLaserGeometry();
   EXPECT_EQ(g.beam_count, 180);
-  EXPECT_DOUBLE_EQ(g.BeamAngle(0), -kPi / 2);       // first reading: the right
-  EXPECT_DOUBLE_EQ(g.BeamAngle(90), 0.0);           // straight ahead
+  EXPECT_DOUBLE_EQ(g.BeamAngle(0), -kPi / 2);  // first reading: the right
+  EXPECT_DOUBLE_EQ(g.BeamAngle(90), 0.0);      // straight ahead
   EXPECT_NEAR(g.BeamAngle(179), kPi / 2 - kPi / 180, 1e-15);
   EXPECT_DOUBLE_EQ(g.max_range_m, 81.83);
   EXPECT_DOUBLE_EQ(g.offset_forward_m, 0.25);
@@ -208,8 +208,8 @@ TEST(CmuLogReader, SmallStepBackInTimeIsACountedGlitch) {
   CmuLaserLine a, b, c, d;
   a.ts = 5.0;
   b.ts = 5.2;
-  c.ts = 5.1;  // 0.1 s back
-  d.ts = 5.05; // 0.05 s back again
+  c.ts = 5.1;   // 0.1 s back
+  d.ts = 5.05;  // 0.05 s back again
   const std::string path = dir.Write("glitch.log", a.Text() + b.Text() + c.Text() + d.Text());
   TraceReadStats stats;
   const SensorTrace trace = ReadCmuLog(path, {}, &stats);
@@ -221,8 +221,8 @@ TEST(CmuLogReader, SmallStepBackInTimeIsACountedGlitch) {
   // Just under the limit is still a glitch; the limit itself is an error.
   CmuLaserLine e;
   e.ts = 5.2 - kMaxClockGlitchS;
-  ExpectInputError([&] { ReadCmuLog(dir.Write("limit.log", a.Text() + b.Text() + e.Text())); },
-                   dir.Path("limit.log"), 3, "ts");
+  ExpectInputError([&] { ReadCmuLog(dir.Write("limit.log", a.Text() + b.Text() + e.Text())); }, dir.Path("limit.log"),
+                   3, "ts");
 }
 
 // A log of another robot states its own mount in every record: it is
@@ -310,15 +310,13 @@ TEST_P(CmuRealLog, LoadsWithoutErrorsAndPlausibleReadings) {
         max_echo = std::max(max_echo, r);
     }
   }
-  EXPECT_GT(min_range, 0.3f);   // no zero readings in these logs (37 cm is the least)
-  EXPECT_LT(max_echo, 60.0f);   // largest real echo: 57.67 m, far from the codes
+  EXPECT_GT(min_range, 0.3f);  // no zero readings in these logs (37 cm is the least)
+  EXPECT_LT(max_echo, 60.0f);  // largest real echo: 57.67 m, far from the codes
 }
 
 INSTANTIATE_TEST_SUITE_P(Wean, CmuRealLog,
-                         ::testing::Values(RealLog{"robotdata1.log", 713, 1505},
-                                           RealLog{"robotdata2.log", 2251, 3126},
-                                           RealLog{"robotdata3.log", 1241, 1735},
-                                           RealLog{"robotdata4.log", 600, 823}),
+                         ::testing::Values(RealLog{"robotdata1.log", 713, 1505}, RealLog{"robotdata2.log", 2251, 3126},
+                                           RealLog{"robotdata3.log", 1241, 1735}, RealLog{"robotdata4.log", 600, 823}),
                          [](const auto& info) { return std::string(info.param.name).substr(0, 10); });
 
 TEST(CmuRealLog, FirstRecordOfRobotdata1) {

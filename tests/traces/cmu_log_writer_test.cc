@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "common/text_fields.h"
-#include "support/test_data.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "traces/cmu_laser_geometry.h"
 #include "traces/cmu_log_reader.h"
 

@@ -37,8 +37,7 @@ TEST(CsvTable, WritesTypedCellsAndReadsThemBack) {
   const CsvContents csv = ReadCsv(path);
   EXPECT_EQ(csv.header, (std::vector<std::string>{"iteration", "time_s", "est_x_m", "backend", "cycles"}));
   ASSERT_EQ(csv.rows.size(), 3u);
-  EXPECT_EQ(csv.rows[0],
-            (std::vector<std::string>{"0", "0.5", "0.333333333", "simt", "18446744073709551615"}));
+  EXPECT_EQ(csv.rows[0], (std::vector<std::string>{"0", "0.5", "0.333333333", "simt", "18446744073709551615"}));
   EXPECT_EQ(csv.rows[1], (std::vector<std::string>{"1", "-2.5e-07", "", "tta+, \"cr\"", "-3"}));
   EXPECT_EQ(csv.rows[2], (std::vector<std::string>{"2", "1", "1e+21", "robo\ncore", "7"}));
   EXPECT_EQ(dir.FileCount(), 1);
@@ -172,7 +171,7 @@ TEST(CsvTimeline, HindsightColumnsAreAddedAtCommit) {
   options.timeline = true;
   options.hindsight_columns = {"oracle"};
   CsvTable table(dir.Path("t.csv"), {"i", "note"}, options);
-  table.AddRow({0, "a,b"});  // a quoted cell
+  table.AddRow({0, "a,b"});          // a quoted cell
   table.AddRow({1, "line\nbreak"});  // a quoted newline: rows are found by offset, not by line
   EXPECT_THROW(table.Commit(), std::logic_error);
   table.Commit([](std::size_t row) { return std::vector<CsvCell>{static_cast<int>(10 * row)}; });

@@ -31,9 +31,8 @@ SensorTrace TraceWithTimes(std::initializer_list<double> times) {
 
 TEST(GroundTruthIo, WriteThenReadIsExact) {
   TempDir dir;
-  const std::vector<GroundTruthPose> poses = {
-      {0.1, {1.0 / 3.0, -2.5e-7, kPi - 1e-12}, 0},
-      {1234567890.123456, {40.0000000001, 1e-300, -3.0}, 0}};
+  const std::vector<GroundTruthPose> poses = {{0.1, {1.0 / 3.0, -2.5e-7, kPi - 1e-12}, 0},
+                                              {1234567890.123456, {40.0000000001, 1e-300, -3.0}, 0}};
   const std::string path = dir.Path("truth.txt");
   WriteGroundTruth(path, poses);
   std::ifstream in(path);

@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_data.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "traces/cmu_log_reader.h"
 
 namespace rc {

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
-#include "support/test_data.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 
 namespace rc {
 namespace {
@@ -20,11 +20,9 @@ std::string Repeat(const std::string& token, int n) {
   return out;
 }
 
-const std::string kCmuLaser =
-    "L 100 200 0 125 200 0" + Repeat("300", 180) + " 1.5\n";
+const std::string kCmuLaser = "L 100 200 0 125 200 0" + Repeat("300", 180) + " 1.5\n";
 const std::string kRowild = "100 200 0" + Repeat("300", 180) + "\n";
-const std::string kFlaser361 =
-    "FLASER 361" + Repeat("3.0", 361) + " 1 2 0 1 2 0 10.0 host 10.1\n";
+const std::string kFlaser361 = "FLASER 361" + Repeat("3.0", 361) + " 1 2 0 1 2 0 10.0 host 10.1\n";
 
 TEST(DetectTraceFormat, ByContentNotExtension) {
   TempDir dir;
@@ -100,8 +98,8 @@ TEST(ReadTrace, RealLogsByAutoDetection) {
 // ---- Streaming: the same records as ReadTrace, one at a time. ----
 
 std::string CmuLaser(double ts, double x_cm) {
-  return "L " + std::to_string(x_cm) + " 200 0 " + std::to_string(x_cm + 25) + " 200 0" + Repeat("300", 180) +
-         " " + std::to_string(ts) + "\n";
+  return "L " + std::to_string(x_cm) + " 200 0 " + std::to_string(x_cm + 25) + " 200 0" + Repeat("300", 180) + " " +
+         std::to_string(ts) + "\n";
 }
 
 TEST(OpenTraceStream, ServesTheRecordsReadTraceReturns) {
@@ -135,8 +133,8 @@ TEST(OpenTraceStream, ServesTheRecordsReadTraceReturns) {
 // taken (or written) anything.
 TEST(OpenTraceStream, ValidatesTheWholeFileWhenOpened) {
   TempDir dir;
-  const std::string path =
-      dir.Write("bad.log", CmuLaser(1, 100) + CmuLaser(2, 101) + "L 102 200 nan 127 200 0" + Repeat("300", 180) + " 3\n");
+  const std::string path = dir.Write("bad.log", CmuLaser(1, 100) + CmuLaser(2, 101) + "L 102 200 nan 127 200 0" +
+                                                    Repeat("300", 180) + " 3\n");
   ExpectInputError([&] { OpenTraceStream(path, {}); }, path, 3, "theta");
   const std::string empty = dir.Write("empty.log", "O 1 2 0 1\n");
   ExpectInputError([&] { OpenTraceStream(empty, {}); }, empty, 0, "L records");

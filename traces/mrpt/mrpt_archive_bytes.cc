@@ -35,12 +35,11 @@ std::vector<unsigned char> ReadArchiveBytes(const std::string& path, const std::
       if (got == 0) break;
       // zlib's gzread returns -1 for a corrupt stream; it arrives here as
       // SIZE_MAX through MRPT's size_t (a finding of tests/fuzz).
-      if (got > sizeof chunk)
-        throw InputError(path, 0, "", "cannot read " + what + " file: corrupt gzip stream");
+      if (got > sizeof chunk) throw InputError(path, 0, "", "cannot read " + what + " file: corrupt gzip stream");
       if (bytes.size() + got > MemoryCapBytes())
-        throw InputError(path, 0, "", "the " + what + " file uncompresses to more than " +
-                                          std::to_string(bytes.size()) + " bytes and " +
-                                          DescribeOverCap(bytes.size() + got));
+        throw InputError(path, 0, "",
+                         "the " + what + " file uncompresses to more than " + std::to_string(bytes.size()) +
+                             " bytes and " + DescribeOverCap(bytes.size() + got));
       bytes.insert(bytes.end(), chunk, chunk + got);
     }
   } catch (const InputError&) {
@@ -177,12 +176,17 @@ struct ObjectList {
 //   CPose3DPDF::createFrom2D(*pdf).
 const std::vector<ObjectList>& CrashingObjectLists() {
   static const std::vector<ObjectList> lists = {
-      {"CActionCollection", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
+      {"CActionCollection",
+       [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
        {{"action", CLASS_ID(mrpt::obs::CAction)}}},
       // Version 0 and 1 start with a uint32 ID, version 0 then a timestamp.
-      {"CSensoryFrame", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 12 : v == 1 ? 4 : v == 2 ? 0 : -1; },
+      {"CSensoryFrame",
+       [](std::uint32_t v) -> std::ptrdiff_t {
+         return v == 0 ? 12 : v == 1 ? 4 : v == 2 ? 0 : -1;
+       },
        {{"observation", CLASS_ID(mrpt::obs::CObservation)}}},
-      {"CSimpleMap", [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
+      {"CSimpleMap",
+       [](std::uint32_t v) -> std::ptrdiff_t { return v == 0 ? 0 : -1; },
        {{"keyframe pose", CLASS_ID(mrpt::poses::CPosePDF)}, {"keyframe sensory frame", nullptr}}},
   };
   return lists;
@@ -237,8 +241,8 @@ void CheckMrptCrashFields(const std::vector<unsigned char>& bytes, const std::st
   for (const std::size_t at : HeadsOfClass(bytes, "CActionRobotMovement2D")) {
     ArchiveObjectHead head;
     if (!ReadObjectHeadAt(bytes, at, &head) || BareClassName(head.class_name) != "CActionRobotMovement2D") continue;
-    const std::string where = "the CActionRobotMovement2D (version " + std::to_string(head.version) +
-                              ") at byte " + std::to_string(at);
+    const std::string where =
+        "the CActionRobotMovement2D (version " + std::to_string(head.version) + ") at byte " + std::to_string(at);
     // Versions 2 to 7 start with the estimation method; all but odometry
     // (0) read the pose PDF object next. Versions 0 and 1 start with it.
     std::size_t pdf_at = head.data_offset;

@@ -19,8 +19,8 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include "common/input_error.h"
 #include "common/allocation_budget.h"
+#include "common/input_error.h"
 #include "common/memory_cap.h"
 #include "traces/mrpt/mrpt_archive_bytes.h"
 
@@ -75,8 +75,7 @@ class RawlogParser {
   SensorTrace Finish() {
     if (trace_.scans.empty())
       throw InputError(path_, 0, "scans",
-                       "no CObservation2DRangeScan" +
-                           (label_ ? " labelled '" + *label_ + "'" : std::string()) +
+                       "no CObservation2DRangeScan" + (label_ ? " labelled '" + *label_ + "'" : std::string()) +
                            (form_ == Form::kObservationsOnly ? " after a CObservationOdometry" : "") +
                            " in the rawlog: nothing to localize with");
     return std::move(trace_);
@@ -103,16 +102,14 @@ class RawlogParser {
 
   void HandleActions(const mrpt::obs::CActionCollection& actions) {
     const auto movement = actions.getBestMovementEstimation();
-    if (!movement)
-      Fail("action", "the CActionCollection has no CActionRobotMovement2D (odometry is required)");
+    if (!movement) Fail("action", "the CActionCollection has no CActionRobotMovement2D (odometry is required)");
     // rawOdometryIncrementReading is the odometer's own increment; other
     // estimation methods (scan matching) only fill the pose PDF.
     if (movement->estimationMethod != mrpt::obs::CActionRobotMovement2D::emOdometry && !movement->poseChange)
       Fail("action", "the CActionRobotMovement2D has no pose PDF");
-    const mrpt::poses::CPose2D increment =
-        movement->estimationMethod == mrpt::obs::CActionRobotMovement2D::emOdometry
-            ? movement->rawOdometryIncrementReading
-            : movement->poseChange->getMeanVal();
+    const mrpt::poses::CPose2D increment = movement->estimationMethod == mrpt::obs::CActionRobotMovement2D::emOdometry
+                                               ? movement->rawOdometryIncrementReading
+                                               : movement->poseChange->getMeanVal();
     if (!std::isfinite(increment.x()) || !std::isfinite(increment.y()) || !std::isfinite(increment.phi()))
       Fail("odometry increment", "not finite");
     const mrpt::poses::CPose2D composed =
@@ -206,13 +203,13 @@ class RawlogParser {
     const LaserGeometry& first = trace_.geometry;
     auto differs = [](double a, double b) { return std::abs(a - b) > kGeometryTolerance * std::max(1.0, std::abs(a)); };
     if (g.beam_count != first.beam_count)
-      Fail("scan size", std::to_string(g.beam_count) + " ranges, but the first scan had " +
-                            std::to_string(first.beam_count));
+      Fail("scan size",
+           std::to_string(g.beam_count) + " ranges, but the first scan had " + std::to_string(first.beam_count));
     if (differs(g.angle_increment_rad, first.angle_increment_rad) || differs(g.angle_min_rad, first.angle_min_rad))
       Fail("aperture", "the scan's aperture or mount yaw differs from the first scan's");
     if (differs(g.max_range_m, first.max_range_m))
-      Fail("maxRange", std::to_string(g.max_range_m) + " m, but the first scan had " +
-                           std::to_string(first.max_range_m) + " m");
+      Fail("maxRange",
+           std::to_string(g.max_range_m) + " m, but the first scan had " + std::to_string(first.max_range_m) + " m");
     if (differs(g.offset_forward_m, first.offset_forward_m))
       Fail("sensorPose", "the laser mount differs from the first scan's");
   }
@@ -263,12 +260,12 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
       ParseWithinBudget(budget, [&] { object = archive.ReadObject(); });
     } catch (const std::exception& e) {
       const bool over = dynamic_cast<const AllocationBudgetExceeded*>(&e) != nullptr;
-      throw InputError(path, 0, Entry(entry),
-                       "corrupt or truncated rawlog at byte " + std::to_string(offset) + " of " +
-                           std::to_string(bytes.size()) + " (uncompressed): " +
-                           (over ? "its objects declare sizes that would take more than " + DescribeBytes(budget) +
-                                       " of memory"
-                                 : MrptMessage(e.what())));
+      throw InputError(
+          path, 0, Entry(entry),
+          "corrupt or truncated rawlog at byte " + std::to_string(offset) + " of " + std::to_string(bytes.size()) +
+              " (uncompressed): " +
+              (over ? "its objects declare sizes that would take more than " + DescribeBytes(budget) + " of memory"
+                    : MrptMessage(e.what())));
     }
     if (!object) parser.Fail("object", "a null object in the archive");
     parser.Handle(object, entry);

@@ -10,10 +10,8 @@ SensorTrace ReadTraceWithRawlog(const std::string& path, const TraceReadOptions&
                                 const RawlogReadOptions& rawlog, TraceReadStats* stats) {
   const bool is_rawlog = options.format == "rawlog" || (options.format == "auto" && HasRawlogExtension(path));
   if (!is_rawlog) {
-    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" &&
-        options.format != "carmen")
-      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() +
-                       ")");
+    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" && options.format != "carmen")
+      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() + ")");
     return ReadTrace(path, options, stats);
   }
   if (options.expected_beam_count < 0)
@@ -31,10 +29,8 @@ std::unique_ptr<ScanSource> OpenTraceStreamWithRawlog(const std::string& path, c
                                                       const RawlogReadOptions& rawlog, TraceReadStats* stats) {
   const bool is_rawlog = options.format == "rawlog" || (options.format == "auto" && HasRawlogExtension(path));
   if (!is_rawlog) {
-    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" &&
-        options.format != "carmen")
-      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() +
-                       ")");
+    if (options.format != "auto" && options.format != "cmu" && options.format != "rowild" && options.format != "carmen")
+      throw UsageError("unknown trace format '" + options.format + "' (expected " + TraceFormatNamesWithRawlog() + ")");
     return OpenTraceStream(path, options, stats);
   }
   return std::make_unique<OwningScanSource>(ReadTraceWithRawlog(path, options, rawlog, stats));

@@ -54,8 +54,8 @@ class BestFirstSearch {
   // model "any start heading"). max_expansions = 0 means no limit. On
   // kReachedGoal, *goal holds the goal state reached.
   template <class Space>
-  SearchOutcome Run(Space& space, const std::vector<StateId>& starts, double weight,
-                    std::uint64_t max_expansions, StateId* goal, SearchCounters* counters) {
+  SearchOutcome Run(Space& space, const std::vector<StateId>& starts, double weight, std::uint64_t max_expansions,
+                    StateId* goal, SearchCounters* counters) {
     Reset();
     *counters = {};
     for (const StateId s : starts) {

@@ -52,10 +52,23 @@ struct RowWriter {
 
 void WriteCarribotTimeline(const std::string& path, const std::vector<CarribotQuery>& queries,
                            const CarribotResult& result) {
-  std::vector<std::string> columns = {"scenario", "bucket", "sx", "sy", "gx", "gy", "path_length_cells",
-                                      "path_length_m", "optimal_length_cells", "turns", "expanded",
-                                      "collision_queries", "kernel_launches", "kernel_queries", "nodes_per_query",
-                                      "wall_s", "status"};
+  std::vector<std::string> columns = {"scenario",
+                                      "bucket",
+                                      "sx",
+                                      "sy",
+                                      "gx",
+                                      "gy",
+                                      "path_length_cells",
+                                      "path_length_m",
+                                      "optimal_length_cells",
+                                      "turns",
+                                      "expanded",
+                                      "collision_queries",
+                                      "kernel_launches",
+                                      "kernel_queries",
+                                      "nodes_per_query",
+                                      "wall_s",
+                                      "status"};
   if (result.priced) {
     columns.push_back("backend");
     columns.push_back("switched");

@@ -43,7 +43,7 @@ struct CarribotSettings {
 };
 
 struct CarribotQuery {
-  long index = 0;                        // scenario index (0 for an ad-hoc query)
+  long index = 0;  // scenario index (0 for an ad-hoc query)
   std::optional<int> bucket;
   GridPose start, goal;
   std::optional<double> optimal_length;  // cells, from a .scen file
@@ -72,8 +72,8 @@ struct CarribotResult {
   double setup_wall_s = 0.0;      // planner set-up (state space, configuration space)
   LedgerIteration setup_pricing;  // valid when has_setup && priced
   bool priced = false;
-  LedgerSummary pricing;          // valid when priced
-  double pricing_wall_s = 0.0;    // host time spent pricing
+  LedgerSummary pricing;        // valid when priced
+  double pricing_wall_s = 0.0;  // host time spent pricing
   double turn_cost_cells = 0.0;
   int heading_count = 0;
 };

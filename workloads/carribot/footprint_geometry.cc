@@ -67,9 +67,7 @@ double SquaredDistanceToSegment(Vec2 a, Vec2 b) {
   return Dot(p, p);
 }
 
-Vec2 Rotate(Vec2 p, Vec2 by_axis) {
-  return {p.x * by_axis.x - p.y * by_axis.y, p.x * by_axis.y + p.y * by_axis.x};
-}
+Vec2 Rotate(Vec2 p, Vec2 by_axis) { return {p.x * by_axis.x - p.y * by_axis.y, p.x * by_axis.y + p.y * by_axis.x}; }
 
 }  // namespace
 
@@ -86,9 +84,12 @@ Vec2 HeadingAxis(int heading, int heading_count) {
   // ones; then turn by whole quadrants, which is exact.
   const int quarter = n / 4, quadrant = k / quarter, m = k % quarter;
   Vec2 u;
-  if (2 * m == quarter) u = {std::sqrt(0.5), std::sqrt(0.5)};
-  else if (2 * m < quarter) u = {std::cos(kTwoPi * m / n), std::sin(kTwoPi * m / n)};
-  else u = {std::sin(kTwoPi * (quarter - m) / n), std::cos(kTwoPi * (quarter - m) / n)};
+  if (2 * m == quarter)
+    u = {std::sqrt(0.5), std::sqrt(0.5)};
+  else if (2 * m < quarter)
+    u = {std::cos(kTwoPi * m / n), std::sin(kTwoPi * m / n)};
+  else
+    u = {std::sin(kTwoPi * (quarter - m) / n), std::cos(kTwoPi * (quarter - m) / n)};
   for (int q = 0; q < quadrant; ++q) u = {0.0 - u.y, u.x};  // 0.0 - 0.0 is +0.0, never -0.0
   return u;
 }
@@ -116,8 +117,8 @@ bool SectorTouchesSquare(const Sector& sector, const CellSquare& square) {
   poly.v[2] = {square.hi.x, square.hi.y};
   poly.v[3] = {square.lo.x, square.hi.y};
   poly.size = 4;
-  poly = ClipLeftOf(poly, sector.from);                      // counter-clockwise of `from`
-  poly = ClipLeftOf(poly, {-sector.to.x, -sector.to.y});     // clockwise of `to`
+  poly = ClipLeftOf(poly, sector.from);                   // counter-clockwise of `from`
+  poly = ClipLeftOf(poly, {-sector.to.x, -sector.to.y});  // clockwise of `to`
   if (poly.size == 0) return false;
   // The apex lies outside the square, hence outside the clipped polygon: the
   // nearest point is on its boundary.

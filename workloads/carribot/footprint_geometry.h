@@ -54,9 +54,7 @@ struct CellSquare {
 
 // The relative square of the cell at integer offset (dx, dy) from the cell
 // that holds the footprint's centre at its centre.
-inline CellSquare OffsetCellSquare(int dx, int dy) {
-  return {{dx - 0.5, dy - 0.5}, {dx + 0.5, dy + 0.5}};
-}
+inline CellSquare OffsetCellSquare(int dx, int dy) { return {{dx - 0.5, dy - 0.5}, {dx + 0.5, dy + 0.5}}; }
 
 // Unit direction of heading index k of n: angle 2*pi*k/n from +x towards +y.
 // Multiples of 90 degrees are exact (cos(pi/2) would otherwise be 6e-17 and

@@ -72,7 +72,8 @@ bool FootprintStateSpace::Target(int ix, int iy, int h, int motion, StateId* nex
 StateId FootprintStateSpace::Predecessor(StateId s, std::uint8_t motion) const {
   const int ix = CellX(s), iy = CellY(s), h = Heading(s);
   if (motion < 8) return StateOf(ix - kOctileSteps[motion].dx, iy - kOctileSteps[motion].dy, h);
-  const int from = motion == kTurnCounterClockwise ? (h + heading_count_ - 1) % heading_count_ : (h + 1) % heading_count_;
+  const int from =
+      motion == kTurnCounterClockwise ? (h + heading_count_ - 1) % heading_count_ : (h + 1) % heading_count_;
   return StateOf(ix, iy, from);
 }
 
@@ -97,8 +98,8 @@ void FootprintStateSpace::KeepCollisionFree(int ix, int iy, int h, Motions* cand
   int kept = 0;
   for (int i = 0; i < candidates->count; ++i) {
     const Motion m = candidates->items[i];
-    const bool end_free = mode_ == FootprintCheckMode::kPrecomputed ? cspace_->free_states()[m.next] != 0
-                                                                     : batch_collides_[i] == 0;
+    const bool end_free =
+        mode_ == FootprintCheckMode::kPrecomputed ? cspace_->free_states()[m.next] != 0 : batch_collides_[i] == 0;
     if (!end_free || !blocks_.StencilIsFree(SweepExtra(h, m.motion), ix, iy)) continue;
     candidates->items[kept++] = m;
   }

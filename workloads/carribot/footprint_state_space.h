@@ -52,9 +52,7 @@ class FootprintStateSpace {
   FootprintStateSpace(const OccupancyGrid& grid, const FootprintStencils& stencils, FootprintCheckMode mode,
                       FootprintChecker* checker);
 
-  std::size_t state_count() const {
-    return static_cast<std::size_t>(size_x_) * size_y_ * heading_count_;
-  }
+  std::size_t state_count() const { return static_cast<std::size_t>(size_x_) * size_y_ * heading_count_; }
   int heading_count() const { return heading_count_; }
   double turn_cost_cells() const { return turn_cost_; }
   FootprintCheckMode mode() const { return mode_; }

@@ -31,9 +31,9 @@ FootprintStencils::FootprintStencils(double length_cells, double width_cells, in
     throw std::invalid_argument("heading count " + std::to_string(heading_count) + " is outside [" +
                                 std::to_string(kMinHeadings) + ", " + std::to_string(kMaxHeadings) + "]");
   per_heading_.resize(heading_count);
-  for (int h = 0; h < heading_count; ++h) per_heading_[h].footprint = Rasterize(half_diagonal_cells(), [&](const CellSquare& s) {
-    return BoxTouchesSquare(Box(h), s);
-  });
+  for (int h = 0; h < heading_count; ++h)
+    per_heading_[h].footprint =
+        Rasterize(half_diagonal_cells(), [&](const CellSquare& s) { return BoxTouchesSquare(Box(h), s); });
   for (int h = 0; h < heading_count; ++h) {
     HeadingStencils& hs = per_heading_[h];
     for (int d = 0; d < 8; ++d) {

@@ -40,9 +40,7 @@ class FootprintStencils {
   double half_diagonal_cells() const;
 
   CenteredBox Box(int heading) const;
-  FootprintPose PoseAt(int ix, int iy, int heading) const {
-    return {{ix + 0.5, iy + 0.5}, Box(heading)};
-  }
+  FootprintPose PoseAt(int ix, int iy, int heading) const { return {{ix + 0.5, iy + 0.5}, Box(heading)}; }
 
   const CellStencil& footprint(int heading) const { return per_heading_[heading].footprint; }
   // Cells swept by step `step` (octile_steps.h) at `heading` but touched by

@@ -52,8 +52,10 @@ void SearchAndFill(Space& space, BestFirstSearch& search, const std::vector<Stat
     if (motion != BestFirstSearch::kStartMotion) {
       const double step = motion_cost(motion);
       cost += step;
-      if (motion < 8) result->translation_cells += step;
-      else ++result->turns;
+      if (motion < 8)
+        result->translation_cells += step;
+      else
+        ++result->turns;
     }
     PathState state = to_path_state(s);
     state.cost_cells = cost;
@@ -80,7 +82,9 @@ class PointRobotPlanner final : public GridPlanner {
     space_.SetGoal(goal.x, goal.y);
     SearchAndFill(
         space_, search_, {space_.StateOf(start.x, start.y)}, options_, resolution_m_,
-        [&](StateId s) { return PathState{space_.CellX(s), space_.CellY(s), kAnyHeading, 0.0}; },
+        [&](StateId s) {
+          return PathState{space_.CellX(s), space_.CellY(s), kAnyHeading, 0.0};
+        },
         [](std::uint8_t motion) { return OctileStepCost(motion); }, &result);
     result.wall_s = SecondsSince(t0);
     return result;
@@ -138,7 +142,9 @@ class FootprintRobotPlanner final : public GridPlanner {
       space_.SetGoal(goal.x, goal.y, goal.heading);
       SearchAndFill(
           space_, search_, starts, options_, resolution_m_,
-          [&](StateId s) { return PathState{space_.CellX(s), space_.CellY(s), space_.Heading(s), 0.0}; },
+          [&](StateId s) {
+            return PathState{space_.CellX(s), space_.CellY(s), space_.Heading(s), 0.0};
+          },
           [&](std::uint8_t motion) { return space_.MotionCost(motion); }, &result);
     }
     result.wall_s = SecondsSince(t0);
@@ -240,8 +246,10 @@ std::unique_ptr<GridPlanner> GridPlanner::Create(const OccupancyGrid& grid, cons
   if (!options.IsValid(&error)) throw UsageError(error);
   const auto t0 = Clock::now();
   std::unique_ptr<GridPlanner> planner;
-  if (options.footprint) planner = std::make_unique<FootprintRobotPlanner>(grid, options, checker);
-  else planner = std::make_unique<PointRobotPlanner>(grid, options);
+  if (options.footprint)
+    planner = std::make_unique<FootprintRobotPlanner>(grid, options, checker);
+  else
+    planner = std::make_unique<PointRobotPlanner>(grid, options);
   planner->resolution_m_ = grid.resolution_m();
   planner->setup_wall_s_ = SecondsSince(t0);
   return planner;

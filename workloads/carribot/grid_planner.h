@@ -32,7 +32,7 @@ struct RectangleFootprint {
 };
 
 struct PlannerOptions {
-  double heuristic_weight = 1.0;  // >= 1; 1 = A* (optimal), w > 1 = weighted A* (cost <= w * optimal)
+  double heuristic_weight = 1.0;                // >= 1; 1 = A* (optimal), w > 1 = weighted A* (cost <= w * optimal)
   std::optional<RectangleFootprint> footprint;  // unset: point robot on the octile grid
   std::uint64_t max_expansions = 0;             // 0 = no limit
 
@@ -52,12 +52,12 @@ struct GridPose {
 
 enum class PlanStatus {
   kFound,
-  kNoPath,             // the goal is unreachable
+  kNoPath,  // the goal is unreachable
   kStartOutOfMap,
   kGoalOutOfMap,
-  kStartInCollision,   // blocked cell, or no collision-free footprint heading there
+  kStartInCollision,  // blocked cell, or no collision-free footprint heading there
   kGoalInCollision,
-  kExpansionLimit,     // PlannerOptions::max_expansions reached first
+  kExpansionLimit,  // PlannerOptions::max_expansions reached first
 };
 // "found", "no_path", "start_out_of_map", ... (the timeline's status column).
 const char* ToString(PlanStatus status);
@@ -71,10 +71,10 @@ struct PathState {
 
 struct PlanResult {
   PlanStatus status = PlanStatus::kNoPath;
-  std::string message;          // one line for people; empty when found
-  std::vector<PathState> path;  // start to goal; empty unless found
-  double length_cells = 0.0;    // path cost (translations + turns), cells
-  double length_m = 0.0;        // the same in metres (cells * resolution)
+  std::string message;             // one line for people; empty when found
+  std::vector<PathState> path;     // start to goal; empty unless found
+  double length_cells = 0.0;       // path cost (translations + turns), cells
+  double length_m = 0.0;           // the same in metres (cells * resolution)
   double translation_cells = 0.0;  // the translations alone
   int turns = 0;                   // in-place heading steps
   std::uint64_t expanded = 0;

@@ -40,7 +40,10 @@ class IndexedMinHeap {
   // Forgets everything about s (never pushed). The caller resets every state
   // it pushed; entries still queued are dropped by ClearQueue().
   void ForgetState(StateId s) { position_[s] = kUnseen; }
-  void ClearQueue() { entries_.clear(); next_sequence_ = 0; }
+  void ClearQueue() {
+    entries_.clear();
+    next_sequence_ = 0;
+  }
 
  private:
   static constexpr std::uint32_t kUnseen = 0xFFFFFFFFu;

@@ -46,7 +46,7 @@ Obbd ToObb(const FootprintPose& pose) {
 
 KernelFootprintChecker::KernelFootprintChecker(const OccupancyGrid& grid)
     : size_x_(grid.size_x()), size_y_(grid.size_y()), tree_(BuildScene(grid)) {
-  options_.sact.parallel_epsilon = 0.0;  // why: see the header
+  options_.sact.parallel_epsilon = 0.0;   // why: see the header
   options_.sact.sphere_pretests = false;  // the shipped SACT program has no sphere section
   options_.order = TraversalOrder::kDepthFirst;
 }

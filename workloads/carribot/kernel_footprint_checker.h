@@ -74,7 +74,7 @@ class KernelFootprintChecker final : public FootprintChecker {
   }
 
   const FlatBoxTree<double>& tree() const { return tree_; }
-  std::uint64_t batches() const { return batches_; }          // kernel launches
+  std::uint64_t batches() const { return batches_; }  // kernel launches
   std::uint64_t kernel_queries() const { return kernel_queries_; }
   std::uint64_t node_visits() const { return node_visits_; }  // node fetches, every launch
 
@@ -86,11 +86,11 @@ class KernelFootprintChecker final : public FootprintChecker {
   BatchObserver observer_;
   RecordObserver record_observer_;
   AddressSample sample_;
-  std::vector<Obbd> obbs_;        // reused between launches
+  std::vector<Obbd> obbs_;         // reused between launches
   std::vector<std::size_t> slot_;  // pose index of each OBB
   CollisionBatch batch_;           // the last launch (batch observer); its buffers are reused
   std::vector<TraversalOutcome> outcomes_;
-  KernelRecord record_;            // the last launch (record observer)
+  KernelRecord record_;  // the last launch (record observer)
   std::uint64_t poses_checked_ = 0;
   std::uint64_t batches_ = 0;
   std::uint64_t kernel_queries_ = 0;

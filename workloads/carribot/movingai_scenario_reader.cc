@@ -10,8 +10,8 @@
 namespace rc {
 namespace {
 
-constexpr std::array<const char*, 9> kFieldNames = {
-    "bucket", "map", "width", "height", "start_x", "start_y", "goal_x", "goal_y", "optimal_length"};
+constexpr std::array<const char*, 9> kFieldNames = {"bucket",  "map",    "width",  "height",        "start_x",
+                                                    "start_y", "goal_x", "goal_y", "optimal_length"};
 
 // The format is tab separated; a map name could in principle hold spaces, so
 // spaces are not separators. Surrounding spaces of a field are trimmed.
@@ -52,9 +52,8 @@ MovingAiScenario ParseScenarioLine(const LineReader& reader, const std::string& 
     std::string hint;
     if (fields.size() == 1 && line.find(' ') != std::string::npos)
       hint = " (fields must be separated by tabs, not spaces)";
-    reader.Fail(kFieldNames[fields.size()],
-                "line ends after " + std::to_string(fields.size()) + " of " +
-                    std::to_string(kFieldNames.size()) + " fields" + hint);
+    reader.Fail(kFieldNames[fields.size()], "line ends after " + std::to_string(fields.size()) + " of " +
+                                                std::to_string(kFieldNames.size()) + " fields" + hint);
   }
   if (fields.size() > kFieldNames.size())
     reader.Fail("optimal_length", "line has " + std::to_string(fields.size()) + " fields, expected " +

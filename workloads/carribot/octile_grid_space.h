@@ -25,9 +25,7 @@ class OctileGridSpace {
   int size_x() const { return size_x_; }
   int size_y() const { return size_y_; }
 
-  StateId StateOf(int ix, int iy) const {
-    return static_cast<StateId>((ix + 1) * padded_y_ + (iy + 1));
-  }
+  StateId StateOf(int ix, int iy) const { return static_cast<StateId>((ix + 1) * padded_y_ + (iy + 1)); }
   int CellX(StateId s) const { return static_cast<int>(s / padded_y_) - 1; }
   int CellY(StateId s) const { return static_cast<int>(s % padded_y_) - 1; }
   bool IsPassable(int ix, int iy) const {
@@ -52,8 +50,7 @@ class OctileGridSpace {
       ++collision_queries_;
       if (!passable_[next]) continue;
       // No corner cutting: both cells beside a diagonal must be free.
-      if (IsDiagonalStep(d) && (!passable_[s + offset_[(d + 7) % 8]] || !passable_[s + offset_[(d + 1) % 8]]))
-        continue;
+      if (IsDiagonalStep(d) && (!passable_[s + offset_[(d + 7) % 8]] || !passable_[s + offset_[(d + 1) % 8]])) continue;
       visit(next, OctileStepCost(d), static_cast<std::uint8_t>(d),
             OctileDistance(to_goal_x + kOctileSteps[d].dx, to_goal_y + kOctileSteps[d].dy));
     }

@@ -23,7 +23,8 @@ constexpr int kSubpixelBits = 4;  // cv drawing takes fixed-point coordinates
 class Canvas {
  public:
   Canvas(const OccupancyGrid& grid, int magnification)
-      : size_y_(grid.size_y()), k_(magnification),
+      : size_y_(grid.size_y()),
+        k_(magnification),
         image_(grid.size_y() * magnification, grid.size_x() * magnification, CV_8UC3) {
     for (int ix = 0; ix < grid.size_x(); ++ix) {
       for (int iy = 0; iy < grid.size_y(); ++iy) {
@@ -85,8 +86,8 @@ void WritePathPlot(const std::string& png_path, const OccupancyGrid& grid, const
     const int radius = std::max(3, 2 * magnification) << kSubpixelBits;
     cv::circle(canvas.image(), canvas.Pixel(path.front().x + 0.5, path.front().y + 0.5), radius, kStartColour,
                cv::FILLED, cv::LINE_AA, kSubpixelBits);
-    cv::circle(canvas.image(), canvas.Pixel(path.back().x + 0.5, path.back().y + 0.5), radius, kGoalColour,
-               cv::FILLED, cv::LINE_AA, kSubpixelBits);
+    cv::circle(canvas.image(), canvas.Pixel(path.back().x + 0.5, path.back().y + 0.5), radius, kGoalColour, cv::FILLED,
+               cv::LINE_AA, kSubpixelBits);
   }
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", canvas.image(), png)) throw std::runtime_error(png_path + ": PNG encoding failed");

@@ -31,8 +31,7 @@ BeamCombination ParseBeamCombination(const std::string& name);
 // per-beam quantities to compute.
 class ScanLikelihood {
  public:
-  explicit ScanLikelihood(BeamCombination combination)
-      : cube_sum_(combination == BeamCombination::kAmclCubeSum) {}
+  explicit ScanLikelihood(BeamCombination combination) : cube_sum_(combination == BeamCombination::kAmclCubeSum) {}
   bool cube_sum() const { return cube_sum_; }
   void AddLogDensity(double log_density) { log_product_ += log_density; }
   void AddProbability(double pz) { cube_total_ += pz * pz * pz; }

@@ -138,10 +138,9 @@ void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection&
   }
 }
 
-void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
-                            const LaserGeometry& geometry, const BeamSelection& beams,
-                            BeamCombination combination, std::vector<double>& log_likelihoods,
-                            SensorUpdateWork& work) {
+void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+                            const BeamSelection& beams, BeamCombination combination,
+                            std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   const long n = static_cast<long>(particles.size());
   reading_densities_.resize(static_cast<std::size_t>(beams_per_particle));

@@ -18,9 +18,9 @@ struct BeamModelParams {
   double z_short = 0.05;
   double z_max = 0.05;
   double z_rand = 0.5;
-  double sigma_hit_m = 0.2;          // m, nav2 default
-  double lambda_short_per_m = 0.1;   // 1/m, nav2 default
-  double max_range_m = 10.0;         // m: readings at or beyond are "max"
+  double sigma_hit_m = 0.2;         // m, nav2 default
+  double lambda_short_per_m = 0.1;  // 1/m, nav2 default
+  double max_range_m = 10.0;        // m: readings at or beyond are "max"
   BeamCombination combination = BeamCombination::kProduct;
   bool IsValid(std::string* error) const;
 };
@@ -47,8 +47,8 @@ class BeamReadingDensity {
  private:
   double z_ = 0.0;
   bool max_reading_ = false;
-  double log_max_ = 0.0;          // the whole answer for a max reading
-  double hit_scale_ = 0.0;        // z_hit / (sqrt(2 pi) sigma_hit)
+  double log_max_ = 0.0;    // the whole answer for a max reading
+  double hit_scale_ = 0.0;  // z_hit / (sqrt(2 pi) sigma_hit)
   double sigma_hit_ = 1.0;
   double neg_lambda_ = 0.0;       // -lambda_short (1/m)
   double short_numerator_ = 0.0;  // z_short * lambda_short * exp(-lambda_short z)
@@ -59,9 +59,9 @@ class BeamSensorModel final : public SensorModel {
  public:
   BeamSensorModel(std::shared_ptr<const RayCastScene> scene, BeamModelParams params);
   std::string name() const override { return "beam"; }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
-                      const LaserGeometry& geometry, const BeamSelection& beams,
-                      std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+                      const BeamSelection& beams, std::vector<double>& log_likelihoods,
+                      SensorUpdateWork& work) override;
   // Always the product: the cube sum is too flat to pick a few thousand
   // particles out of a dense first set (see LikelihoodFieldModel).
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,

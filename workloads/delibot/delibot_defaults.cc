@@ -9,9 +9,9 @@ namespace {
 // (scripts/evidence_vs_particles.py); the window the smallest in nats of
 // the cube sum that no look-alike reached on the tuning logs; the cap the
 // set size whose first update fits the demo's time budget.
-constexpr int kDefaultFloorParticles = 500;       // [count]
-constexpr double kDefaultWindowNats = 6.0;        // [nats, cube-sum weights]
-constexpr int kDefaultMaxParticles = 20000;       // [count]
+constexpr int kDefaultFloorParticles = 500;  // [count]
+constexpr double kDefaultWindowNats = 6.0;   // [nats, cube-sum weights]
+constexpr int kDefaultMaxParticles = 20000;  // [count]
 }  // namespace
 
 DelibotSettings DefaultDelibotSettings() {
@@ -40,7 +40,8 @@ std::string FitDefaultsToGivenOptions(DelibotSettings& s, const GivenDelibotOpti
     }
     return notes;
   }
-  if (!given.hypothesis_floor) m.hypothesis_floor.min_particles = std::min(m.hypothesis_floor.min_particles, m.particle_count / 2);
+  if (!given.hypothesis_floor)
+    m.hypothesis_floor.min_particles = std::min(m.hypothesis_floor.min_particles, m.particle_count / 2);
   if (!given.max_particles)
     m.max_particle_count = m.hypothesis_floor.min_particles == 0 ? 0 : std::max(m.max_particle_count, m.particle_count);
   return notes;

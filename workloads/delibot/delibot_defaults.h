@@ -33,7 +33,6 @@ struct GivenDelibotOptions {
 // "off" unless given (given, the engine refuses them), and an unstated
 // sensor model is the beam model: MRPT has no staged model. Returns notes
 // for the user, one per line, empty if none.
-std::string FitDefaultsToGivenOptions(DelibotSettings& settings, const GivenDelibotOptions& given,
-                                      bool mrpt_engine);
+std::string FitDefaultsToGivenOptions(DelibotSettings& settings, const GivenDelibotOptions& given, bool mrpt_engine);
 
 }  // namespace rc

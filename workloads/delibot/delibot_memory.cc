@@ -10,8 +10,8 @@ namespace rc {
 
 std::uint64_t DelibotMemoryLowerBound(const DelibotSettings& settings, int beam_count) {
   const MclOptions& m = settings.mcl;
-  const std::uint64_t particles = static_cast<std::uint64_t>(
-      std::max({m.particle_count, m.initial_particle_count, m.max_particle_count}));
+  const std::uint64_t particles =
+      static_cast<std::uint64_t>(std::max({m.particle_count, m.initial_particle_count, m.max_particle_count}));
   const std::uint64_t per_particle = sizeof(Pose2) + 2 * sizeof(double);
   std::uint64_t per_ray = 0;
   if (CastsRays(settings.sensor_model)) {  // the staged model casts once one hypothesis is left

@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 
+#include "backends/backend.h"
 #include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
-#include "backends/backend.h"
 #include "traces/csv_table.h"
 
 namespace rc {
@@ -32,11 +32,26 @@ DelibotTimeline::~DelibotTimeline() = default;
 void DelibotTimeline::Open(const DelibotRow& first) {
   ground_truth_ = first.has_ground_truth;
   priced_ = first.priced;
-  std::vector<std::string> columns = {"iteration", "time_s",   "est_x_m",  "est_y_m",     "est_theta_rad",
-                                      "ess",       "rays",     "nodes",    "nodes_per_ray", "wall_ms",
-                                      "sensor_updated", "log_mean_likelihood_nats", "resampled", "injected",
-                                      "injection_rejected", "hypotheses_alive", "particles",
-                                      "spread_m", "mode_weight", "consistency"};
+  std::vector<std::string> columns = {"iteration",
+                                      "time_s",
+                                      "est_x_m",
+                                      "est_y_m",
+                                      "est_theta_rad",
+                                      "ess",
+                                      "rays",
+                                      "nodes",
+                                      "nodes_per_ray",
+                                      "wall_ms",
+                                      "sensor_updated",
+                                      "log_mean_likelihood_nats",
+                                      "resampled",
+                                      "injected",
+                                      "injection_rejected",
+                                      "hypotheses_alive",
+                                      "particles",
+                                      "spread_m",
+                                      "mode_weight",
+                                      "consistency"};
   if (ground_truth_) {
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
@@ -138,8 +153,7 @@ void WriteDelibotTimeline(const std::string& path, const DelibotResult& result) 
   timeline.Finish(result);
 }
 
-nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& s,
-                                  const DelibotProvenance& p) {
+nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSettings& s, const DelibotProvenance& p) {
   using nlohmann::json;
   const DelibotSummary& m = result.summary;
   json config = {
@@ -154,17 +168,25 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"sensor_model", ToString(s.sensor_model)},
       {"max_range_m", s.beam.max_range_m},
       {"beam_model",
-       {{"z_hit", s.beam.z_hit}, {"z_short", s.beam.z_short}, {"z_max", s.beam.z_max}, {"z_rand", s.beam.z_rand},
-        {"sigma_hit_m", s.beam.sigma_hit_m}, {"lambda_short_per_m", s.beam.lambda_short_per_m},
+       {{"z_hit", s.beam.z_hit},
+        {"z_short", s.beam.z_short},
+        {"z_max", s.beam.z_max},
+        {"z_rand", s.beam.z_rand},
+        {"sigma_hit_m", s.beam.sigma_hit_m},
+        {"lambda_short_per_m", s.beam.lambda_short_per_m},
         {"combine", ToString(s.beam.combination)}}},
       {"likelihood_field",
-       {{"z_hit", s.likelihood.z_hit}, {"z_rand", s.likelihood.z_rand}, {"sigma_hit_m", s.likelihood.sigma_hit_m},
+       {{"z_hit", s.likelihood.z_hit},
+        {"z_rand", s.likelihood.z_rand},
+        {"sigma_hit_m", s.likelihood.sigma_hit_m},
         {"max_occ_dist_m", s.likelihood.max_occ_dist_m},
         {"distance", s.likelihood.signed_distance ? "signed" : "unsigned"},
         {"unknown", s.likelihood.unknown_is_edge ? "edge" : "miss"},
         {"combine", ToString(s.likelihood.combination)}}},
       {"motion_noise",
-       {{"alpha1", s.mcl.motion.alpha1}, {"alpha2", s.mcl.motion.alpha2}, {"alpha3", s.mcl.motion.alpha3},
+       {{"alpha1", s.mcl.motion.alpha1},
+        {"alpha2", s.mcl.motion.alpha2},
+        {"alpha3", s.mcl.motion.alpha3},
         {"alpha4", s.mcl.motion.alpha4}}},
       {"resample_ess_fraction", s.mcl.resample_ess_fraction},
       {"hypothesis_floor_particles", s.mcl.hypothesis_floor.min_particles},
@@ -181,15 +203,18 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"threads", p.threads},
   };
   if (s.initial_pose)
-    config["initial_pose"] = {{"x_m", s.initial_pose->x}, {"y_m", s.initial_pose->y},
-                              {"theta_rad", s.initial_pose->theta}};
-  json totals = {{"records", m.records},       {"sensor_updates", m.sensor_updates},
-                 {"rays", m.rays},             {"nodes", m.nodes},
+    config["initial_pose"] = {
+        {"x_m", s.initial_pose->x}, {"y_m", s.initial_pose->y}, {"theta_rad", s.initial_pose->theta}};
+  json totals = {{"records", m.records},
+                 {"sensor_updates", m.sensor_updates},
+                 {"rays", m.rays},
+                 {"nodes", m.nodes},
                  {"nodes_per_ray", m.rays ? static_cast<double>(m.nodes) / m.rays : 0.0},
                  {"wall_s", m.wall_s},
                  {"wall_per_update_s", m.sensor_updates ? m.wall_s / m.sensor_updates : 0.0},
                  {"rays_per_s", m.wall_s > 0 ? m.rays / m.wall_s : 0.0},
-                 {"resamples", m.resamples},   {"injected", m.injected},
+                 {"resamples", m.resamples},
+                 {"injected", m.injected},
                  {"injection_rejected", m.injection_rejected}};
   if (!result.work_counted)
     for (const char* key : {"rays", "nodes", "nodes_per_ray", "rays_per_s"}) totals[key] = nullptr;
@@ -205,12 +230,12 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                    {"fraction_consistent_after_convergence", m.fraction_consistent},
                    {"jumps_after_convergence", m.jumps_after_convergence},
                    {"non_finite_weights", m.any_non_finite_weight},
-                   {"criterion",
-                    p.ground_truth_path.empty()
-                        ? "mode weight >= " + std::to_string(s.converged_mode_weight) + " and consistency >= " +
-                              std::to_string(s.converged_consistency) + " for 10 sensor updates"
-                        : "error < " + std::to_string(s.converged_xy_m) + " m and < " +
-                              std::to_string(s.converged_theta_rad) + " rad for 10 records"}};
+                   {"criterion", p.ground_truth_path.empty()
+                                     ? "mode weight >= " + std::to_string(s.converged_mode_weight) +
+                                           " and consistency >= " + std::to_string(s.converged_consistency) +
+                                           " for 10 sensor updates"
+                                     : "error < " + std::to_string(s.converged_xy_m) + " m and < " +
+                                           std::to_string(s.converged_theta_rad) + " rad for 10 records"}};
   if (!p.ground_truth_path.empty()) {
     accuracy["median_err_xy_m"] = m.median_err_xy_m;
     accuracy["p95_err_xy_m"] = m.p95_err_xy_m;
@@ -239,9 +264,10 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     out << fmt::format(fmt::runtime(format), args...) << '\n';
   };
   if (s.mcl.injection_check_updates > 0)
-    emit("records                 {} ({} sensor updates, {} resamples, {} particles injected, {} refused "
-         "by the injection check)",
-         m.records, m.sensor_updates, m.resamples, m.injected, m.injection_rejected);
+    emit(
+        "records                 {} ({} sensor updates, {} resamples, {} particles injected, {} refused "
+        "by the injection check)",
+        m.records, m.sensor_updates, m.resamples, m.injected, m.injection_rejected);
   else
     emit("records                 {} ({} sensor updates, {} resamples, {} particles injected)", m.records,
          m.sensor_updates, m.resamples, m.injected);
@@ -255,13 +281,15 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
       if (r.tracking_stage) nodes += r.nodes;
     }
     if (from >= 0)
-      emit("sensor model            likelihood field up to record {} ({} end-point look-ups), beam model from "
-           "record {} on (one hypothesis alive for {} updates)",
-           from - 1, lookups, from, s.mcl.tracking_after_single_updates);
+      emit(
+          "sensor model            likelihood field up to record {} ({} end-point look-ups), beam model from "
+          "record {} on (one hypothesis alive for {} updates)",
+          from - 1, lookups, from, s.mcl.tracking_after_single_updates);
     else
-      emit("sensor model            likelihood field throughout ({} end-point look-ups): never one hypothesis "
-           "alive for {} updates, so no ray was cast",
-           lookups, s.mcl.tracking_after_single_updates);
+      emit(
+          "sensor model            likelihood field throughout ({} end-point look-ups): never one hypothesis "
+          "alive for {} updates, so no ray was cast",
+          lookups, s.mcl.tracking_after_single_updates);
     emit("rays                    {} cast by the beam model, {:.1f} nodes per ray", rays,
          rays ? static_cast<double>(nodes) / rays : 0.0);
     emit("host time               {:.3f} s total, {:.2f} ms per update", m.wall_s,
@@ -281,13 +309,14 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
          m.converged ? "still localized at the end" : "LOST by the end: error above the thresholds");
   } else if (m.convergence_iteration >= 0) {
     // Without ground truth a failed end test is not proof of being lost.
-    emit("converged at record     {} (not confirmed at the end: last 10 updates' median mode weight {:.2f}, "
-         "consistency {:.2f}; {})",
-         m.convergence_iteration, m.end_mode_weight, m.end_consistency,
-         m.standing_claim_iteration < 0 ? "its claim was withdrawn and none stands"
-         : m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
-         : m.end_hypotheses_alive > 1.0 ? "a rival hypothesis is still alive"
-                                        : "scans disagree with the map: wrong pose or wrong map");
+    emit(
+        "converged at record     {} (not confirmed at the end: last 10 updates' median mode weight {:.2f}, "
+        "consistency {:.2f}; {})",
+        m.convergence_iteration, m.end_mode_weight, m.end_consistency,
+        m.standing_claim_iteration < 0                ? "its claim was withdrawn and none stands"
+        : m.end_mode_weight < s.converged_mode_weight ? "the belief is split"
+        : m.end_hypotheses_alive > 1.0                ? "a rival hypothesis is still alive"
+                                                      : "scans disagree with the map: wrong pose or wrong map");
   } else
     emit("converged at record     never");
   // With ground truth, also the record from which the filter itself claimed
@@ -304,13 +333,13 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   // A claim the filter later contradicted (a jump, injected particles) is
   // not one a user should keep trusting; say so, and which claim stands.
   if (m.claims_withdrawn > 0 || m.standing_claim_iteration != m.self_convergence_iteration) {
-    const std::string standing = m.standing_claim_iteration >= 0
-                                     ? "the claim standing at the end is from record " +
-                                           std::to_string(m.standing_claim_iteration)
-                                     : std::string("no claim stands at the end");
-    emit("claims withdrawn        {} (the estimate jumped > {:.1f} m or random particles were injected after a "
-         "claim); {}",
-         m.claims_withdrawn, s.jump_threshold_m, standing.c_str());
+    const std::string standing = m.standing_claim_iteration >= 0 ? "the claim standing at the end is from record " +
+                                                                       std::to_string(m.standing_claim_iteration)
+                                                                 : std::string("no claim stands at the end");
+    emit(
+        "claims withdrawn        {} (the estimate jumped > {:.1f} m or random particles were injected after a "
+        "claim); {}",
+        m.claims_withdrawn, s.jump_threshold_m, standing.c_str());
   }
   if (m.convergence_iteration >= 0) {
     emit("scan consistency        {:.3f} median after convergence (beams within {:.1f} sigma of the map)",

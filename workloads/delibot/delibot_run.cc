@@ -61,16 +61,14 @@ bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, con
   return std::isfinite(row.ess) && std::isfinite(row.estimate.x) && std::isfinite(row.estimate.y);
 }
 
-DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
-                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress, const RowCallback& on_row) {
+DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace, const std::vector<Pose2>* ground_truth,
+                         const DelibotSettings& settings, const ProgressCallback& progress, const RowCallback& on_row) {
   InMemoryScanSource scans(trace);
   return RunDelibot(grid, scans, ground_truth, settings, progress, on_row);
 }
 
-DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
-                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress, const RowCallback& on_row) {
+DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std::vector<Pose2>* ground_truth,
+                         const DelibotSettings& settings, const ProgressCallback& progress, const RowCallback& on_row) {
   const LaserGeometry& geometry = scans.geometry();
   std::string error;
   if (!settings.beam.IsValid(&error)) throw std::invalid_argument("beam model: " + error);
@@ -78,8 +76,8 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
   if (settings.mcl.beams.beam_step > geometry.beam_count)
     throw std::invalid_argument("beam step exceeds the trace's beam count");
   if (ground_truth && ground_truth->size() != scans.size())
-    throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) +
-                                " poses for " + std::to_string(scans.size()) + " laser records");
+    throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +
+                                std::to_string(scans.size()) + " laser records");
 
   const bool price = settings.price_backends && CastsRays(settings.sensor_model);
   MclOptions mcl_options = settings.mcl;
@@ -98,18 +96,19 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
     const std::vector<std::uint32_t> free_cells = grid.FreeCellIndices();
     if (!free_cells.empty()) {
       const double r = grid.resolution_m();
-      one.queries.push_back({(free_cells[0] / grid.size_y() + 0.5) * r, (free_cells[0] % grid.size_y() + 0.5) * r, 0.0});
+      one.queries.push_back(
+          {(free_cells[0] / grid.size_y() + 0.5) * r, (free_cells[0] % grid.size_y() + 0.5) * r, 0.0});
       std::vector<RayHit> hits;
       KernelRecord layout;
-      CastRayBatchRecorded(scene, one, hits, layout, RecordOptionsFor(settings.ray_caster, settings.mcl.record_choices));
+      CastRayBatchRecorded(scene, one, hits, layout,
+                           RecordOptionsFor(settings.ray_caster, settings.mcl.record_choices));
       // A ray of length L crosses at most sqrt(2) L / r + 2 cells (march
       // samples fewer; rm fetches a subset of dda's cells).
-      const auto max_nodes = static_cast<std::uint32_t>(
-          std::ceil(std::sqrt(2.0) * settings.beam.max_range_m / grid.resolution_m()) + 2);
-      ledger->Prepare(layout,
-                      static_cast<std::size_t>(settings.mcl.particle_count) *
-                          settings.mcl.beams.Count(geometry.beam_count),
-                      max_nodes);
+      const auto max_nodes =
+          static_cast<std::uint32_t>(std::ceil(std::sqrt(2.0) * settings.beam.max_range_m / grid.resolution_m()) + 2);
+      ledger->Prepare(
+          layout, static_cast<std::size_t>(settings.mcl.particle_count) * settings.mcl.beams.Count(geometry.beam_count),
+          max_nodes);
     }
   }
   MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
@@ -160,13 +159,11 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
         for (const KernelRecord& check : *step.check_records) ledger->AddLaunch(check);
       row.pricing = ledger->EndIteration(ran ? &step.work->record : nullptr);
       row.priced = true;
-      row.pricing_wall_s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - pricing_start).count();
+      row.pricing_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - pricing_start).count();
     }
     row.spread_m = estimate.spread_m;
     row.mode_weight = estimate.mode_weight;
-    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings,
-                         ground_truth ? &(*ground_truth)[k] : nullptr, row))
+    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings, ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
     if (on_row) on_row(row);

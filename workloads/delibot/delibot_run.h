@@ -33,9 +33,9 @@ struct DelibotSettings {
   MclOptions mcl;
   SensorModelKind sensor_model = SensorModelKind::kBeam;
   RayCastMethod ray_caster = RayCastMethod::kRayMarching;  // exact (= dda) and the fewest fetches
-  BeamModelParams beam;           // max_range_m is shared by both models
+  BeamModelParams beam;                                    // max_range_m is shared by both models
   LikelihoodFieldParams likelihood;
-  long max_records = 0;           // 0 = the whole trace
+  long max_records = 0;  // 0 = the whole trace
   // Tracking mode: start around this pose instead of uniformly.
   std::optional<Pose2> initial_pose;
   double initial_sigma_xy_m = 0.2;
@@ -65,13 +65,13 @@ struct DelibotSettings {
 };
 
 struct DelibotRow {
-  long iteration = 0;            // 0-based index of the laser record in the trace
+  long iteration = 0;  // 0-based index of the laser record in the trace
   double time_s = 0.0;
   Pose2 estimate;
   double ess = 0.0;
-  std::uint64_t rays = 0;        // the update's queries plus the injection check's
-  std::uint64_t nodes = 0;       // the same queries' node fetches
-  double wall_s = 0.0;           // host time of the filter update
+  std::uint64_t rays = 0;   // the update's queries plus the injection check's
+  std::uint64_t nodes = 0;  // the same queries' node fetches
+  double wall_s = 0.0;      // host time of the filter update
   bool sensor_updated = false;
   // The update's evidence: log of the weighted mean scan likelihood (nats),
   // the normalizer of Bayes' rule, which augmented MCL's averages also
@@ -82,7 +82,7 @@ struct DelibotRow {
   double log_mean_likelihood = std::numeric_limits<double>::quiet_NaN();
   bool resampled = false;
   int injected = 0;
-  int injection_rejected = 0;    // random poses refused by the injection check
+  int injection_rejected = 0;  // random poses refused by the injection check
   // With the hypothesis floor: hypotheses within its window after the
   // update (1 = no rival; 0 = not computed). While a rival is alive the
   // filter does not claim convergence without ground truth.
@@ -94,15 +94,15 @@ struct DelibotRow {
   // (staged_sensor_model.h); false for one-stage models.
   bool tracking_stage = false;
   double spread_m = 0.0;
-  double mode_weight = 0.0;      // normalized weight within 1 m of the estimate
-  double consistency = 0.0;      // fraction of beams within k sigma at the estimate
+  double mode_weight = 0.0;  // normalized weight within 1 m of the estimate
+  double consistency = 0.0;  // fraction of beams within k sigma at the estimate
   bool has_ground_truth = false;
   double err_xy_m = 0.0;
   double err_theta_rad = 0.0;
   double NodesPerRay() const { return rays > 0 ? static_cast<double>(nodes) / rays : 0.0; }
   bool priced = false;
-  LedgerIteration pricing;       // valid when priced
-  double pricing_wall_s = 0.0;   // host time spent pricing (not in wall_s)
+  LedgerIteration pricing;      // valid when priced
+  double pricing_wall_s = 0.0;  // host time spent pricing (not in wall_s)
 };
 
 struct DelibotSummary {
@@ -132,7 +132,8 @@ struct DelibotSummary {
   // many claims were withdrawn before it.
   long standing_claim_iteration = -1;
   long claims_withdrawn = 0;
-  bool converged = false;        // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
+  bool converged =
+      false;  // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
   // Medians over the last 10 sensor updates, which the ground-truth-free
   // verdict at the end rests on: a low mode weight means the belief is
   // split; a high one with low consistency means the scans disagree with
@@ -145,9 +146,9 @@ struct DelibotSummary {
   double end_hypotheses_alive = -1.0;
   double median_err_xy_m = -1.0, p95_err_xy_m = -1.0, median_err_theta_rad = -1.0;  // after convergence
   double final_err_xy_m = -1.0, final_err_theta_rad = -1.0;
-  double median_consistency = 0.0;       // after convergence
-  double fraction_consistent = 0.0;      // records after convergence with consistency >= 0.5
-  long jumps_after_convergence = 0;      // estimate moves > jump_threshold_m between records
+  double median_consistency = 0.0;   // after convergence
+  double fraction_consistent = 0.0;  // records after convergence with consistency >= 0.5
+  long jumps_after_convergence = 0;  // estimate moves > jump_threshold_m between records
   bool any_non_finite_weight = false;
 };
 
@@ -155,7 +156,7 @@ struct DelibotResult {
   std::vector<DelibotRow> rows;
   DelibotSummary summary;
   bool priced = false;
-  LedgerSummary pricing;   // valid when priced
+  LedgerSummary pricing;  // valid when priced
   double pricing_wall_s = 0.0;
   // False for an engine that does not report its kernel work (MRPT's
   // localizer): rays and nodes are then written as empty, not as 0.
@@ -179,13 +180,13 @@ bool JudgeDelibotRow(const RayCastScene& exact_scene, const LaserScan& scan, con
                      const DelibotSettings& settings, const Pose2* truth, DelibotRow& row);
 
 // ground_truth: one pose per laser record of the trace (map frame), or null.
-DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
-                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress = {}, const RowCallback& on_row = {});
+DelibotResult RunDelibot(const OccupancyGrid& grid, const SensorTrace& trace, const std::vector<Pose2>* ground_truth,
+                         const DelibotSettings& settings, const ProgressCallback& progress = {},
+                         const RowCallback& on_row = {});
 // The same run pulling one record at a time from `scans` (a trace streamed
 // from its file, traces/scan_source.h), so memory does not grow with it.
-DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans,
-                         const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                         const ProgressCallback& progress = {}, const RowCallback& on_row = {});
+DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std::vector<Pose2>* ground_truth,
+                         const DelibotSettings& settings, const ProgressCallback& progress = {},
+                         const RowCallback& on_row = {});
 
 }  // namespace rc

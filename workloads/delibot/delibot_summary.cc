@@ -157,8 +157,8 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     sum.fraction_consistent = cons.empty() ? 0.0 : static_cast<double>(consistent) / cons.size();
     // Without ground truth the filter is localized at the end only if a
     // claim still stands and most of the last updates pass.
-    sum.converged = gt ? localized(rows.back())
-                       : sum.standing_claim_iteration >= 0 && MostLocalized(last_updates, localized);
+    sum.converged =
+        gt ? localized(rows.back()) : sum.standing_claim_iteration >= 0 && MostLocalized(last_updates, localized);
   }
   {
     std::vector<double> mode, cons, alive;

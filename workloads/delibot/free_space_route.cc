@@ -25,9 +25,7 @@ constexpr double kClearanceSlackM = 1e-6;
 // exact corner crossing, where both side cells are checked.
 constexpr double kCornerTieFraction = 1e-9;
 
-bool SamePoint(const RoutePoint& a, const RoutePoint& b) {
-  return a.x_m == b.x_m && a.y_m == b.y_m;
-}
+bool SamePoint(const RoutePoint& a, const RoutePoint& b) { return a.x_m == b.x_m && a.y_m == b.y_m; }
 
 std::string Metres(double v) { return fmt::format("{:.3f} m", v); }
 
@@ -60,11 +58,10 @@ ReachableFreeSpace::ReachableFreeSpace(const OccupancyGrid& grid, double robot_r
     }
   }
   if (!any_safe)
-    throw std::invalid_argument(
-        "free space too narrow for a robot of radius " + Metres(robot_radius_m) +
-        ": the widest free cell is " + Metres(widest_m) +
-        " from the nearest blocking cell (centre to centre), the robot needs " +
-        Metres(required_m) + " (radius + sqrt(2) * resolution)");
+    throw std::invalid_argument("free space too narrow for a robot of radius " + Metres(robot_radius_m) +
+                                ": the widest free cell is " + Metres(widest_m) +
+                                " from the nearest blocking cell (centre to centre), the robot needs " +
+                                Metres(required_m) + " (radius + sqrt(2) * resolution)");
 
   // Largest 4-connected component of safe cells. 8-connected moves without
   // corner cutting connect exactly the same cells, so A* stays inside it.
@@ -169,8 +166,7 @@ RoutePoint ReachableFreeSpace::DrawPoint(RandomStream& stream) const {
   return {(ix + ux) * resolution_m_, (iy + uy) * resolution_m_};
 }
 
-std::vector<std::uint32_t> ReachableFreeSpace::GridAStar(std::uint32_t start,
-                                                         std::uint32_t goal) const {
+std::vector<std::uint32_t> ReachableFreeSpace::GridAStar(std::uint32_t start, std::uint32_t goal) const {
   const std::size_t n = reachable_.size();
   std::vector<double> cost(n, std::numeric_limits<double>::infinity());
   std::vector<std::int32_t> parent(n, -1);
@@ -199,8 +195,7 @@ std::vector<std::uint32_t> ReachableFreeSpace::GridAStar(std::uint32_t start,
         if (!IsReachableCell(nx, ny)) continue;
         // No corner cutting: a diagonal move needs both side cells, so the
         // straight line between the two centres stays in reachable cells.
-        if (mx != 0 && my != 0 && (!IsReachableCell(cx + mx, cy) || !IsReachableCell(cx, cy + my)))
-          continue;
+        if (mx != 0 && my != 0 && (!IsReachableCell(cx + mx, cy) || !IsReachableCell(cx, cy + my))) continue;
         const auto nc = static_cast<std::uint32_t>(static_cast<std::size_t>(nx) * size_y_ + ny);
         const double g = cost[c] + (mx != 0 && my != 0 ? kSqrt2 : 1.0);
         if (g < cost[nc]) {
@@ -211,8 +206,7 @@ std::vector<std::uint32_t> ReachableFreeSpace::GridAStar(std::uint32_t start,
       }
     }
   }
-  if (!closed[goal])
-    throw std::logic_error("A* found no path between two cells of one connected component");
+  if (!closed[goal]) throw std::logic_error("A* found no path between two cells of one connected component");
   std::vector<std::uint32_t> path;
   for (std::int64_t c = goal; c >= 0; c = parent[static_cast<std::size_t>(c)]) {
     path.push_back(static_cast<std::uint32_t>(c));
@@ -222,8 +216,7 @@ std::vector<std::uint32_t> ReachableFreeSpace::GridAStar(std::uint32_t start,
   return path;
 }
 
-std::vector<RoutePoint> ReachableFreeSpace::PlanPath(const RoutePoint& a,
-                                                     const RoutePoint& b) const {
+std::vector<RoutePoint> ReachableFreeSpace::PlanPath(const RoutePoint& a, const RoutePoint& b) const {
   if (!IsReachablePoint(a) || !IsReachablePoint(b))
     throw std::invalid_argument("path end point outside the robot's reachable free space");
   if (SamePoint(a, b)) return {a};
@@ -251,9 +244,7 @@ std::vector<RoutePoint> ReachableFreeSpace::PlanPath(const RoutePoint& a,
     std::size_t reach = anchor + 1;
     if (!SegmentIsReachable(grid_path[anchor], grid_path[reach]))
       throw std::logic_error("a grid move of the A* path failed the line-of-sight check");
-    while (reach + 1 < grid_path.size() &&
-           SegmentIsReachable(grid_path[anchor], grid_path[reach + 1]))
-      ++reach;
+    while (reach + 1 < grid_path.size() && SegmentIsReachable(grid_path[anchor], grid_path[reach + 1])) ++reach;
     if (!SamePoint(smooth.back(), grid_path[reach])) smooth.push_back(grid_path[reach]);
     anchor = reach;
   }
@@ -265,34 +256,29 @@ bool FreeSpaceRouteOptions::IsValid(std::string* error) const {
     if (error != nullptr) *error = message;
     return false;
   };
-  if (!(robot_radius_m > 0.0 && robot_radius_m <= 10.0))
-    return fail("robot_radius_m must be in (0, 10] m");
-  if (waypoint_count < 2 || waypoint_count > 1000000)
-    return fail("waypoint_count must be in [2, 10^6]");
+  if (!(robot_radius_m > 0.0 && robot_radius_m <= 10.0)) return fail("robot_radius_m must be in (0, 10] m");
+  if (waypoint_count < 2 || waypoint_count > 1000000) return fail("waypoint_count must be in [2, 10^6]");
   return true;
 }
 
-RoutePoint DrawRouteWaypoint(const ReachableFreeSpace& space, std::uint64_t seed,
-                             std::uint64_t index) {
+RoutePoint DrawRouteWaypoint(const ReachableFreeSpace& space, std::uint64_t seed, std::uint64_t index) {
   RandomStream stream(seed, StreamPurpose::kSimulation, index, 0);
   return space.DrawCellCentre(stream);
 }
 
-FreeSpaceRoute PlanFreeSpaceRoute(const ReachableFreeSpace& space, int waypoint_count,
-                                  std::uint64_t seed) {
+FreeSpaceRoute PlanFreeSpaceRoute(const ReachableFreeSpace& space, int waypoint_count, std::uint64_t seed) {
   if (waypoint_count < 2) throw std::invalid_argument("a route needs at least 2 waypoints");
   FreeSpaceRoute route;
   for (int i = 0; i < waypoint_count; ++i) {
     const RoutePoint w = DrawRouteWaypoint(space, seed, static_cast<std::uint64_t>(i));
-    if (route.waypoints.empty() || !SamePoint(route.waypoints.back(), w))
-      route.waypoints.push_back(w);
+    if (route.waypoints.empty() || !SamePoint(route.waypoints.back(), w)) route.waypoints.push_back(w);
   }
   if (route.waypoints.size() < 2)
-    throw std::invalid_argument(
-        "fewer than 2 reachable waypoints: all " + std::to_string(waypoint_count) +
-        " draws fell on the same cell (the robot can reach " +
-        std::to_string(space.reachable_cells().size()) + " cell(s)); use a roomier map, a "
-        "smaller robot radius or more waypoints");
+    throw std::invalid_argument("fewer than 2 reachable waypoints: all " + std::to_string(waypoint_count) +
+                                " draws fell on the same cell (the robot can reach " +
+                                std::to_string(space.reachable_cells().size()) +
+                                " cell(s)); use a roomier map, a "
+                                "smaller robot radius or more waypoints");
   route.polyline.push_back(route.waypoints.front());
   for (std::size_t i = 1; i < route.waypoints.size(); ++i) {
     const std::vector<RoutePoint> leg = space.PlanPath(route.waypoints[i - 1], route.waypoints[i]);

@@ -83,9 +83,9 @@ class ReachableFreeSpace {
 };
 
 struct FreeSpaceRouteOptions {
-  double robot_radius_m = 0.2;   // disc robot radius (m), (0, 10]
-  int waypoint_count = 8;        // K random waypoints, [2, 10^6]
-  std::uint64_t seed = 1;        // waypoint draws
+  double robot_radius_m = 0.2;  // disc robot radius (m), (0, 10]
+  int waypoint_count = 8;       // K random waypoints, [2, 10^6]
+  std::uint64_t seed = 1;       // waypoint draws
 
   bool IsValid(std::string* error) const;
 };
@@ -102,8 +102,7 @@ struct FreeSpaceRoute {
 // Waypoint `index` of the seeded waypoint sequence: a reachable cell centre
 // from RandomStream(seed, kSimulation, index, 0). Callers that extend a route
 // beyond its K waypoints continue the same sequence with index >= K.
-RoutePoint DrawRouteWaypoint(const ReachableFreeSpace& space, std::uint64_t seed,
-                             std::uint64_t index);
+RoutePoint DrawRouteWaypoint(const ReachableFreeSpace& space, std::uint64_t seed, std::uint64_t index);
 
 // Draws options.waypoint_count waypoints and connects them. Throws
 // std::invalid_argument for invalid options, for the grid errors of
@@ -112,7 +111,6 @@ RoutePoint DrawRouteWaypoint(const ReachableFreeSpace& space, std::uint64_t seed
 FreeSpaceRoute PlanFreeSpaceRoute(const OccupancyGrid& grid, const FreeSpaceRouteOptions& options);
 // The same on a reachable space built already (for callers that keep it to
 // plan further legs with PlanPath).
-FreeSpaceRoute PlanFreeSpaceRoute(const ReachableFreeSpace& space, int waypoint_count,
-                                  std::uint64_t seed);
+FreeSpaceRoute PlanFreeSpaceRoute(const ReachableFreeSpace& space, int waypoint_count, std::uint64_t seed);
 
 }  // namespace rc

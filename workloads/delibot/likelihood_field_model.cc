@@ -23,7 +23,8 @@ bool LikelihoodFieldParams::IsValid(std::string* error) const {
 
 LikelihoodFieldModel::LikelihoodFieldModel(const OccupancyGrid& grid, LikelihoodFieldParams params)
     : grid_(&grid),
-      field_(DistanceField::Build(grid, params.unknown_is_edge ? DistanceTarget::kBlocking : DistanceTarget::kOccupied)),
+      field_(
+          DistanceField::Build(grid, params.unknown_is_edge ? DistanceTarget::kBlocking : DistanceTarget::kOccupied)),
       params_(params) {
   if (params_.signed_distance || params_.unknown_is_edge)
     depth_field_ = DistanceField::Build(grid, DistanceTarget::kFree);
@@ -57,8 +58,7 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   // subtracting half a cell gives the distance to the wall's face instead:
   // 0 on the face, growing one-for-one away from it.
   const double r = grid_->resolution_m();
-  if (!(x_m >= 0 && y_m >= 0 && x_m < grid_->extent_x_m() && y_m < grid_->extent_y_m()))
-    return params_.max_occ_dist_m;
+  if (!(x_m >= 0 && y_m >= 0 && x_m < grid_->extent_x_m() && y_m < grid_->extent_y_m())) return params_.max_occ_dist_m;
   // An end point in an unknown cell is as far from evidence as one off the
   // map (AMCL scores those at the cap). The field measures distance to
   // occupied cells only, so without this an end point in the unmapped space
@@ -91,15 +91,13 @@ void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, c
 
 void LikelihoodFieldModel::SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                                    const LaserGeometry& geometry, const BeamSelection& beams,
-                                                   std::vector<double>& log_likelihoods,
-                                                   SensorUpdateWork& work) {
+                                                   std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
   Score(particles, scan, geometry, beams, BeamCombination::kProduct, log_likelihoods, work);
 }
 
 void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan,
-                                 const LaserGeometry& geometry, const BeamSelection& beams,
-                                 BeamCombination combination, std::vector<double>& log_likelihoods,
-                                 SensorUpdateWork& work) const {
+                                 const LaserGeometry& geometry, const BeamSelection& beams, BeamCombination combination,
+                                 std::vector<double>& log_likelihoods, SensorUpdateWork& work) const {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   const long n = static_cast<long>(particles.size());
   log_likelihoods.resize(particles.size());

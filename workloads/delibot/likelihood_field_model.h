@@ -15,11 +15,11 @@
 namespace rc {
 
 struct LikelihoodFieldParams {
-  double z_hit = 0.5;             // nav2 default
-  double z_rand = 0.5;            // nav2 default
-  double sigma_hit_m = 0.2;       // m, nav2 default
-  double max_occ_dist_m = 2.0;    // m: distances are capped here (nav2 laser_likelihood_max_dist)
-  double max_range_m = 10.0;      // m: readings at or beyond are skipped
+  double z_hit = 0.5;           // nav2 default
+  double z_rand = 0.5;          // nav2 default
+  double sigma_hit_m = 0.2;     // m, nav2 default
+  double max_occ_dist_m = 2.0;  // m: distances are capped here (nav2 laser_likelihood_max_dist)
+  double max_range_m = 10.0;    // m: readings at or beyond are skipped
   // false (AMCL's field): 0 everywhere inside occupied cells. true: an end
   // point inside a wall scores by its depth below the wall's face, as one in
   // front of it scores by its distance (a signed distance field). Signed
@@ -45,9 +45,9 @@ class LikelihoodFieldModel final : public SensorModel {
  public:
   LikelihoodFieldModel(const OccupancyGrid& grid, LikelihoodFieldParams params);
   std::string name() const override { return "likelihood"; }
-  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
-                      const LaserGeometry& geometry, const BeamSelection& beams,
-                      std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+                      const BeamSelection& beams, std::vector<double>& log_likelihoods,
+                      SensorUpdateWork& work) override;
   // Always the product: the cube sum changes a weight by a factor of at
   // most about 6 per scan (30 beams), so resampling 500,000 particles by it
   // keeps an almost uniform sample and the dense first set is wasted.

@@ -27,8 +27,7 @@ bool MclOptions::IsValid(std::string* error) const {
     return fail("injection check window must be in [0, 1000] sensor updates");
   if (hypothesis_floor.min_particles < 0 || hypothesis_floor.min_particles > particle_count / 2)
     return fail("hypothesis floor must be in [0, particles / 2] particles");
-  if (max_particle_count != 0 &&
-      (max_particle_count < particle_count || max_particle_count > 10000000))
+  if (max_particle_count != 0 && (max_particle_count < particle_count || max_particle_count > 10000000))
     return fail("max particles must be 0 or in [particles, 10^7]");
   if (max_particle_count != 0 && hypothesis_floor.min_particles == 0)
     return fail("max particles grows the set only to keep floored hypotheses: it needs a hypothesis floor");

@@ -12,7 +12,7 @@
 namespace rc {
 
 struct MclOptions {
-  int particle_count = 2000;          // [1, 10^7]
+  int particle_count = 2000;  // [1, 10^7]
   // Global localization starts from this many uniform particles (0: the
   // particle count) and the first sensor update resamples them down to
   // particle_count. Why: some particle must start within the sensor model's
@@ -20,10 +20,10 @@ struct MclOptions {
   // whichever look-alike the first scans favour (docs/real_logs.md, "A dense
   // first set"). kAutoInitialParticles sizes the set by the map
   // (InitialParticleCount).
-  int initial_particle_count = 0;     // kAutoInitialParticles, 0, or [particle_count, 10^7]
+  int initial_particle_count = 0;  // kAutoInitialParticles, 0, or [particle_count, 10^7]
   std::uint64_t seed = 1;
   OdometryMotionNoise motion;
-  BeamSelection beams{6};             // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
+  BeamSelection beams{6};  // every 6th beam: 30 of 180 (nav2 uses 60); [1, beam count]
   // A particle whose robot centre is not in a free cell (occupied, unknown,
   // or off the map) gets zero weight: the same free space that global
   // localization samples from. The likelihood field needs this most: it
@@ -31,7 +31,7 @@ struct MclOptions {
   // endpoint land "on an obstacle" and outscores the true pose
   // (docs/real_logs.md, "Free space").
   bool reject_poses_in_obstacles = true;
-  double resample_ess_fraction = 0.5; // resample when ESS < fraction * N; (0, 1]
+  double resample_ess_fraction = 0.5;  // resample when ESS < fraction * N; (0, 1]
   // Hypothesis-preserving resampling (resampling.h): a cluster of particles
   // (clusters: hypothesis_clusters.h, bins of estimate_kernel_radius_m and
   // 360 / hypothesis_heading_bins deg) whose posterior mass is within
@@ -56,12 +56,12 @@ struct MclOptions {
   // sizes the set by the support of the belief. 0 = fixed size (the
   // default). [0 or particle_count, 10^7].
   int max_particle_count = 0;
-  int hypothesis_heading_bins = 12;          // 30 deg heading bins; [1, 360]
+  int hypothesis_heading_bins = 12;  // 30 deg heading bins; [1, 360]
   // Augmented MCL (Probabilistic Robotics, Table 8.3): random particles are
   // injected when the short-term average likelihood falls below the
   // long-term one. alpha_slow < alpha_fast; both 0 disables injection.
-  double alpha_slow = 0.001;          // nav2's suggested recovery_alpha_slow
-  double alpha_fast = 0.1;            // nav2's suggested recovery_alpha_fast
+  double alpha_slow = 0.001;  // nav2's suggested recovery_alpha_slow
+  double alpha_fast = 0.1;    // nav2's suggested recovery_alpha_fast
   // Checked injection (0 = augmented MCL as published). A random pose
   // replaces a particle only if it explains the scans of the last this-many
   // sensor updates better than that particle does, both replayed back
@@ -91,7 +91,7 @@ struct MclOptions {
   // Record every ray's node fetches (robocore/kernel_record.h) so that the
   // backends can price the update; off, the kernel runs without the hook.
   bool record_kernel = false;
-  AddressSample record_sample;  // whose node addresses the record keeps (default: all)
+  AddressSample record_sample;      // whose node addresses the record keeps (default: all)
   RayKernelChoices record_choices;  // how the recorded kernel stores the grid and which march program it prices
 
   bool IsValid(std::string* error) const;
@@ -106,12 +106,12 @@ struct MclOptions {
 // leave about one there, and lost the true place in one of ten seeds
 // (docs/defaults.md). 0.15 m and 3 deg is the reach measured there.
 constexpr int kAutoInitialParticles = -1;
-constexpr double kAutoInitialNearPose = 4.0;                          // expected particles [count]
-constexpr double kAutoInitialNearXyM = 0.15;                          // radius [m]
+constexpr double kAutoInitialNearPose = 4.0;                                       // expected particles [count]
+constexpr double kAutoInitialNearXyM = 0.15;                                       // radius [m]
 constexpr double kAutoInitialNearThetaRad = 3.0 * 3.14159265358979323846 / 180.0;  // half-width [rad]
 // The auto size is capped (memory: about 100 bytes per particle while the
 // dense set is scored and resampled, so 4e6 take 0.4 GB).
-constexpr int kAutoInitialParticlesCap = 4000000;                     // [count]
+constexpr int kAutoInitialParticlesCap = 4000000;  // [count]
 
 // The particles InitializeUniform draws: particle_count, the explicit
 // initial_particle_count, or the auto size for free_area_m2 of free space

@@ -14,8 +14,7 @@
 
 namespace rc {
 
-MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
-                                         std::unique_ptr<SensorModel> sensor_model,
+MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_ptr<SensorModel> sensor_model,
                                          MclOptions options)
     : grid_(grid), sensor_model_(std::move(sensor_model)), options_(options) {
   std::string error;
@@ -25,8 +24,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid,
   check_work_.record_kernel = options_.record_kernel;
   work_.record_sample = check_work_.record_sample = options_.record_sample;
   work_.record_choices = check_work_.record_choices = options_.record_choices;
-  if (free_cells_.empty())
-    throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
+  if (free_cells_.empty()) throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }
 
 Pose2 MonteCarloLocalizer::RandomFreePose(RandomStream& stream) const {
@@ -92,8 +90,7 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
   last_odometry_ = scan.odometry;
   have_odometry_ = true;
 
-  const bool moved_enough =
-      moved_d_m_ >= options_.update_min_d_m || moved_a_rad_ >= options_.update_min_a_rad;
+  const bool moved_enough = moved_d_m_ >= options_.update_min_d_m || moved_a_rad_ >= options_.update_min_a_rad;
   if (first_sensor_update_done_ && !moved_enough) {
     result.ess = EffectiveSampleSize(log_weights_);
     return result;
@@ -128,17 +125,16 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
       have_recovery_averages_ = true;
     } else {
       // w += alpha * (w_avg - w), i.e. w = (1 - alpha) w + alpha w_avg.
-      log_w_slow_ = LogAddExp(std::log1p(-options_.alpha_slow) + log_w_slow_,
-                              std::log(options_.alpha_slow) + log_w_beam);
-      log_w_fast_ = LogAddExp(std::log1p(-options_.alpha_fast) + log_w_fast_,
-                              std::log(options_.alpha_fast) + log_w_beam);
+      log_w_slow_ =
+          LogAddExp(std::log1p(-options_.alpha_slow) + log_w_slow_, std::log(options_.alpha_slow) + log_w_beam);
+      log_w_fast_ =
+          LogAddExp(std::log1p(-options_.alpha_fast) + log_w_fast_, std::log(options_.alpha_fast) + log_w_beam);
     }
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }
   if (options_.injection_check_updates > 0) {
     recent_scans_.push_back({scan, geometry});
-    while (recent_scans_.size() > static_cast<std::size_t>(options_.injection_check_updates))
-      recent_scans_.pop_front();
+    while (recent_scans_.size() > static_cast<std::size_t>(options_.injection_check_updates)) recent_scans_.pop_front();
   }
   result.ess = EffectiveSampleSize(log_weights_);
   // The dense first set is not clustered: spread uniformly over the map it
@@ -217,9 +213,8 @@ void MonteCarloLocalizer::Resample(std::uint64_t iteration, const HypothesisClus
   // from the start) and push the hypothesis below its floor.
   std::size_t injectable_slots = slots;
   if (clusters) {
-    WeightedResample resampled =
-        HypothesisPreservingResample(log_weights_, *clusters, cluster_log_masses, slots, options_.hypothesis_floor,
-                                     pass_offset);
+    WeightedResample resampled = HypothesisPreservingResample(log_weights_, *clusters, cluster_log_masses, slots,
+                                                              options_.hypothesis_floor, pass_offset);
     ancestors = std::move(resampled.ancestors);
     next_log_weights = std::move(resampled.log_weights);
     injectable_slots = resampled.shared_slots;
@@ -289,8 +284,8 @@ std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vec
     // Where each pose was at that scan if the odometry since then is right.
     const Pose2 back = Between(odometry_now, remembered.scan.odometry);
     for (std::size_t i = 0; i < poses_now.size(); ++i) poses_then[i] = Compose(poses_now[i], back);
-    sensor_model_->LogLikelihoods(poses_then, remembered.scan, remembered.geometry, options_.beams,
-                                  log_likelihoods, check_work_);
+    sensor_model_->LogLikelihoods(poses_then, remembered.scan, remembered.geometry, options_.beams, log_likelihoods,
+                                  check_work_);
     for (std::size_t i = 0; i < poses_now.size(); ++i) total[i] += log_likelihoods[i];
     // These casts run on the same device as the update's, so they are
     // priced with it: one launch per replayed scan.

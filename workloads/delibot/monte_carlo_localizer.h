@@ -20,13 +20,13 @@ namespace rc {
 struct MclStepResult {
   bool sensor_updated = false;
   bool resampled = false;
-  int injected = 0;              // particles replaced by random free-space poses
-  int injection_rejected = 0;    // random poses drawn but refused by the injection check
+  int injected = 0;            // particles replaced by random free-space poses
+  int injection_rejected = 0;  // random poses drawn but refused by the injection check
   // With the hypothesis floor: hypotheses within its window after this
   // update (1 = no rival; hypothesis_clusters.h). 0 when not computed (floor
   // off, no sensor update, or the dense first update).
   int hypotheses_alive = 0;
-  double ess = 0.0;              // effective sample size after the update, before resampling
+  double ess = 0.0;  // effective sample size after the update, before resampling
   // A staged sensor model (staged_sensor_model.h): whether its tracking
   // model scored this record (held, when no update ran), and whether this
   // update handed over to it for the records that follow.
@@ -47,8 +47,7 @@ class MonteCarloLocalizer {
  public:
   // Throws std::invalid_argument for invalid options or a grid with no free
   // cell (global localization has nowhere to put a particle).
-  MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_ptr<SensorModel> sensor_model,
-                      MclOptions options);
+  MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_ptr<SensorModel> sensor_model, MclOptions options);
 
   // Global localization: particles uniform over free cells, headings uniform.
   void InitializeUniform();
@@ -86,8 +85,8 @@ class MonteCarloLocalizer {
   MclOptions options_;
   std::vector<std::uint32_t> free_cells_;
   std::vector<Pose2> particles_;
-  std::vector<double> log_weights_;     // normalized: sum of exp == 1
-  std::vector<double> log_likelihoods_; // scratch
+  std::vector<double> log_weights_;      // normalized: sum of exp == 1
+  std::vector<double> log_likelihoods_;  // scratch
   SensorUpdateWork work_;
   bool have_odometry_ = false;
   Pose2 last_odometry_;
@@ -105,7 +104,7 @@ class MonteCarloLocalizer {
     LaserGeometry geometry;
   };
   std::deque<RememberedScan> recent_scans_;
-  SensorUpdateWork check_work_;  // scratch for the injection check's casts
+  SensorUpdateWork check_work_;              // scratch for the injection check's casts
   std::vector<KernelRecord> check_records_;  // this record's, when record_kernel
 };
 

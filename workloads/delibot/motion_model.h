@@ -30,7 +30,7 @@ struct OdometryDelta {
 OdometryDelta ComputeOdometryDelta(const Pose2& previous, const Pose2& current);
 
 // Applies the delta with noise drawn from `stream` to `pose` (map frame).
-Pose2 SampleOdometryMotion(const Pose2& pose, const OdometryDelta& delta,
-                           const OdometryMotionNoise& noise, RandomStream& stream);
+Pose2 SampleOdometryMotion(const Pose2& pose, const OdometryDelta& delta, const OdometryMotionNoise& noise,
+                           RandomStream& stream);
 
 }  // namespace rc

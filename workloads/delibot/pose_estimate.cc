@@ -66,8 +66,8 @@ constexpr std::size_t kModeSeeds = 16;
 
 }  // namespace
 
-PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
-                          const std::vector<double>& normalized_log_weights, double kernel_radius_m) {
+PoseEstimate EstimatePose(const std::vector<Pose2>& particles, const std::vector<double>& normalized_log_weights,
+                          double kernel_radius_m) {
   PoseEstimate out;
   if (particles.empty()) return out;
   // The per-particle work and the seeds' searches run in parallel: each
@@ -89,9 +89,8 @@ PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   const std::size_t seeds = std::min(kModeSeeds, order.size());
   // Heaviest first; ties broken by index so the result is deterministic.
-  std::partial_sort(order.begin(), order.begin() + seeds, order.end(), [&](std::size_t a, std::size_t b) {
-    return w[a] != w[b] ? w[a] > w[b] : a < b;
-  });
+  std::partial_sort(order.begin(), order.begin() + seeds, order.end(),
+                    [&](std::size_t a, std::size_t b) { return w[a] != w[b] ? w[a] > w[b] : a < b; });
   // Seeds that start from the same pose (copies made by resampling) give
   // the same search: each is run once. A search is a function of its start
   // pose alone (with the weights and particles), and a copy can never

@@ -12,13 +12,12 @@ namespace rc {
 
 struct PoseEstimate {
   Pose2 pose;
-  double mode_weight = 0.0;   // total normalized weight inside the mode's kernel
-  double spread_m = 0.0;      // weighted RMS distance of all particles from the estimate (m)
+  double mode_weight = 0.0;  // total normalized weight inside the mode's kernel
+  double spread_m = 0.0;     // weighted RMS distance of all particles from the estimate (m)
 };
 
 // normalized_log_weights: log weights summing to 1 in the linear domain.
-PoseEstimate EstimatePose(const std::vector<Pose2>& particles,
-                          const std::vector<double>& normalized_log_weights,
+PoseEstimate EstimatePose(const std::vector<Pose2>& particles, const std::vector<double>& normalized_log_weights,
                           double kernel_radius_m = 1.0);
 
 }  // namespace rc

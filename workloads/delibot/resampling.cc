@@ -22,8 +22,8 @@ double EffectiveSampleSize(const std::vector<double>& normalized_log_weights) {
   return sum_sq > 0.0 ? 1.0 / sum_sq : 0.0;
 }
 
-std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights,
-                                            double u01, std::size_t output_count) {
+std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights, double u01,
+                                            std::size_t output_count) {
   const std::size_t n = normalized_log_weights.size();
   const std::size_t slots = output_count > 0 ? output_count : n;
   std::vector<std::size_t> ancestors(n == 0 ? 0 : slots);
@@ -51,8 +51,8 @@ bool WithinWindow(double log_mass, double heaviest, double window_nats) {
 
 // Systematic pass over `members` (indices into log_weights, in this order),
 // whose weights sum to exp(log_mass), writing `slots` ancestors.
-void SystematicOver(const std::vector<double>& log_weights, const std::vector<std::size_t>& members,
-                    double log_mass, std::size_t slots, double u01, std::vector<std::size_t>& out) {
+void SystematicOver(const std::vector<double>& log_weights, const std::vector<std::size_t>& members, double log_mass,
+                    std::size_t slots, double u01, std::vector<std::size_t>& out) {
   std::vector<double> local(members.size());
   for (std::size_t k = 0; k < members.size(); ++k) local[k] = log_weights[members[k]] - log_mass;
   for (std::size_t k : SystematicResample(local, u01, slots)) out.push_back(members[k]);
@@ -91,9 +91,8 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
 }
 
 WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
-                                              const HypothesisClusters& clusters,
-                                              const std::vector<double>& log_mass, std::size_t output_count,
-                                              const HypothesisFloor& floor,
+                                              const HypothesisClusters& clusters, const std::vector<double>& log_mass,
+                                              std::size_t output_count, const HypothesisFloor& floor,
                                               const std::function<double(std::size_t)>& u01) {
   const std::size_t n = normalized_log_weights.size();
   const std::size_t slots = output_count > 0 ? output_count : n;

@@ -21,8 +21,8 @@ double EffectiveSampleSize(const std::vector<double>& normalized_log_weights);
 // pointers; returns the chosen ancestor index for each of the N slots. N is
 // the input size unless `output_count` is given (a large initial set for
 // global localization is reduced to the working size this way).
-std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights,
-                                            double u01, std::size_t output_count = 0);
+std::vector<std::size_t> SystematicResample(const std::vector<double>& normalized_log_weights, double u01,
+                                            std::size_t output_count = 0);
 
 // Hypothesis-preserving resampling (after Milstein et al., "Robust global
 // localization using clustered particle filtering", AAAI 2002). Plain
@@ -37,14 +37,14 @@ std::vector<std::size_t> SystematicResample(const std::vector<double>& normalize
 // equal weights. At most half of the slots go to the floor (the heaviest
 // eligible clusters first). With one cluster this is SystematicResample.
 struct HypothesisFloor {
-  int min_particles = 0;       // particles a kept hypothesis holds at least; 0 = off
-  double window_nats = 0.0;    // kept while log(mass) >= log(heaviest mass) - window_nats
+  int min_particles = 0;     // particles a kept hypothesis holds at least; 0 = off
+  double window_nats = 0.0;  // kept while log(mass) >= log(heaviest mass) - window_nats
 };
 
 struct WeightedResample {
-  std::vector<std::size_t> ancestors;   // one per output slot
-  std::vector<double> log_weights;      // normalized, one per output slot
-  int floored_clusters = 0;             // clusters held at min_particles
+  std::vector<std::size_t> ancestors;  // one per output slot
+  std::vector<double> log_weights;     // normalized, one per output slot
+  int floored_clusters = 0;            // clusters held at min_particles
   // The first shared_slots slots come from the shared pass and carry equal
   // weights; the rest belong to floored clusters. Right after a floored
   // resampling the effective sample size is about shared_slots (at least
@@ -73,8 +73,8 @@ WeightedResample HypothesisPreservingResample(const std::vector<double>& normali
 // ClusterLogMasses (the localizer needs them for HypothesesAlive first).
 WeightedResample HypothesisPreservingResample(const std::vector<double>& normalized_log_weights,
                                               const HypothesisClusters& clusters,
-                                              const std::vector<double>& cluster_log_masses,
-                                              std::size_t output_count, const HypothesisFloor& floor,
+                                              const std::vector<double>& cluster_log_masses, std::size_t output_count,
+                                              const HypothesisFloor& floor,
                                               const std::function<double(std::size_t)>& u01);
 
 }  // namespace rc

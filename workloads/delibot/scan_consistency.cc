@@ -18,9 +18,8 @@ bool StopsInUnknownSpace(const OccupancyGrid& grid, const Pose2& sensor, double 
 
 }  // namespace
 
-ScanConsistency MeasureScanConsistency(const RayCastScene& exact_scene, const Pose2& robot,
-                                       const LaserScan& scan, const LaserGeometry& geometry,
-                                       double max_range_m, double tolerance_m) {
+ScanConsistency MeasureScanConsistency(const RayCastScene& exact_scene, const Pose2& robot, const LaserScan& scan,
+                                       const LaserGeometry& geometry, double max_range_m, double tolerance_m) {
   ScanConsistency out;
   const Pose2 sensor = SensorPose(robot, geometry);
   for (int b = 0; b < geometry.beam_count; ++b) {

@@ -22,8 +22,7 @@ struct ScanConsistency {
   double Fraction() const { return beams_used > 0 ? static_cast<double>(beams_within) / beams_used : 0.0; }
 };
 
-ScanConsistency MeasureScanConsistency(const RayCastScene& exact_scene, const Pose2& robot,
-                                       const LaserScan& scan, const LaserGeometry& geometry,
-                                       double max_range_m, double tolerance_m);
+ScanConsistency MeasureScanConsistency(const RayCastScene& exact_scene, const Pose2& robot, const LaserScan& scan,
+                                       const LaserGeometry& geometry, double max_range_m, double tolerance_m);
 
 }  // namespace rc

@@ -34,7 +34,7 @@ struct SensorUpdateWork {
   // When record_kernel is set, ray-casting models also fill `record` with
   // every query's node fetches (run once), for the backends to price.
   bool record_kernel = false;
-  AddressSample record_sample;  // whose addresses the record keeps
+  AddressSample record_sample;      // whose addresses the record keeps
   RayKernelChoices record_choices;  // the device's cell size and march program (a preset's "kernel")
   KernelRecord record;
 };
@@ -44,9 +44,9 @@ class SensorModel {
   virtual ~SensorModel() = default;
   virtual std::string name() const = 0;
   // Writes one log-likelihood per particle into log_likelihoods.
-  virtual void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
-                              const LaserGeometry& geometry, const BeamSelection& beams,
-                              std::vector<double>& log_likelihoods, SensorUpdateWork& work) = 0;
+  virtual void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+                              const BeamSelection& beams, std::vector<double>& log_likelihoods,
+                              SensorUpdateWork& work) = 0;
   // The same, for the update that cuts a dense initial set
   // (--initial-particles) down to the working set: it must pick a few
   // thousand particles out of hundreds of thousands, so a model whose scan

@@ -27,10 +27,8 @@ enum class NoiseSource : std::uint64_t {
   kKidnap = 4,      // step = record
 };
 
-RandomStream SimulationStream(std::uint64_t seed, std::uint64_t step, NoiseSource source,
-                              std::uint64_t member) {
-  return RandomStream(seed, StreamPurpose::kSimulation, step,
-                      (static_cast<std::uint64_t>(source) << 32) | member);
+RandomStream SimulationStream(std::uint64_t seed, std::uint64_t step, NoiseSource source, std::uint64_t member) {
+  return RandomStream(seed, StreamPurpose::kSimulation, step, (static_cast<std::uint64_t>(source) << 32) | member);
 }
 
 // A kidnap should be unmistakable: the new pose is at least this far (m)
@@ -49,8 +47,7 @@ class RouteFollower {
   // Goal 0 is the start position; an empty optional ends the route.
   using GoalSource = std::function<std::optional<RoutePoint>(std::uint64_t goal_number)>;
 
-  RouteFollower(const ReachableFreeSpace& space, GoalSource goals, double speed_mps,
-                double turn_rate_radps)
+  RouteFollower(const ReachableFreeSpace& space, GoalSource goals, double speed_mps, double turn_rate_radps)
       : space_(&space), goals_(std::move(goals)), speed_mps_(speed_mps), turn_rate_radps_(turn_rate_radps) {
     const std::optional<RoutePoint> start = goals_(0);
     if (!start) throw std::logic_error("route follower without a start goal");
@@ -58,8 +55,7 @@ class RouteFollower {
     next_goal_ = 1;
     StartNextLeg();
     // Face the first segment so that the trace does not open with a turn.
-    if (!leg_.empty())
-      heading_ = std::atan2(leg_.front().y_m - position_.y_m, leg_.front().x_m - position_.x_m);
+    if (!leg_.empty()) heading_ = std::atan2(leg_.front().y_m - position_.y_m, leg_.front().x_m - position_.x_m);
   }
 
   Pose2 pose() const { return {position_.x_m, position_.y_m, heading_}; }
@@ -139,8 +135,7 @@ class RouteFollower {
 
 // Distance along the ray to a disc, or +inf if the ray misses it or starts
 // inside it (a person standing on the laser is not seen; see the header).
-double RayDiscDistance(double ox, double oy, double dx, double dy, const Pose2& centre,
-                       double radius_m) {
+double RayDiscDistance(double ox, double oy, double dx, double dy, const Pose2& centre, double radius_m) {
   const double fx = ox - centre.x, fy = oy - centre.y;
   const double c = fx * fx + fy * fy - radius_m * radius_m;
   if (c <= 0.0) return std::numeric_limits<double>::infinity();
@@ -159,8 +154,7 @@ float NoisyRange(float true_range_m, const SimulationOptions& options, RandomStr
   const double short_draw = stream.Uniform();
   const double short_fraction = stream.Uniform();
   const double gaussian = stream.Gaussian();
-  if (dropout_draw < options.max_range_dropout_probability)
-    return static_cast<float>(max_range_m);
+  if (dropout_draw < options.max_range_dropout_probability) return static_cast<float>(max_range_m);
   double reading = true_range_m;
   if (short_draw < options.short_reading_probability) {
     reading = short_fraction * true_range_m;
@@ -173,22 +167,18 @@ float NoisyRange(float true_range_m, const SimulationOptions& options, RandomStr
 // The odometry's view of a true increment (robot frame of the previous
 // record): translation scaled by (1 + bias + noise), rotation by
 // (1 + noise), and a heading drift proportional to the distance driven.
-Pose2 OdometryIncrement(const Pose2& true_increment, const SimulationOptions& options,
-                        RandomStream& stream) {
+Pose2 OdometryIncrement(const Pose2& true_increment, const SimulationOptions& options, RandomStream& stream) {
   const double translation_noise = stream.Gaussian();
   const double rotation_noise = stream.Gaussian();
   const double distance_m = std::hypot(true_increment.x, true_increment.y);
-  const double scale = 1.0 + options.odometry_translation_bias +
-                       options.odometry_translation_sigma * translation_noise;
+  const double scale = 1.0 + options.odometry_translation_bias + options.odometry_translation_sigma * translation_noise;
   return {true_increment.x * scale, true_increment.y * scale,
           true_increment.theta * (1.0 + options.odometry_rotation_sigma * rotation_noise) +
               options.odometry_heading_drift_rad_per_m * distance_m};
 }
 
-Pose2 KidnapPose(const ReachableFreeSpace& space, const Pose2& from, std::uint64_t seed,
-                 int record) {
-  RandomStream stream = SimulationStream(seed, static_cast<std::uint64_t>(record),
-                                         NoiseSource::kKidnap, 0);
+Pose2 KidnapPose(const ReachableFreeSpace& space, const Pose2& from, std::uint64_t seed, int record) {
+  RandomStream stream = SimulationStream(seed, static_cast<std::uint64_t>(record), NoiseSource::kKidnap, 0);
   RoutePoint best{};
   double best_jump_m = -1.0;
   for (int draw = 0; draw < kKidnapDraws && best_jump_m < kMinKidnapJumpM; ++draw) {
@@ -221,45 +211,31 @@ bool SimulationOptions::IsValid(std::string* error) const {
     return false;
   };
   auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };  // false for NaN
-  if (geometry.beam_count < 1 || geometry.beam_count > 100000)
-    return fail("geometry.beam_count must be in [1, 10^5]");
+  if (geometry.beam_count < 1 || geometry.beam_count > 100000) return fail("geometry.beam_count must be in [1, 10^5]");
   if (!(geometry.max_range_m > 0.0) || !std::isfinite(geometry.max_range_m))
     return fail("geometry.max_range_m must be a positive number of metres");
-  if (!in(geometry.offset_forward_m, 0.0, 10.0))
-    return fail("geometry.offset_forward_m must be in [0, 10] m");
+  if (!in(geometry.offset_forward_m, 0.0, 10.0)) return fail("geometry.offset_forward_m must be in [0, 10] m");
   if (!std::isfinite(geometry.angle_min_rad) || !std::isfinite(geometry.angle_increment_rad))
     return fail("geometry angles must be finite");
-  if (!(robot_radius_m > 0.0 && robot_radius_m <= 10.0))
-    return fail("robot_radius_m must be in (0, 10] m");
-  if (waypoint_count < 2 || waypoint_count > 1000000)
-    return fail("waypoint_count must be in [2, 10^6]");
+  if (!(robot_radius_m > 0.0 && robot_radius_m <= 10.0)) return fail("robot_radius_m must be in (0, 10] m");
+  if (waypoint_count < 2 || waypoint_count > 1000000) return fail("waypoint_count must be in [2, 10^6]");
   if (!(speed_mps > 0.0 && speed_mps <= 10.0)) return fail("speed_mps must be in (0, 10] m/s");
-  if (!(turn_rate_radps > 0.0 && turn_rate_radps <= 20.0))
-    return fail("turn_rate_radps must be in (0, 20] rad/s");
-  if (!(laser_rate_hz > 0.0 && laser_rate_hz <= 1000.0))
-    return fail("laser_rate_hz must be in (0, 1000] Hz");
-  if (record_count < 1 || record_count > 10000000)
-    return fail("record_count must be in [1, 10^7]");
+  if (!(turn_rate_radps > 0.0 && turn_rate_radps <= 20.0)) return fail("turn_rate_radps must be in (0, 20] rad/s");
+  if (!(laser_rate_hz > 0.0 && laser_rate_hz <= 1000.0)) return fail("laser_rate_hz must be in (0, 1000] Hz");
+  if (record_count < 1 || record_count > 10000000) return fail("record_count must be in [1, 10^7]");
   if (!in(range_sigma_m, 0.0, 10.0)) return fail("range_sigma_m must be in [0, 10] m");
-  if (!in(short_reading_probability, 0.0, 1.0))
-    return fail("short_reading_probability must be in [0, 1]");
-  if (!in(max_range_dropout_probability, 0.0, 1.0))
-    return fail("max_range_dropout_probability must be in [0, 1]");
+  if (!in(short_reading_probability, 0.0, 1.0)) return fail("short_reading_probability must be in [0, 1]");
+  if (!in(max_range_dropout_probability, 0.0, 1.0)) return fail("max_range_dropout_probability must be in [0, 1]");
   if (people_count < 0 || people_count > 1000) return fail("people_count must be in [0, 1000]");
-  if (!(people_radius_m > 0.0 && people_radius_m <= 2.0))
-    return fail("people_radius_m must be in (0, 2] m");
-  if (!(people_speed_mps > 0.0 && people_speed_mps <= 10.0))
-    return fail("people_speed_mps must be in (0, 10] m/s");
-  if (!in(odometry_translation_sigma, 0.0, 1.0))
-    return fail("odometry_translation_sigma must be in [0, 1]");
-  if (!in(odometry_rotation_sigma, 0.0, 1.0))
-    return fail("odometry_rotation_sigma must be in [0, 1]");
-  if (!in(odometry_translation_bias, -0.5, 0.5))
-    return fail("odometry_translation_bias must be in [-0.5, 0.5]");
+  if (!(people_radius_m > 0.0 && people_radius_m <= 2.0)) return fail("people_radius_m must be in (0, 2] m");
+  if (!(people_speed_mps > 0.0 && people_speed_mps <= 10.0)) return fail("people_speed_mps must be in (0, 10] m/s");
+  if (!in(odometry_translation_sigma, 0.0, 1.0)) return fail("odometry_translation_sigma must be in [0, 1]");
+  if (!in(odometry_rotation_sigma, 0.0, 1.0)) return fail("odometry_rotation_sigma must be in [0, 1]");
+  if (!in(odometry_translation_bias, -0.5, 0.5)) return fail("odometry_translation_bias must be in [-0.5, 0.5]");
   if (!in(odometry_heading_drift_rad_per_m, -1.0, 1.0))
     return fail("odometry_heading_drift_rad_per_m must be in [-1, 1] rad/m");
-  if (odometry_start && (!std::isfinite(odometry_start->x) || !std::isfinite(odometry_start->y) ||
-                         !std::isfinite(odometry_start->theta)))
+  if (odometry_start &&
+      (!std::isfinite(odometry_start->x) || !std::isfinite(odometry_start->y) || !std::isfinite(odometry_start->theta)))
     return fail("odometry_start must be finite");
   if (kidnap_record != -1 && (kidnap_record < 1 || kidnap_record >= record_count))
     return fail("kidnap_record must be -1 (off) or in [1, record_count)");
@@ -272,8 +248,7 @@ SimulatedTrace SimulateTrace(const OccupancyGrid& grid, const SimulationOptions&
   const LaserGeometry& geometry = options.geometry;
 
   SimulatedTrace result;
-  result.planning_radius_m =
-      std::max(options.robot_radius_m, geometry.offset_forward_m + kLaserWallClearanceM);
+  result.planning_radius_m = std::max(options.robot_radius_m, geometry.offset_forward_m + kLaserWallClearanceM);
   const ReachableFreeSpace space(grid, result.planning_radius_m);
   result.route = PlanFreeSpaceRoute(space, options.waypoint_count, options.seed);
 
@@ -286,8 +261,7 @@ SimulatedTrace SimulateTrace(const OccupancyGrid& grid, const SimulationOptions&
         if (goal < waypoints.size()) return waypoints[goal];
         if (options.stop_at_route_end) return std::nullopt;
         return DrawRouteWaypoint(space, options.seed,
-                                 static_cast<std::uint64_t>(options.waypoint_count) +
-                                     (goal - waypoints.size()));
+                                 static_cast<std::uint64_t>(options.waypoint_count) + (goal - waypoints.size()));
       },
       options.speed_mps, options.turn_rate_radps);
   std::vector<RouteFollower> people;
@@ -308,8 +282,7 @@ SimulatedTrace SimulateTrace(const OccupancyGrid& grid, const SimulationOptions&
   result.trace.geometry = geometry;
   const double dt_s = 1.0 / options.laser_rate_hz;
   Pose2 truth = robot.pose();
-  Pose2 odometry = options.odometry_start ? *options.odometry_start
-                                          : Compose(kDefaultOdometryFrame, truth);
+  Pose2 odometry = options.odometry_start ? *options.odometry_start : Compose(kDefaultOdometryFrame, truth);
   for (int record = 0; record < options.record_count; ++record) {
     const auto step = static_cast<std::uint64_t>(record);
     if (record > 0) {
@@ -317,8 +290,7 @@ SimulatedTrace SimulateTrace(const OccupancyGrid& grid, const SimulationOptions&
       for (RouteFollower& person : people) person.Advance(dt_s);
       const Pose2 driven = robot.pose();
       RandomStream odometry_stream = SimulationStream(options.seed, step, NoiseSource::kOdometry, 0);
-      odometry = Compose(odometry,
-                         OdometryIncrement(Between(truth, driven), options, odometry_stream));
+      odometry = Compose(odometry, OdometryIncrement(Between(truth, driven), options, odometry_stream));
       truth = driven;
       if (record == options.kidnap_record) {
         // After driving, so the odometry reports the motion but not the jump.
@@ -336,12 +308,10 @@ SimulatedTrace SimulateTrace(const OccupancyGrid& grid, const SimulationOptions&
     NoFetchVisitor no_fetch;
     for (int beam = 0; beam < geometry.beam_count; ++beam) {
       const double angle = sensor.theta + geometry.BeamAngle(beam);
-      float range_m =
-          CastDda(grid, sensor.x, sensor.y, angle, geometry.max_range_m, no_fetch).range_m;
+      float range_m = CastDda(grid, sensor.x, sensor.y, angle, geometry.max_range_m, no_fetch).range_m;
       const double dx = std::cos(angle), dy = std::sin(angle);
       for (const RouteFollower& person : people) {
-        const double d = RayDiscDistance(sensor.x, sensor.y, dx, dy, person.pose(),
-                                         options.people_radius_m);
+        const double d = RayDiscDistance(sensor.x, sensor.y, dx, dy, person.pose(), options.people_radius_m);
         if (d < range_m) range_m = static_cast<float>(d);
       }
       RandomStream beam_stream =

@@ -63,32 +63,32 @@ struct SimulationOptions {
   LaserGeometry geometry;
 
   // Robot and route.
-  double robot_radius_m = 0.2;      // disc robot, (0, 10] m. The route keeps
-                                    // max(radius, laser offset +
-                                    // kLaserWallClearanceM) of clearance.
-  int waypoint_count = 8;           // K random waypoints, [2, 10^6]
-  double speed_mps = 0.5;           // driving speed, (0, 10] m/s
-  double turn_rate_radps = 1.0;     // in-place turn rate, (0, 20] rad/s
-  double laser_rate_hz = 10.0;      // laser records per second, (0, 1000] Hz
-  int record_count = 600;           // N laser records, [1, 10^7]
+  double robot_radius_m = 0.2;   // disc robot, (0, 10] m. The route keeps
+                                 // max(radius, laser offset +
+                                 // kLaserWallClearanceM) of clearance.
+  int waypoint_count = 8;        // K random waypoints, [2, 10^6]
+  double speed_mps = 0.5;        // driving speed, (0, 10] m/s
+  double turn_rate_radps = 1.0;  // in-place turn rate, (0, 20] rad/s
+  double laser_rate_hz = 10.0;   // laser records per second, (0, 1000] Hz
+  int record_count = 600;        // N laser records, [1, 10^7]
   // true: stop at the route's last waypoint, even before N records.
   // false (default): keep drawing waypoints (same sequence) until N records.
   bool stop_at_route_end = false;
 
   // Range noise, per beam.
-  double range_sigma_m = 0.03;                  // Gaussian sigma, [0, 10] m
-  double short_reading_probability = 0.01;      // reading ~ U[0, true range], [0, 1]
-  double max_range_dropout_probability = 0.005; // reading = max range, [0, 1]
+  double range_sigma_m = 0.03;                   // Gaussian sigma, [0, 10] m
+  double short_reading_probability = 0.01;       // reading ~ U[0, true range], [0, 1]
+  double max_range_dropout_probability = 0.005;  // reading = max range, [0, 1]
   // Moving people (discs ray-cast against); 0 disables them.
-  int people_count = 2;                         // [0, 1000]
-  double people_radius_m = 0.25;                // (0, 2] m
-  double people_speed_mps = 1.0;                // walking speed, (0, 10] m/s
+  int people_count = 2;           // [0, 1000]
+  double people_radius_m = 0.25;  // (0, 2] m
+  double people_speed_mps = 1.0;  // walking speed, (0, 10] m/s
 
   // Odometry noise and drift (fractions are of each increment between
   // two records).
-  double odometry_translation_sigma = 0.02;     // multiplicative, [0, 1]
-  double odometry_rotation_sigma = 0.02;        // multiplicative, [0, 1]
-  double odometry_translation_bias = 0.01;      // scale error (wheel radius), [-0.5, 0.5]
+  double odometry_translation_sigma = 0.02;        // multiplicative, [0, 1]
+  double odometry_rotation_sigma = 0.02;           // multiplicative, [0, 1]
+  double odometry_translation_bias = 0.01;         // scale error (wheel radius), [-0.5, 0.5]
   double odometry_heading_drift_rad_per_m = 0.01;  // heading bias per metre, [-1, 1] rad/m
   // Odometry pose of record 0 (m, m, rad). Unset: kDefaultOdometryFrame
   // composed with the true start pose.

@@ -11,8 +11,7 @@ ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& 
   if (!options_.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
 }
 
-std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfiguration>& configurations,
-                                                double sweep_rad) {
+std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad) {
   std::vector<Obbd> obbs;
   obbs.reserve(configurations.size() * kArmLinkBoxes);
   for (const ArmConfiguration& q : configurations) {

@@ -33,10 +33,10 @@ namespace rc {
 
 struct SceneFrame {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // columns: the frame's axes in world
-  bool identity = true;                 // rotation is exactly I: no transform at all
-  BoxTree tree;                         // boxes in frame coordinates
+  bool identity = true;                                    // rotation is exactly I: no transform at all
+  BoxTree tree;                                            // boxes in frame coordinates
   FlatBoxTree<double> flat;
-  std::uint32_t node_offset = 0;        // first node's index in the scene's node array
+  std::uint32_t node_offset = 0;  // first node's index in the scene's node array
 };
 
 class ArmScene {

@@ -53,8 +53,10 @@ unsigned ArmMotionValidator::FirstCollision(const ompl::base::State* s1, const o
 bool ArmMotionValidator::checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const {
   unsigned n = 0;
   const bool ok = si_->satisfiesBounds(s2) && FirstCollision(s1, s2, &n) == 0;
-  if (ok) ++valid_;
-  else ++invalid_;
+  if (ok)
+    ++valid_;
+  else
+    ++invalid_;
   return ok;
 }
 

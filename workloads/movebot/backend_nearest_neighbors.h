@@ -88,8 +88,7 @@ class BackendNearestNeighbors : public ompl::NearestNeighbors<T> {
   bool remove(const T& data) override {
     std::optional<BallStateId> found;
     for (BallStateId id = 0; id < items_.size(); ++id)
-      if (tree_.IsLive(id) && items_[id] == data && (!found || tree_.Sequence(id) > tree_.Sequence(*found)))
-        found = id;
+      if (tree_.IsLive(id) && items_[id] == data && (!found || tree_.Sequence(id) > tree_.Sequence(*found))) found = id;
     if (!found) return false;
     tree_.Remove(*found);
     if (last_ && *last_ == *found) last_ = std::nullopt;
@@ -156,10 +155,9 @@ class BackendNearestNeighbors : public ompl::NearestNeighbors<T> {
     const double ours = EuclideanDistance(p, q, tree_.dimension());
     const double theirs = this->distFun_(data, items_[*last_]);
     if (!(std::abs(ours - theirs) <= 1e-9 * (1.0 + ours)))
-      throw std::invalid_argument(
-          "BackendNearestNeighbors: the distance function gives " + std::to_string(theirs) +
-          " where the Euclidean distance on the coordinates is " + std::to_string(ours) +
-          "; the ball-query kernel needs RealVectorStateSpace's distance");
+      throw std::invalid_argument("BackendNearestNeighbors: the distance function gives " + std::to_string(theirs) +
+                                  " where the Euclidean distance on the coordinates is " + std::to_string(ours) +
+                                  "; the ball-query kernel needs RealVectorStateSpace's distance");
   }
 
   void Account() const {

@@ -20,10 +20,10 @@ const ArmDescription& LocobotArmDescription() {
     // Link boxes: frame index (RoWild cIdx), centre offset (cDesc xyz, rpy
     // all zero) and full size (cDim, "LWH").
     a.links = {{
-        {1, {0.0, 0.0, 0.09}, {0.05, 0.05, 0.25}},     // upper arm
-        {2, {0.075, 0.0, 0.0}, {0.25, 0.05, 0.05}},    // forearm
-        {3, {0.027, -0.012, 0.0}, {0.07, 0.076, 0.05}},// wrist
-        {4, {0.055, 0.0, 0.01}, {0.11, 0.11, 0.07}},   // hand and gripper
+        {1, {0.0, 0.0, 0.09}, {0.05, 0.05, 0.25}},       // upper arm
+        {2, {0.075, 0.0, 0.0}, {0.25, 0.05, 0.05}},      // forearm
+        {3, {0.027, -0.012, 0.0}, {0.07, 0.076, 0.05}},  // wrist
+        {4, {0.055, 0.0, 0.01}, {0.11, 0.11, 0.07}},     // hand and gripper
     }};
     a.joint_min_rad = -M_PI / 2;  // RoWild qMin; REFERENCE.md section 3
     a.joint_max_rad = M_PI / 2;

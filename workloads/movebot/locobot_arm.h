@@ -40,9 +40,9 @@ struct ArmFrame {
 };
 
 struct ArmLinkBox {
-  int frame = 0;                     // the frame the box moves with
-  Eigen::Vector3d offset;            // m, box centre in that frame
-  Eigen::Vector3d size;              // m, FULL dimensions along the frame's x, y, z
+  int frame = 0;           // the frame the box moves with
+  Eigen::Vector3d offset;  // m, box centre in that frame
+  Eigen::Vector3d size;    // m, FULL dimensions along the frame's x, y, z
 };
 
 struct ArmDescription {

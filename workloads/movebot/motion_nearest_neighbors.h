@@ -44,7 +44,7 @@ inline NnKind ParseNnKind(const std::string& name) {
 // What the structure did since the last take.
 struct NnWork {
   std::uint64_t queries = 0;
-  bool has_nodes = false;              // false for GNAT (it counts no visits)
+  bool has_nodes = false;  // false for GNAT (it counts no visits)
   std::uint64_t nodes_visited = 0;
   std::optional<KernelRecord> record;  // the kernel's recorded batch (backend structures only)
 };
@@ -79,8 +79,8 @@ NnHandle<T> MakeNearestNeighbors(NnKind kind, const ompl::base::Planner* planner
     };
     return handle;
   }
-  auto counting = std::make_shared<CountingNearestNeighbors<T>>(std::shared_ptr<ompl::NearestNeighbors<T>>(
-      ompl::tools::SelfConfig::getDefaultNearestNeighbors<T>(planner)));
+  auto counting = std::make_shared<CountingNearestNeighbors<T>>(
+      std::shared_ptr<ompl::NearestNeighbors<T>>(ompl::tools::SelfConfig::getDefaultNearestNeighbors<T>(planner)));
   NnHandle<T> handle;
   handle.nn = counting;
   handle.take = [counting] {

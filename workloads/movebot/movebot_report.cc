@@ -40,9 +40,17 @@ std::string OmplVersion() {
 }  // namespace
 
 void WriteMoveBotTimeline(const std::string& path, const MoveBotResult& result) {
-  std::vector<std::string> columns = {"row", "iterations", "samples", "time_s", "tree_states",
-                                      "collision_configurations", "collision_queries", "collision_nodes_per_query",
-                                      "nn_queries", "nn_nodes_per_query", "best_cost_rad"};
+  std::vector<std::string> columns = {"row",
+                                      "iterations",
+                                      "samples",
+                                      "time_s",
+                                      "tree_states",
+                                      "collision_configurations",
+                                      "collision_queries",
+                                      "collision_nodes_per_query",
+                                      "nn_queries",
+                                      "nn_nodes_per_query",
+                                      "best_cost_rad"};
   const std::vector<std::string>& backends = result.collision_pricing.backends;
   if (result.priced) {
     columns.push_back("backend_collision");
@@ -54,10 +62,17 @@ void WriteMoveBotTimeline(const std::string& path, const MoveBotResult& result) 
   CsvTable table(path, columns);
   for (const MoveBotRow& r : result.rows) {
     std::vector<CsvCell> cells = {
-        r.row, r.iterations, r.samples, r.time_s, r.tree_states, r.collision.configurations, r.collision.queries,
+        r.row,
+        r.iterations,
+        r.samples,
+        r.time_s,
+        r.tree_states,
+        r.collision.configurations,
+        r.collision.queries,
         r.collision.queries ? CsvCell(static_cast<double>(r.collision.nodes) / r.collision.queries) : CsvCell::Empty(),
         r.nn.queries,
-        r.nn.has_nodes && r.nn.queries ? CsvCell(static_cast<double>(r.nn.nodes_visited) / r.nn.queries) : CsvCell::Empty(),
+        r.nn.has_nodes && r.nn.queries ? CsvCell(static_cast<double>(r.nn.nodes_visited) / r.nn.queries)
+                                       : CsvCell::Empty(),
         FiniteOrEmpty(r.best_cost_rad)};
     if (result.priced) {
       cells.emplace_back(r.collision_pricing.backend);
@@ -176,8 +191,8 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   if (!result.priced) return;
   // Two kernels, two ledgers: each is scheduled and graded on its own.
   out << "collision kernel, ";
-  PrintLedgerSummary(out, result.collision_pricing, settings.ledger, settings.backend_params.gpu.core_clock_hz,
-                     "batch", "nodes per link-OBB query");
+  PrintLedgerSummary(out, result.collision_pricing, settings.ledger, settings.backend_params.gpu.core_clock_hz, "batch",
+                     "nodes per link-OBB query");
   const auto& nn_totals = result.nn_pricing.static_total_cycles;
   if (std::all_of(nn_totals.begin(), nn_totals.end(), [](double c) { return c == 0.0; })) {
     out << "nearest-neighbour kernel: no batch ran on the device (" << ToString(settings.nn) << ")\n";

@@ -51,9 +51,11 @@ std::string Describe(const ArmConfiguration& q) {
 
 void CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, const char* name) {
   std::string why;
-  if (!checker.arm().WithinLimits(q, &why)) throw std::invalid_argument(std::string(name) + " " + Describe(q) + ": " + why);
+  if (!checker.arm().WithinLimits(q, &why))
+    throw std::invalid_argument(std::string(name) + " " + Describe(q) + ": " + why);
   if (checker.Collides(q))
-    throw std::invalid_argument(std::string(name) + " " + Describe(q) + " is in collision: a link box overlaps an obstacle");
+    throw std::invalid_argument(std::string(name) + " " + Describe(q) +
+                                " is in collision: a link box overlaps an obstacle");
 }
 
 }  // namespace
@@ -151,7 +153,8 @@ MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& se
   if (pdef->hasSolution()) {
     result.status = pdef->hasApproximateSolution() ? MoveBotStatus::kApproximate : MoveBotStatus::kExact;
     const auto path = pdef->getSolutionPath()->as<ompl::geometric::PathGeometric>();
-    for (std::size_t i = 0; i < path->getStateCount(); ++i) result.path.push_back(ToArmConfiguration(path->getState(i)));
+    for (std::size_t i = 0; i < path->getStateCount(); ++i)
+      result.path.push_back(ToArmConfiguration(path->getState(i)));
     result.path_cost_rad = path->length();
     result.goal_distance_rad = pdef->getSolutionDifference();
     if (result.status == MoveBotStatus::kExact) result.goal_distance_rad = 0.0;

@@ -27,10 +27,10 @@
 namespace rc {
 
 struct MoveBotSettings {
-  ArmConfiguration start{};  // rad
-  ArmConfiguration goal{};   // rad
-  std::uint64_t iterations = 0;        // RRTstar iterations; 0: use time_limit_s
-  double time_limit_s = 0.0;           // s; used when iterations == 0
+  ArmConfiguration start{};              // rad
+  ArmConfiguration goal{};               // rad
+  std::uint64_t iterations = 0;          // RRTstar iterations; 0: use time_limit_s
+  double time_limit_s = 0.0;             // s; used when iterations == 0
   std::uint64_t batch_iterations = 100;  // iterations per timeline row
   double motion_resolution_rad = 0.02;   // edge check spacing (Euclidean in joint space)
   double range_rad = 0.0;                // RRTstar's range; 0: OMPL's own default
@@ -49,12 +49,12 @@ const char* ToString(MoveBotStatus status);
 
 struct MoveBotRow {
   long row = 0;
-  std::uint64_t iterations = 0;      // cumulative
-  std::uint64_t samples = 0;         // this row (one per iteration)
-  double time_s = 0.0;               // cumulative planning wall time
+  std::uint64_t iterations = 0;  // cumulative
+  std::uint64_t samples = 0;     // this row (one per iteration)
+  double time_s = 0.0;           // cumulative planning wall time
   std::uint64_t tree_states = 0;
-  CollisionWorkCounters collision;   // this row
-  NnWork nn;                         // this row (record dropped once priced)
+  CollisionWorkCounters collision;  // this row
+  NnWork nn;                        // this row (record dropped once priced)
   double best_cost_rad = std::numeric_limits<double>::infinity();
   bool priced = false;
   LedgerIteration collision_pricing, nn_pricing;

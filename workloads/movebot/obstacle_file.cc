@@ -34,8 +34,8 @@ std::vector<Obstacle> ReadObstacleFile(std::istream& in, const std::string& file
     Obstacle o;
     o.line = reader.line_number();
     o.box.centre = {v[3], v[4], v[5]};
-    o.box.axes = (Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(v[1], Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(v[0], Eigen::Vector3d::UnitX()))
+    o.box.axes = (Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(v[1], Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(v[0], Eigen::Vector3d::UnitX()))
                      .toRotationMatrix();
     o.box.half = Eigen::Vector3d(v[6], v[7], v[8]) / 2;
     out.push_back(o);

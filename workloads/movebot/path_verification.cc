@@ -47,7 +47,13 @@ PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obst
     for (int k = 0; k < kArmLinkBoxes; ++k)
       for (std::size_t o = 0; o < obstacles.size(); ++o)
         if (Overlaps(links[k], obstacles[o], &v.exact_tests)) {
-          v = {false, v.configurations, v.exact_tests, edge, t, k, static_cast<long>(o),
+          v = {false,
+               v.configurations,
+               v.exact_tests,
+               edge,
+               t,
+               k,
+               static_cast<long>(o),
                "link " + std::to_string(k) + " overlaps obstacle " + std::to_string(o) + " on edge " +
                    std::to_string(edge) + " at t = " + std::to_string(t)};
           return false;
@@ -59,7 +65,8 @@ PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obst
   for (std::size_t e = 0; e + 1 < path.size(); ++e) {
     const ArmConfiguration& a = path[e];
     const ArmConfiguration& b = path[e + 1];
-    const std::size_t n = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(Distance(a, b) / resolution_rad)));
+    const std::size_t n =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(Distance(a, b) / resolution_rad)));
     for (std::size_t k = 1; k <= n; ++k) {
       const double t = static_cast<double>(k) / n;
       ArmConfiguration q;

@@ -18,7 +18,8 @@ void AddBackendsCommand(CLI::App& app) {
                   "every pricing subcommand's --backend-params)");
   cmd->footer(ExitCodeFooter(""));
   cmd->callback([params_path] {
-    const BackendParameters params = params_path->empty() ? BackendParameters{} : LoadBackendPreset(*params_path).backend;
+    const BackendParameters params =
+        params_path->empty() ? BackendParameters{} : LoadBackendPreset(*params_path).backend;
     std::cout << "backends:";
     for (const auto& name : Backend::Names()) std::cout << " " << name;
     std::cout << "\n\n";

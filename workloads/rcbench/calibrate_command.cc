@@ -23,9 +23,9 @@
 #include "backends/calibration/calibration.h"
 #include "backends/calibration/sensitivity.h"
 #include "common/atomic_file.h"
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "robocore/shipped_programs.h"
-#include "common/exit_codes.h"
 #include "workloads/rcbench/commands.h"
 
 namespace rc {
@@ -146,16 +146,19 @@ void AddCalibrateCommand(CLI::App& app) {
                   "Shared data directory (wean/wean.dat, collision/mpnet_master_obb.csv); absent files fall back to "
                   "the generated office map and random OBBs")
       ->capture_default_str();
-  cmd->add_option("--particles", cli->options.particles, "Small-batch DeliBot particles (count)")->capture_default_str();
+  cmd->add_option("--particles", cli->options.particles, "Small-batch DeliBot particles (count)")
+      ->capture_default_str();
   cmd->add_option("--beams", cli->options.beams, "DeliBot beams per particle (count)")->capture_default_str();
-  cmd->add_option("--sact-queries", cli->options.min_sact_queries, "Paper-scale SACT queries per scene, at least (count)")
+  cmd->add_option("--sact-queries", cli->options.min_sact_queries,
+                  "Paper-scale SACT queries per scene, at least (count)")
       ->capture_default_str();
   cmd->add_option("--delibot-runs", cli->options.delibot_runs, "Price whole DeliBot runs (demo, robotdata1)")
       ->capture_default_str();
   cmd->add_option("--run-max-records", cli->options.run_max_records,
                   "DeliBot runs: at most N laser records (count; 0 = the whole trace)")
       ->capture_default_str();
-  cmd->add_option("--plot-script", cli->plot_script, "Plot script (default: the source tree's scripts/plot_calibration.py)");
+  cmd->add_option("--plot-script", cli->plot_script,
+                  "Plot script (default: the source tree's scripts/plot_calibration.py)");
   cmd->footer(ExitCodeFooter(""));
   cmd->callback([cli] { Run(*cli); });
 }

@@ -44,7 +44,7 @@ constexpr double kOptimalTolerance = 1e-4;  // cells; the .scen files print 8 de
 
 struct CarribotCli {
   std::string map_path, scen_path;
-  double resolution_m = 0.0;  // 0: the map format's own (1 m per cell for MovingAI)
+  double resolution_m = 0.0;   // 0: the map format's own (1 m per cell for MovingAI)
   MapLoadOptions map_options;  // thresholds
   int map_scale = 1;
   long scenario = -1;
@@ -77,8 +77,10 @@ RectangleFootprint ParseFootprint(const std::string& text, const CarribotCli& cl
     throw UsageError("--footprint '" + text + "' is not WIDTHxLENGTH in metres, e.g. 0.4x0.8");
   }
   f.heading_count = cli.headings;
-  if (cli.collision_mode == "precomputed") f.check_mode = FootprintCheckMode::kPrecomputed;
-  else f.check_mode = FootprintCheckMode::kPerExpansion;
+  if (cli.collision_mode == "precomputed")
+    f.check_mode = FootprintCheckMode::kPrecomputed;
+  else
+    f.check_mode = FootprintCheckMode::kPerExpansion;
   return f;
 }
 
@@ -92,9 +94,9 @@ OccupancyGrid LoadGrid(const CarribotCli& cli, OccupancyGrid* original) {
   *original = loaded.grid;
   if (cli.map_scale == 1) return std::move(loaded.grid);
   OccupancyGrid scaled = UpscaleGrid(loaded.grid, cli.map_scale);
-  std::cout << "map scale " << cli.map_scale << ": " << scaled.size_x() << " x " << scaled.size_y()
-            << " cells of " << scaled.resolution_m() << " m (start and goal cells multiplied by "
-            << cli.map_scale << ", as RoWild's --scale-map)\n";
+  std::cout << "map scale " << cli.map_scale << ": " << scaled.size_x() << " x " << scaled.size_y() << " cells of "
+            << scaled.resolution_m() << " m (start and goal cells multiplied by " << cli.map_scale
+            << ", as RoWild's --scale-map)\n";
   return scaled;
 }
 
@@ -134,7 +136,9 @@ std::vector<Query> MakeQueries(const CarribotCli& cli, const OccupancyGrid& orig
   for (long i = 0; i < static_cast<long>(file.scenarios.size()); ++i) {
     if (cli.scenario >= 0 && i != cli.scenario) continue;
     const MovingAiScenario& sc = file.scenarios[i];
-    queries.push_back({i, sc.bucket, {sc.start_x * s, sc.start_y * s, cli.start_heading},
+    queries.push_back({i,
+                       sc.bucket,
+                       {sc.start_x * s, sc.start_y * s, cli.start_heading},
                        {sc.goal_x * s, sc.goal_y * s, cli.goal_heading},
                        s == 1 ? std::optional<double>(sc.optimal_length) : std::nullopt,
                        "scenario " + std::to_string(i) + " (line " + std::to_string(sc.line) + ")"});
@@ -144,8 +148,7 @@ std::vector<Query> MakeQueries(const CarribotCli& cli, const OccupancyGrid& orig
 
 void CheckUsage(const CarribotCli& cli) {
   const bool pair = !cli.start.empty() || !cli.goal.empty();
-  if (cli.scen_path.empty() == !pair)
-    throw UsageError("give either --scen FILE.scen or --start X,Y and --goal X,Y");
+  if (cli.scen_path.empty() == !pair) throw UsageError("give either --scen FILE.scen or --start X,Y and --goal X,Y");
   if (pair && (cli.start.empty() || cli.goal.empty())) throw UsageError("--start and --goal go together");
   for (const int h : {cli.start_heading, cli.goal_heading})
     if (h != kAnyHeading && (h < 0 || h >= cli.headings))
@@ -154,8 +157,10 @@ void CheckUsage(const CarribotCli& cli) {
 
 std::string Describe(const PlannerOptions& o, const CarribotResult& run, FootprintCheckerKind checker) {
   std::ostringstream out;
-  if (o.heuristic_weight == 1.0) out << "A*";
-  else out << "weighted A* (weight " << o.heuristic_weight << ")";
+  if (o.heuristic_weight == 1.0)
+    out << "A*";
+  else
+    out << "weighted A* (weight " << o.heuristic_weight << ")";
   out << ", octile heuristic, ties to larger g then first pushed; robot: ";
   if (!o.footprint) return out.str() + "point (8-connected, no corner cutting)";
   const RectangleFootprint& f = *o.footprint;
@@ -248,8 +253,8 @@ int Run(const CarribotCli& cli) {
     std::cout << "optimal length matched (1e-4 cells): " << optimal_matched << " of " << optimal_checked
               << " (largest difference " << worst_gap << " cells)\n";
   PrintCarribotPricing(std::cout, run, settings);
-  for (const auto& [path, what] : {std::pair{cli.timeline_path, "timeline"}, std::pair{cli.path_path, "path"},
-                                   std::pair{cli.plot_path, "plot"}})
+  for (const auto& [path, what] :
+       {std::pair{cli.timeline_path, "timeline"}, std::pair{cli.path_path, "path"}, std::pair{cli.plot_path, "plot"}})
     if (!path.empty() && (std::string(what) == "timeline" || (queries.size() == 1 && first.found())))
       std::cout << what << ": " << path << "\n";
   if (found == queries.size()) return 0;
@@ -267,18 +272,21 @@ int Run(const CarribotCli& cli) {
 
 void AddCarribotCommand(CLI::App& app) {
   auto cli = std::make_shared<CarribotCli>();
-  CLI::App* cmd = app.add_subcommand(
-      "carribot", "Grid A* for a point robot or a rectangular footprint with headings (CarriBot), on MovingAI "
-                  "scenarios or one start/goal pair");
+  CLI::App* cmd =
+      app.add_subcommand("carribot",
+                         "Grid A* for a point robot or a rectangular footprint with headings (CarriBot), on MovingAI "
+                         "scenarios or one start/goal pair");
   cmd->add_option("--map", cli->map_path, "Map file: MovingAI .map, or any format rcbench reads")->required();
   cmd->add_option("--scen", cli->scen_path, "MovingAI scenario file (.scen); plans every scenario unless --scenario");
-  cmd->add_option("--scenario", cli->scenario, "Plan only scenario I of --scen (index, 0-based, in file order); default: every scenario")
+  cmd->add_option("--scenario", cli->scenario,
+                  "Plan only scenario I of --scen (index, 0-based, in file order); default: every scenario")
       ->check(CLI::NonNegativeNumber);
   auto* start = cmd->add_option("--start", cli->start, "Start cell X,Y (cells: column, row of the map)")
                     ->expected(2)
                     ->delimiter(',');
   cmd->add_option("--goal", cli->goal, "Goal cell X,Y (cells: column, row of the map)")->expected(2)->delimiter(',');
-  cmd->add_option("--weight", cli->weight, "Heuristic weight (unitless, >= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
+  cmd->add_option("--weight", cli->weight,
+                  "Heuristic weight (unitless, >= 1; 1 = optimal A*, w > 1: cost <= w * optimal)")
       ->capture_default_str();
   auto* footprint = cmd->add_option("--footprint", cli->footprint,
                                     "Rectangular robot WIDTHxLENGTH (m, across x along the heading), e.g. 0.4x0.8; "
@@ -287,8 +295,9 @@ void AddCarribotCommand(CLI::App& app) {
       ->check(CLI::IsMember({8, 16}))
       ->needs(footprint)
       ->capture_default_str();
-  cmd->add_option("--start-heading", cli->start_heading, "Start heading (index k: angle 2*pi*k/headings from +x); "
-                                                         "default: any collision-free heading")
+  cmd->add_option("--start-heading", cli->start_heading,
+                  "Start heading (index k: angle 2*pi*k/headings from +x); "
+                  "default: any collision-free heading")
       ->needs(footprint);
   cmd->add_option("--goal-heading", cli->goal_heading, "Goal heading (index k); default: any")->needs(footprint);
   cmd->add_option("--collision-mode", cli->collision_mode,
@@ -310,8 +319,9 @@ void AddCarribotCommand(CLI::App& app) {
   cmd->add_option("--resolution,--map-resolution", cli->resolution_m,
                   "Cell size (m) for MovingAI maps (default 1) and images")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--map-scale", cli->map_scale,
-                  "Split every cell into NxN cells (count N; RoWild's --scale-map); start and goal cells are multiplied by N")
+  cmd->add_option(
+         "--map-scale", cli->map_scale,
+         "Split every cell into NxN cells (count N; RoWild's --scale-map); start and goal cells are multiplied by N")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   cmd->add_option("--offset", cli->offset,

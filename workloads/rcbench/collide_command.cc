@@ -25,6 +25,7 @@
 #include "backends/backend_params.h"
 #include "backends/backend_preset.h"
 #include "common/atomic_file.h"
+#include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
 #include "robocore/collision/collision_summary.h"
@@ -35,7 +36,6 @@
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
 #include "traces/csv_table.h"
-#include "common/exit_codes.h"
 #include "workloads/rcbench/commands.h"
 
 namespace rc {
@@ -54,9 +54,7 @@ struct CollideCli {
   ShelfSceneOptions shelf;
 };
 
-std::string ExitName(int exit) {
-  return exit == kNoNodeTested ? "none" : SactAxisName(exit);
-}
+std::string ExitName(int exit) { return exit == kNoNodeTested ? "none" : SactAxisName(exit); }
 
 void WriteOutput(const std::string& path, const std::vector<CollisionResult>& results) {
   CsvTable table(path, {"index", "collides", "nodes_visited", "exit_axis"});
@@ -150,19 +148,21 @@ void WriteTimeline(const std::string& path, const CollisionSummary& s, const Col
 // `ran` marks the backend that ran the batch (--backend).
 void PrintCosts(std::ostream& out, const std::vector<BatchCost>& costs, const std::string& ran) {
   for (const BatchCost& c : costs)
-    out << (c.backend == ran ? "* " : "  ") << std::left << std::setw(12) << c.backend << std::right << std::setw(10) << c.cycles
-        << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules << " uJ\n";
+    out << (c.backend == ran ? "* " : "  ") << std::left << std::setw(12) << c.backend << std::right << std::setw(10)
+        << c.cycles << " cycles  " << std::setprecision(4) << 1e6 * c.seconds << " us  " << 1e6 * c.energy_joules
+        << " uJ\n";
 }
 
 void PrintSummary(std::ostream& out, const CollisionSummary& s) {
   out << "queries                 " << s.queries << "\ncollisions              " << s.collisions
-      << "\nnodes per query         mean " << std::setprecision(4) << s.nodes_per_query_mean << ", max "
-      << s.nodes_max << "\nnodes per query histogram\n";
+      << "\nnodes per query         mean " << std::setprecision(4) << s.nodes_per_query_mean << ", max " << s.nodes_max
+      << "\nnodes per query histogram\n";
   for (const NodesHistogramBin& b : s.nodes_histogram)
     if (b.queries) out << "  " << std::setw(5) << b.lo << " - " << std::setw(5) << b.hi << "  " << b.queries << '\n';
   out << "node tests by exit (all visits)\n";
   for (int slot = 0; slot < kExitSlots; ++slot)
-    if (s.node_test_exits[slot]) out << "  " << std::setw(8) << ExitName(ExitOfSlot(slot)) << "  " << s.node_test_exits[slot] << '\n';
+    if (s.node_test_exits[slot])
+      out << "  " << std::setw(8) << ExitName(ExitOfSlot(slot)) << "  " << s.node_test_exits[slot] << '\n';
   out << "SACT stages             PRE " << s.pre_process << ", BOX " << s.box_normal << ", EDGE " << s.edge_edge;
   if (s.sphere_pretests) out << ", sphere pre-tests " << s.sphere_pretests << " (" << s.sphere_decided << " decided)";
   out << '\n';
@@ -209,7 +209,8 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   // Outputs only after the whole run succeeded.
   if (!cli.output_path.empty())
     WriteOutput(cli.output_path, cli.robot_model == "spheres" ? SphereResults(sphere_batch) : results);
-  if (!cli.timeline_path.empty()) WriteTimeline(cli.timeline_path, summary, batch, costs, spheres, sphere_costs, cli.backend);
+  if (!cli.timeline_path.empty())
+    WriteTimeline(cli.timeline_path, summary, batch, costs, spheres, sphere_costs, cli.backend);
 
   std::cout << "scene: " << ToString(tree.kind) << ", " << tree.boxes.size() << " boxes, " << flat.nodes().size()
             << " nodes of " << flat.node_bytes() << " B (" << flat.bytes() << " B; the artifact's node is "
@@ -284,11 +285,14 @@ void Run(const CollideCli& cli) {
 void AddCollideCommand(CLI::App& app) {
   auto cli = std::make_shared<CollideCli>();
   CLI::App* cmd = app.add_subcommand(
-      "collide", "Robot-link OBBs against a scene of boxes: staged 15-axis SACT over the scene tree, one query per OBB");
-  cmd->add_option("--obbs", cli->obbs_path, "OBB CSV in the mpnet_master format (pose, joint, centre, 3 axes, half-lengths; m)")
+      "collide",
+      "Robot-link OBBs against a scene of boxes: staged 15-axis SACT over the scene tree, one query per OBB");
+  cmd->add_option("--obbs", cli->obbs_path,
+                  "OBB CSV in the mpnet_master format (pose, joint, centre, 3 axes, half-lengths; m)")
       ->required();
   cmd->add_option("--boxes", cli->boxes_path, "Scene boxes CSV, one 'cx,cy,cz,hx,hy,hz' per line (m), optional header");
-  cmd->add_option("--octree", cli->octree_path, "Scene as an OctoMap file (.bt or .ot); its occupied leaves are the boxes");
+  cmd->add_option("--octree", cli->octree_path,
+                  "Scene as an OctoMap file (.bt or .ot); its occupied leaves are the boxes");
   cmd->add_option("--scene", cli->scene, "Generated scene: shelf (a cubby shelf in front of the robot and one behind)");
   cmd->add_option("--scene-seed", cli->shelf.seed, "Seed of the shelf's objects (unitless)")->capture_default_str();
   cmd->add_option("--scene-output", cli->scene_output_path, "Write the generated scene's boxes here (box CSV)");
@@ -298,8 +302,9 @@ void AddCollideCommand(CLI::App& app) {
   cmd->add_option("--backend-params", cli->backend_params_path,
                   "A named preset (artifact) or a JSON file overriding backend cost parameters (see rcbench "
                   "backends)");
-  cmd->add_option("--timeline", cli->timeline_path,
-                  "Batch timeline CSV (section,key,value): nodes per query mean and histogram, exit-axis distributions");
+  cmd->add_option(
+      "--timeline", cli->timeline_path,
+      "Batch timeline CSV (section,key,value): nodes per query mean and histogram, exit-axis distributions");
   cmd->add_option("--precision", cli->precision, "SACT and node precision: double | float")
       ->check(CLI::IsMember({"double", "float"}))
       ->capture_default_str();

@@ -29,8 +29,8 @@
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/demo_inputs.h"
 #include "workloads/rcbench/map_options.h"
-#include "workloads/rcbench/trace_lines.h"
 #include "workloads/rcbench/progress_bar.h"
+#include "workloads/rcbench/trace_lines.h"
 
 namespace rc {
 namespace {
@@ -38,7 +38,7 @@ namespace {
 struct DelibotCli {
   std::string map_path, map_format = "auto", map_convention;
   double map_resolution_m = 0.0;
-  MapLoadOptions map_options;  // thresholds
+  MapLoadOptions map_options;    // thresholds
   double laser_offset_m = -1.0;  // negative: measured from the trace
   std::string trace_path, trace_format = "auto", ground_truth_path;
   std::string sensor_model = "beam", ray_caster = "rm";
@@ -109,14 +109,15 @@ void Run(DelibotCli& cli) {
   bool have_truth = false;
   if (cli.map_path.empty()) {
     const DemoInputs demo = MakeDemoInputs("out/demo");
-    std::cout << "demo: generated office map and simulated trace written to out/demo/ ("
-              << demo.trace.scans.size() << " laser records)\n";
+    std::cout << "demo: generated office map and simulated trace written to out/demo/ (" << demo.trace.scans.size()
+              << " laser records)\n";
     grid = demo.grid;
     scans = std::make_unique<OwningScanSource>(demo.trace);
     for (const auto& p : demo.ground_truth) truth.push_back(p.pose);
     have_truth = true;
-    provenance = {demo.map_path, "ros", "generated office map (occupied 0, free 254, unknown 205)",
-                  demo.trace_path, "cmu", demo.ground_truth_path, provenance.threads};
+    provenance = {demo.map_path,     "ros", "generated office map (occupied 0, free 254, unknown 205)",
+                  demo.trace_path,   "cmu", demo.ground_truth_path,
+                  provenance.threads};
     if (cli.timeline_path.empty()) cli.timeline_path = "out/demo/delibot_timeline.csv";
     if (cli.summary_path.empty()) cli.summary_path = "out/demo/delibot_summary.json";
   } else {
@@ -150,18 +151,17 @@ void Run(DelibotCli& cli) {
   }
 
   // "auto" resolved here, so that the summary records the count drawn.
-  const double free_area_m2 = static_cast<double>(grid.CountCells(CellState::kFree)) * grid.resolution_m() *
-                              grid.resolution_m();
+  const double free_area_m2 =
+      static_cast<double>(grid.CountCells(CellState::kFree)) * grid.resolution_m() * grid.resolution_m();
   if (!s.initial_pose && s.mcl.initial_particle_count == kAutoInitialParticles)
     s.mcl.initial_particle_count = static_cast<int>(InitialParticleCount(s.mcl, free_area_m2));
   const bool dense_start = !s.initial_pose && s.mcl.initial_particle_count > s.mcl.particle_count;
   std::cout << "filter: " << (engine == DelibotEngine::kMrpt ? "MRPT CMonteCarloLocalization2D, " : "")
             << s.mcl.particle_count << " particles"
             << (dense_start ? " (" + std::to_string(s.mcl.initial_particle_count) + " for the first update)" : "")
-            << ", " << ToString(s.sensor_model) << " model, "
-            << ToString(s.ray_caster) << " ray caster, every " << s.mcl.beams.beam_step << " beam(s), "
-            << (s.initial_pose ? "tracking" : "global localization") << ", seed " << s.mcl.seed << ", "
-            << provenance.threads << " thread(s)\n";
+            << ", " << ToString(s.sensor_model) << " model, " << ToString(s.ray_caster) << " ray caster, every "
+            << s.mcl.beams.beam_step << " beam(s), " << (s.initial_pose ? "tracking" : "global localization")
+            << ", seed " << s.mcl.seed << ", " << provenance.threads << " thread(s)\n";
   const LaserGeometry& geometry = scans->geometry();
   const std::uint64_t need = DelibotMemoryLowerBound(s, geometry.beam_count);
   if (need > MemoryCapBytes())
@@ -189,7 +189,8 @@ void Run(DelibotCli& cli) {
         });
   }
   if (timeline) timeline->Finish(result);
-  if (!cli.summary_path.empty()) WriteJsonFile(cli.summary_path, DelibotEngineSummaryJson(engine, result, s, provenance));
+  if (!cli.summary_path.empty())
+    WriteJsonFile(cli.summary_path, DelibotEngineSummaryJson(engine, result, s, provenance));
   PrintDelibotSummary(std::cout, result, s);
   if (!cli.timeline_path.empty()) std::cout << "timeline                " << cli.timeline_path << "\n";
   if (!cli.summary_path.empty()) std::cout << "summary                 " << cli.summary_path << "\n";
@@ -205,16 +206,23 @@ void AddDelibotCommand(CLI::App& app) {
   cli->lf_unknown = s.likelihood.unknown_is_edge ? "edge" : "miss";
   cli->lf_combine = ToString(s.likelihood.combination);
   cli->beam_combine = ToString(s.beam.combination);
-  CLI::App* cmd = app.add_subcommand(
-      "delibot", "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
-                 "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
-  cmd->add_option("--map", cli->map_path, "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, an image, or MRPT .gridmap/.simplemap[.gz]");
-  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image | gridmap | simplemap")->capture_default_str();
+  CLI::App* cmd =
+      app.add_subcommand("delibot",
+                         "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
+                         "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
+  cmd->add_option(
+      "--map", cli->map_path,
+      "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, an image, or MRPT .gridmap/.simplemap[.gz]");
+  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image | gridmap | simplemap")
+      ->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention,
                   "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
                   "('occupied')");
-  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap");
-  cmd->add_option("--trace", cli->trace_path, "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
+  cmd->add_option(
+      "--map-resolution", cli->map_resolution_m,
+      "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap");
+  cmd->add_option("--trace", cli->trace_path,
+                  "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
   AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--laser-offset", cli->laser_offset_m,
@@ -245,7 +253,8 @@ void AddDelibotCommand(CLI::App& app) {
       ->each([cli](const std::string&) { cli->given.sensor_model = true; })
       ->capture_default_str();
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
-  cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")->capture_default_str();
+  cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")
+      ->capture_default_str();
   cmd->add_option("--max-range", s.beam.max_range_m, "Model max range (m); readings at or beyond are 'no return'")
       ->capture_default_str();
   cmd->add_option("--sigma-hit", s.beam.sigma_hit_m, "Beam model hit sigma (m)")->capture_default_str();
@@ -285,15 +294,18 @@ void AddDelibotCommand(CLI::App& app) {
       ->check(CLI::IsMember({"product", "amcl-cube"}))
       ->capture_default_str();
   cmd->add_option("--alpha1", s.mcl.motion.alpha1, "Rotation noise from rotation (rad^2/rad^2)")->capture_default_str();
-  cmd->add_option("--alpha2", s.mcl.motion.alpha2, "Rotation noise from translation (rad^2/m^2)")->capture_default_str();
+  cmd->add_option("--alpha2", s.mcl.motion.alpha2, "Rotation noise from translation (rad^2/m^2)")
+      ->capture_default_str();
   cmd->add_option("--alpha3", s.mcl.motion.alpha3, "Translation noise from translation (m^2/m^2)")
       ->capture_default_str();
-  cmd->add_option("--alpha4", s.mcl.motion.alpha4, "Translation noise from rotation (m^2/rad^2)")->capture_default_str();
+  cmd->add_option("--alpha4", s.mcl.motion.alpha4, "Translation noise from rotation (m^2/rad^2)")
+      ->capture_default_str();
   cmd->add_option("--update-min-d", s.mcl.update_min_d_m, "Sensor update after this much travel (m)")
       ->capture_default_str();
   cmd->add_option("--update-min-a", s.mcl.update_min_a_rad, "Sensor update after this much rotation (rad)")
       ->capture_default_str();
-  cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction, "Resample when ESS < F * particles (unitless fraction in (0, 1])")
+  cmd->add_option("--resample-ess", s.mcl.resample_ess_fraction,
+                  "Resample when ESS < F * particles (unitless fraction in (0, 1])")
       ->capture_default_str();
   cmd->add_option("--hypothesis-floor", s.mcl.hypothesis_floor.min_particles,
                   "Hypothesis-preserving resampling: a cluster of particles (1 m x 1 m x 30 deg bins, joined "
@@ -312,18 +324,23 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--hypothesis-window", s.mcl.hypothesis_floor.window_nats,
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
                   "second hypothesis is that close, the filter does not claim convergence. With amcl-cube "
-                  "(--lf-combine or --beam-combine) the ratio is of the cube sum's weights, a far smaller scale (6 in the README's "
+                  "(--lf-combine or --beam-combine) the ratio is of the cube sum's weights, a far smaller scale (6 in "
+                  "the README's "
                   "cautious recipe)")
       ->capture_default_str();
-  cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow, "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
+  cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow,
+                  "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
       ->capture_default_str();
-  cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate (1/sensor update)")->capture_default_str();
-  cmd->add_option("--injection-check", s.mcl.injection_check_updates,
-                  "A random particle is injected only if it explains the scans of the last N sensor updates "
-                  "(replayed through the odometry) better than the particle it would replace (updates; 0 = augmented MCL as "
-                  "published)")
+  cmd->add_option("--recovery-alpha-fast", s.mcl.alpha_fast, "Augmented MCL fast average rate (1/sensor update)")
       ->capture_default_str();
-  cmd->add_option("--initial-pose", cli->initial_pose, "Track from X,Y,THETA (m, m, rad) instead of global localization")
+  cmd->add_option(
+         "--injection-check", s.mcl.injection_check_updates,
+         "A random particle is injected only if it explains the scans of the last N sensor updates "
+         "(replayed through the odometry) better than the particle it would replace (updates; 0 = augmented MCL as "
+         "published)")
+      ->capture_default_str();
+  cmd->add_option("--initial-pose", cli->initial_pose,
+                  "Track from X,Y,THETA (m, m, rad) instead of global localization")
       ->expected(3)
       ->delimiter(',');
   cmd->add_option("--initial-sigma-xy", s.initial_sigma_xy_m, "Tracking start spread (m)")->capture_default_str();

@@ -20,14 +20,14 @@ int main(int argc, char** argv) {
   app.fallthrough();
   app.footer(rc::ExitCodeFooter("carribot: a query found no path; movebot: no exact path (outputs are still written)"));
   app.add_option_function<double>(
-      "--max-memory",
-      [](double gib) {
-        if (!(gib > 0.0) || !std::isfinite(gib) || gib > 1e9)
-          throw rc::UsageError("--max-memory must be a positive number of GiB");
-        rc::SetMemoryCapBytes(static_cast<std::uint64_t>(gib * 1073741824.0));
-      },
-      "Memory cap (GiB) that maps, particle sets and batches are checked against before they are allocated; "
-      "default: the machine's memory")
+         "--max-memory",
+         [](double gib) {
+           if (!(gib > 0.0) || !std::isfinite(gib) || gib > 1e9)
+             throw rc::UsageError("--max-memory must be a positive number of GiB");
+           rc::SetMemoryCapBytes(static_cast<std::uint64_t>(gib * 1073741824.0));
+         },
+         "Memory cap (GiB) that maps, particle sets and batches are checked against before they are allocated; "
+         "default: the machine's memory")
       ->trigger_on_parse();
   rc::AddDelibotCommand(app);
   rc::AddCarribotCommand(app);

@@ -18,7 +18,7 @@ namespace rc {
 void AddMakeMapCommand(CLI::App& app) {
   struct Cli {
     std::string kind = "office";
-    std::string output;  // default: out/<kind>.yaml
+    std::string output;                  // default: out/<kind>.yaml
     std::optional<double> resolution_m;  // unset: the kind's default
     std::uint64_t seed = 1;
   };

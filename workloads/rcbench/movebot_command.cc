@@ -124,8 +124,8 @@ int Run(MovebotCli& cli) {
   }
   std::cout << "scene: " << scene_text << " (" << scene.box_count() << " boxes in " << scene.frames().size()
             << " frame(s), " << scene.node_count() << " tree nodes)\n";
-  std::cout << "arm: " << LocobotArmDescription().source << "; start " << Joined(s.start) << ", goal "
-            << Joined(s.goal) << " rad\n";
+  std::cout << "arm: " << LocobotArmDescription().source << "; start " << Joined(s.start) << ", goal " << Joined(s.goal)
+            << " rad\n";
 
   const LocobotArm arm;
   ArmCollisionChecker checker(arm, scene);
@@ -153,8 +153,8 @@ int Run(MovebotCli& cli) {
   }
   PrintMoveBotSummary(std::cout, result, s);
   if (!result.path.empty())
-    std::cout << "independent check       collision-free at " << verify_resolution << " rad: "
-              << verification.configurations << " configurations, " << verification.exact_tests
+    std::cout << "independent check       collision-free at " << verify_resolution
+              << " rad: " << verification.configurations << " configurations, " << verification.exact_tests
               << " exact LP tests\n";
   for (const auto& [p, what] : {std::pair{&cli.timeline_path, "timeline"}, std::pair{&cli.anytime_path, "anytime"},
                                 std::pair{&cli.path_path, "path"}, std::pair{&cli.ompl_log_path, "ompl log"}})
@@ -168,11 +168,13 @@ void AddMovebotCommand(CLI::App& app) {
   auto cli = std::make_shared<MovebotCli>();
   MoveBotSettings& s = cli->settings;
   CLI::App* cmd = app.add_subcommand(
-      "movebot", "OMPL RRTstar for a LoCoBot-like 5-DoF arm (MoveBot): link-OBB collision checks on the modelled "
-                 "backends, anytime cost timeline. With no options: the shared locobot scene and RoWild's start/goal.");
+      "movebot",
+      "OMPL RRTstar for a LoCoBot-like 5-DoF arm (MoveBot): link-OBB collision checks on the modelled "
+      "backends, anytime cost timeline. With no options: the shared locobot scene and RoWild's start/goal.");
   cmd->add_option("--obstacles", cli->obstacles_path,
                   std::string("Obstacle file: roll,pitch,yaw,x,y,z,dimX,dimY,dimZ per line (rad, m, full sizes); "
-                              "default ") + kDefaultObstacles);
+                              "default ") +
+                      kDefaultObstacles);
   cmd->add_option("--octree", cli->octree_path, "Scene as an OctoMap file (.bt or .ot): its occupied leaves");
   cmd->add_option("--start", cli->start, "Start q1,...,q5 (rad); default RoWild's -1.3962634,0,0,0,0")
       ->expected(kArmJoints)
@@ -191,7 +193,8 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_option("--range", s.range_rad, "RRTstar's range (rad); 0: OMPL's default (0.2 x the space's extent)")
       ->capture_default_str();
   cmd->add_option("--goal-bias", s.goal_bias, "RRTstar's goal bias (probability)")->capture_default_str();
-  cmd->add_option("--seed", s.seed, "Random seed (unitless, >= 1; OMPL ignores 0)")->check(CLI::Range(1u, 4294967295u))
+  cmd->add_option("--seed", s.seed, "Random seed (unitless, >= 1; OMPL ignores 0)")
+      ->check(CLI::Range(1u, 4294967295u))
       ->capture_default_str();
   cmd->add_option("--nn", cli->nn, "Nearest-neighbour structure: gnat (OMPL's default) | p-ray | p-sphere")
       ->check(CLI::IsMember({"gnat", "p-ray", "p-sphere"}))

@@ -31,8 +31,8 @@ void ProgressBar::Update(std::size_t done, std::size_t total) {
   const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
   std::string bar(filled, '=');
   bar.resize(kWidth, ' ');
-  std::fprintf(stderr, "\r%s [%s] %zu/%zu  %.1f s elapsed, %.1f s left\033[K", label_.c_str(), bar.c_str(),
-               done, total, elapsed, eta);
+  std::fprintf(stderr, "\r%s [%s] %zu/%zu  %.1f s elapsed, %.1f s left\033[K", label_.c_str(), bar.c_str(), done, total,
+               elapsed, eta);
   std::fflush(stderr);
   drawn_ = true;
 }

@@ -28,13 +28,16 @@ void AddSimulateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Simulate a laser trace (CMU .log) with ground truth through a map (default: the generated office)");
   cmd->add_option("--map", cli->map_path, "Map file (any format rcbench reads); default: the generated office map");
-  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")->capture_default_str();
+  cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")
+      ->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'");
-  cmd->add_option("--map-resolution", cli->map_resolution_m, "Cell size (m) for MovingAI maps (default 1) and images (required)");
+  cmd->add_option("--map-resolution", cli->map_resolution_m,
+                  "Cell size (m) for MovingAI maps (default 1) and images (required)");
   AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--output", cli->output, "Trace path (CMU robotdata format)")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth, "Ground-truth path (default: the trace path with .gt)");
-  cmd->add_option("--seed", o.seed, "Random seed for route, noise, people and kidnap (unitless)")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Random seed for route, noise, people and kidnap (unitless)")
+      ->capture_default_str();
   cmd->add_option("--records", o.record_count, "Number of laser records (count)")->capture_default_str();
   cmd->add_option("--waypoints", o.waypoint_count, "Random route waypoints (count)")->capture_default_str();
   cmd->add_option("--robot-radius", o.robot_radius_m, "Disc robot radius (m)")->capture_default_str();
@@ -90,8 +93,7 @@ void AddSimulateCommand(CLI::App& app) {
     WriteCmuLog(sim.trace, cli->output);
     WriteGroundTruth(gt_path, sim.ground_truth);
     std::cout << "wrote " << cli->output << " (" << sim.trace.scans.size() << " laser records) and " << gt_path
-              << (sim.kidnap_record >= 0 ? "; kidnapped at record " + std::to_string(sim.kidnap_record) : "")
-              << "\n";
+              << (sim.kidnap_record >= 0 ? "; kidnapped at record " + std::to_string(sim.kidnap_record) : "") << "\n";
   });
 }
 

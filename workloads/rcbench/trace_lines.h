@@ -11,7 +11,7 @@
 namespace rc {
 
 // `mount_given`: the mount came from --laser-offset.
-void PrintTraceLines(std::ostream& out, std::ostream& warnings, const ScanSource& trace,
-                     const TraceReadStats& stats, bool mount_given);
+void PrintTraceLines(std::ostream& out, std::ostream& warnings, const ScanSource& trace, const TraceReadStats& stats,
+                     bool mount_given);
 
 }  // namespace rc

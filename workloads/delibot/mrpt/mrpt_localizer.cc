@@ -1,6 +1,5 @@
 #include "workloads/delibot/mrpt/mrpt_localizer.h"
 
-
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -142,9 +141,9 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace
   return RunMrptDelibot(grid, scans, ground_truth, settings, progress, on_row);
 }
 
-DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans,
-                             const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                             const ProgressCallback& progress, const RowCallback& on_row) {
+DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans, const std::vector<Pose2>* ground_truth,
+                             const DelibotSettings& settings, const ProgressCallback& progress,
+                             const RowCallback& on_row) {
   const LaserGeometry& geometry = scans.geometry();
   std::string error;
   if (!settings.mcl.IsValid(&error)) throw std::invalid_argument(error);
@@ -155,11 +154,10 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans,
   // Options only our filter has are refused, not silently dropped: a run
   // meant to compare like with like would otherwise compare unlike.
   const MclOptions& o = settings.mcl;
-  for (const auto& [given, option] :
-       {std::pair{o.initial_particle_count != 0, "--initial-particles"},
-        std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
-        std::pair{o.max_particle_count != 0, "--max-particles"},
-        std::pair{o.injection_check_updates != 0, "--injection-check"}})
+  for (const auto& [given, option] : {std::pair{o.initial_particle_count != 0, "--initial-particles"},
+                                      std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
+                                      std::pair{o.max_particle_count != 0, "--max-particles"},
+                                      std::pair{o.injection_check_updates != 0, "--injection-check"}})
     if (given) throw UsageError(std::string("the MRPT engine has no counterpart of ") + option);
   if (ground_truth && ground_truth->size() != scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +
@@ -231,8 +229,7 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans,
     row.particles = mcl.m_particles.size();
     row.spread_m = last_estimate.spread_m;
     row.mode_weight = last_estimate.mode_weight;
-    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings,
-                         ground_truth ? &(*ground_truth)[k] : nullptr, row))
+    if (!JudgeDelibotRow(exact_scene, scan, geometry, settings, ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
     result.rows.push_back(row);
     if (on_row) on_row(row);
@@ -263,7 +260,10 @@ nlohmann::json MrptSettingsJson(const DelibotSettings& s) {
                   {"LF_maxCorrsDistance_m", s.likelihood.max_occ_dist_m},
                   {"LF_maxRange_m", s.beam.max_range_m},
                   {"LF_decimation", s.mcl.beams.beam_step},
-                  {"differs", "hit term without the Gaussian's 1/(sigma sqrt(2 pi)); unsigned distance (0 inside walls) whatever --lf-distance says; beams combined as a product (log domain) whatever --lf-combine says; unknown cells as MRPT's field scores them whatever --lf-unknown says"}};
+                  {"differs",
+                   "hit term without the Gaussian's 1/(sigma sqrt(2 pi)); unsigned distance (0 inside walls) whatever "
+                   "--lf-distance says; beams combined as a product (log domain) whatever --lf-combine says; unknown "
+                   "cells as MRPT's field scores them whatever --lf-unknown says"}};
   return {{"algorithm", "CMonteCarloLocalization2D, pfStandardProposal"},
           {"sampleSize", s.mcl.particle_count},
           {"adaptiveSampleSize", false},
@@ -277,8 +277,9 @@ nlohmann::json MrptSettingsJson(const DelibotSettings& s) {
             {"a4_rad_per_rad", motion.a4},
             {"minStdXY_m", motion.minStdXY},
             {"minStdPHI_rad", motion.minStdPHI},
-            {"mapping", "a1 = sqrt(alpha3), a2 = sqrt(alpha4), a3 = sqrt(alpha2), a4 = sqrt(alpha1): MRPT's "
-                        "deviations are linear in the motion, ours' variances quadratic"}}},
+            {"mapping",
+             "a1 = sqrt(alpha3), a2 = sqrt(alpha4), a3 = sqrt(alpha2), a4 = sqrt(alpha1): MRPT's "
+             "deviations are linear in the motion, ours' variances quadratic"}}},
           {"likelihood", likelihood},
           {"ignored", {"recovery_alpha_slow", "recovery_alpha_fast", "ray_caster"}},
           {"random_generator", "mrpt::random::getRandomGenerator().randomize(seed)"}};

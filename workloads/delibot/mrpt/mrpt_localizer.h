@@ -73,9 +73,9 @@ namespace rc {
 DelibotResult RunMrptDelibot(const OccupancyGrid& grid, const SensorTrace& trace,
                              const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
                              const ProgressCallback& progress = {}, const RowCallback& on_row = {});
-DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans,
-                             const std::vector<Pose2>* ground_truth, const DelibotSettings& settings,
-                             const ProgressCallback& progress = {}, const RowCallback& on_row = {});
+DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans, const std::vector<Pose2>* ground_truth,
+                             const DelibotSettings& settings, const ProgressCallback& progress = {},
+                             const RowCallback& on_row = {});
 
 // The MRPT settings actually used, and the ones of ours that have no
 // counterpart, for the summary JSON.
