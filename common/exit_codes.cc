@@ -1,5 +1,7 @@
 #include "common/exit_codes.h"
 
+#include <cstdlib>
+#include <iostream>
 #include <new>
 #include <ostream>
 
@@ -58,6 +60,13 @@ ExitCode ReportException(const std::exception_ptr& error, std::ostream& err) {
     err << "rcbench: internal error: unknown exception (please report it with the command line)\n";
     return ExitCode::kInternalError;
   }
+}
+
+void ExitUnlessSuccess(int code) {
+  if (code == 0) return;
+  std::cout.flush();
+  std::cerr.flush();
+  std::exit(code);
 }
 
 }  // namespace rc

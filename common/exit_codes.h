@@ -46,4 +46,9 @@ ExitCode ReportException(const std::exception_ptr& error, std::ostream& err);
 
 constexpr int ToInt(ExitCode code) { return static_cast<int>(code); }
 
+// Ends a subcommand's run that returned `code`: returns for 0; otherwise
+// flushes stdout and stderr and exits the process with `code` (a
+// subcommand's documented outcome such as kNoPath, its outputs written).
+void ExitUnlessSuccess(int code);
+
 }  // namespace rc

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/log_domain.h"
+#include "delibot/same_rows.h"
 #include "synthetic_world.h"
 #include "workloads/delibot/beam_sensor_model.h"
 #include "workloads/delibot/delibot_run.h"
@@ -351,17 +352,7 @@ TEST(MclDeterminismTest, SameSeedSameTimelineAtAnyThreadCount) {
     const DelibotResult one = RunDelibot(g, run.trace, &run.truth, s);
     omp_set_num_threads(2);
     const DelibotResult two = RunDelibot(g, run.trace, &run.truth, s);
-    ASSERT_EQ(one.rows.size(), two.rows.size());
-    for (std::size_t i = 0; i < one.rows.size(); ++i) {
-      EXPECT_EQ(one.rows[i].estimate.x, two.rows[i].estimate.x) << i;
-      EXPECT_EQ(one.rows[i].estimate.y, two.rows[i].estimate.y) << i;
-      EXPECT_EQ(one.rows[i].estimate.theta, two.rows[i].estimate.theta) << i;
-      EXPECT_EQ(one.rows[i].ess, two.rows[i].ess) << i;
-      EXPECT_EQ(one.rows[i].nodes, two.rows[i].nodes) << i;
-      EXPECT_EQ(one.rows[i].injected, two.rows[i].injected) << i;
-      EXPECT_EQ(one.rows[i].hypotheses_alive, two.rows[i].hypotheses_alive) << i;
-      EXPECT_EQ(one.rows[i].particles, two.rows[i].particles) << i;
-    }
+    test::ExpectSameRows(one, two);
     int most_alive = 0;
     std::size_t largest = 0;
     for (const DelibotRow& row : one.rows) {

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
 
@@ -58,15 +61,9 @@ TEST(MovingAiMapLoader, NonPositiveResolutionIsAUsageError) {
   EXPECT_THROW(LoadMovingAiMap(path, o), UsageError);
 }
 
-struct MalformedCase {
-  const char* name;
-  std::string content;
-  long line;
-  const char* field;
-  const char* problem;
-};
+using test::MalformedCase;
 
-const MalformedCase kMovingAiMalformedCases[] = {
+const std::vector<MalformedCase> kMovingAiMalformedCases = {
     MalformedCase{"short_row", kHeader + "....\n...\n....\n", 6, "map row 1", "has 3 characters, expected width 4"},
     MalformedCase{"long_row", kHeader + ".....\n", 5, "map row 0", "has 5 characters"},
     MalformedCase{"trailing_space", kHeader + "....\n.... \n", 6, "map row 1", "has 5"},
@@ -92,12 +89,8 @@ const MalformedCase kMovingAiMalformedCases[] = {
     MalformedCase{"map_with_value", "type octile\nheight 3\nwidth 4\nmap 1\n", 4, "map", "'map' alone"}};
 
 TEST(MovingAiMapLoader, ThrowsInputErrorAtLineAndField) {
-  for (const MalformedCase& c : kMovingAiMalformedCases) {
-    SCOPED_TRACE(c.name);
-    test::TempDir dir;
-    const auto path = dir.Write("bad.map", c.content);
-    EXPECT_TRUE(ThrowsInputError([&] { LoadMovingAiMap(path); }, c.line, c.field, c.problem));
-  }
+  test::ExpectEveryCaseRefused(kMovingAiMalformedCases, "bad.map",
+                               [](const std::string& path) { LoadMovingAiMap(path); });
 }
 
 TEST(MovingAiMapLoader, MissingFileIsAnInputError) {

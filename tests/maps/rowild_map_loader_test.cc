@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "maps/cmu_map_loader.h"
 #include "support/input_error_expectations.h"
@@ -52,17 +54,11 @@ TEST(RowildMapLoader, BlankLinesInsideTheHeaderAreAccepted) {
   EXPECT_EQ(LoadRowildMap(path).size_x(), 3);
 }
 
-struct MalformedCase {
-  const char* name;
-  std::string content;
-  long line;
-  const char* field;
-  const char* problem;
-};
+using test::MalformedCase;
 
 const std::string kHeader = kSmallHeader;
 
-const MalformedCase kRowildMalformedCases[] = {
+const std::vector<MalformedCase> kRowildMalformedCases = {
     MalformedCase{"truncated", kHeader + "1 0\n0 1\n", 6, "map row 2", "file ends after 2 of 3 rows"},
     MalformedCase{"empty_file", "", 1, "mapsize_x", "file ends before"},
     MalformedCase{"header_only", kHeader, 4, "map row 0", "file ends after 0 of 3 rows"},
@@ -93,12 +89,7 @@ const MalformedCase kRowildMalformedCases[] = {
     MalformedCase{"trailing_data", kHeader + kSmallRows + "\n0 0\n", 8, "trailing data", "extra content"}};
 
 TEST(RowildMapLoader, ThrowsInputErrorAtLineAndField) {
-  for (const MalformedCase& c : kRowildMalformedCases) {
-    SCOPED_TRACE(c.name);
-    test::TempDir dir;
-    const auto path = dir.Write("bad.dat", c.content);
-    EXPECT_TRUE(ThrowsInputError([&] { LoadRowildMap(path); }, c.line, c.field, c.problem));
-  }
+  test::ExpectEveryCaseRefused(kRowildMalformedCases, "bad.dat", [](const std::string& path) { LoadRowildMap(path); });
 }
 
 TEST(RowildMapLoader, MissingFileIsAnInputErrorForTheWholeFile) {

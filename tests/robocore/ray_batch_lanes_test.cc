@@ -18,23 +18,13 @@
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_lanes.h"
+#include "support/random_grid.h"
 #include "support/test_data.h"
 
 namespace rc {
 namespace {
 
-OccupancyGrid RandomGrid(int sx, int sy, double r, double occupied_fraction, std::uint64_t seed) {
-  OccupancyGrid g(sx, sy, r);
-  RandomStream s(seed, StreamPurpose::kTest, 0, 0);
-  for (int x = 0; x < sx; ++x)
-    for (int y = 0; y < sy; ++y) {
-      const double u = s.Uniform();
-      g.Set(x, y,
-            u < occupied_fraction ? CellState::kOccupied
-                                  : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
-    }
-  return g;
-}
+using test::RandomGrid;
 
 // Origins anywhere in (and a little outside) the map, free or not, with
 // headings that include the axis directions exactly.

@@ -12,22 +12,12 @@
 #include "common/random_stream.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_cast.h"
+#include "support/random_grid.h"
 
 namespace rc {
 namespace {
 
-OccupancyGrid RandomGrid(int sx, int sy, double r, double occupied_fraction, std::uint64_t seed) {
-  OccupancyGrid g(sx, sy, r);
-  RandomStream s(seed, StreamPurpose::kTest, 0, 0);
-  for (int x = 0; x < sx; ++x)
-    for (int y = 0; y < sy; ++y) {
-      const double u = s.Uniform();
-      g.Set(x, y,
-            u < occupied_fraction ? CellState::kOccupied
-                                  : (u < occupied_fraction * 1.2 ? CellState::kUnknown : CellState::kFree));
-    }
-  return g;
-}
+using test::RandomGrid;
 
 // Independent reference: the earliest time the ray is inside a stopping cell
 // or outside the map, with cells as half-open squares [lo, hi). Derived per

@@ -5,10 +5,12 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "common/input_error.h"
+#include "support/temp_dir.h"
 
 namespace rc::test {
 
@@ -65,6 +67,27 @@ template <typename F>
     return ::testing::AssertionFailure() << "threw a different exception: " << e.what();
   }
   return ::testing::AssertionFailure() << "did not throw";
+}
+
+// A malformed file and the InputError it must raise (as ThrowsInputError).
+struct MalformedCase {
+  const char* name;
+  std::string content;
+  long line;
+  const char* field;
+  const char* problem;
+};
+
+// Writes each case to `file_name` in a fresh TempDir and expects `load(path)`
+// to refuse it with the case's line, field and problem.
+template <typename Load>
+void ExpectEveryCaseRefused(const std::vector<MalformedCase>& cases, const std::string& file_name, Load&& load) {
+  for (const MalformedCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    const TempDir dir;
+    const std::string path = dir.Write(file_name, c.content);
+    EXPECT_TRUE(ThrowsInputError([&] { load(path); }, c.line, c.field, c.problem));
+  }
 }
 
 }  // namespace rc::test

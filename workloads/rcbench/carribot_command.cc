@@ -6,8 +6,8 @@
 //
 // Exit codes (also in --help): 0 every query found a path; 1 bad input;
 // 2 bad usage; 3 at least one query found no path. Code 3 is reached through
-// std::exit after every output is written and flushed, because main() maps
-// every exception to 1 or 2.
+// ExitUnlessSuccess (common/exit_codes.h) after every output is written,
+// because main() maps every exception to 1 or 2.
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -339,14 +339,7 @@ void AddCarribotCommand(CLI::App& app) {
       "at least one query found no path (goal unreachable, start or goal on a blocked cell or with the footprint "
       "in collision, or --max-expansions reached); every output is still written, and the timeline's status "
       "column says why each query failed"));
-  cmd->callback([cli] {
-    const int code = Run(*cli);
-    if (code != 0) {
-      std::cout.flush();
-      std::cerr.flush();
-      std::exit(code);
-    }
-  });
+  cmd->callback([cli] { ExitUnlessSuccess(Run(*cli)); });
 }
 
 }  // namespace rc

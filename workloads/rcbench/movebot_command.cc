@@ -209,14 +209,7 @@ void AddMovebotCommand(CLI::App& app) {
       "no exact path within the budget (approximate or none; outputs are still written). A start or goal outside "
       "[-pi/2, pi/2] or in collision is bad input (1); a returned path that fails the independent collision check "
       "is an internal error (4), with nothing written"));
-  cmd->callback([cli] {
-    const int code = Run(*cli);
-    if (code != 0) {
-      std::cout.flush();
-      std::cerr.flush();
-      std::exit(code);
-    }
-  });
+  cmd->callback([cli] { ExitUnlessSuccess(Run(*cli)); });
 }
 
 }  // namespace rc
