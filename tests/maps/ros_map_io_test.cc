@@ -199,13 +199,8 @@ TEST(RosMapIo, SaveUsesTheGivenImageNameAndRejectsFolders) {
   EXPECT_THROW(SaveRosMap(grid, dir.Path("c.yaml"), options), std::invalid_argument);
 }
 
-struct YamlCase {
-  const char* name;
-  std::string yaml;
-  long line;
-  const char* field;
-  const char* problem;
-};
+// A malformed YAML (content) with the m.pgm beside it.
+using YamlCase = test::MalformedCase;
 
 // Yaml("m.pgm") puts image on line 1, resolution 2, origin 3, negate 4,
 // occupied_thresh 5, free_thresh 6; extra lines start at 7.
@@ -254,8 +249,8 @@ TEST(RosMapIo, ThrowsInputErrorNamingTheYamlLineAndKey) {
     SCOPED_TRACE(c.name);
     test::TempDir dir;
     dir.Write("m.pgm", Pgm({{0, 254}}));
-    const std::string yaml = dir.Write("m.yaml", c.yaml);
-    EXPECT_EQ(test::InputErrorFrom([&] { LoadRosMap(yaml); }, c.yaml).file(), yaml);
+    const std::string yaml = dir.Write("m.yaml", c.content);
+    EXPECT_EQ(test::InputErrorFrom([&] { LoadRosMap(yaml); }, c.content).file(), yaml);
     EXPECT_TRUE(ThrowsInputError([&] { LoadRosMap(yaml); }, c.line, c.field, c.problem));
   }
 }
