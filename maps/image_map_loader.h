@@ -1,5 +1,5 @@
 #pragma once
-// Loader for plain images (PNG, PGM, JPG, ...) used as maps without a YAML:
+// Loader for plain images (PNG, PNM, JPEG or BMP: image_signature.h) used as maps without a YAML:
 // the image's pixels are classified with ROS map_server's trinary rule and
 // orientation (image_occupancy.h): p = (255 - v) / 255 (v / 255 with
 // negate); occupied if p > occupied_thresh, free if p < free_thresh, unknown

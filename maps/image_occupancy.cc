@@ -7,6 +7,7 @@
 
 #include "common/input_error.h"
 #include "maps/grid_size_limits.h"
+#include "maps/image_signature.h"
 
 namespace rc {
 namespace {
@@ -76,7 +77,14 @@ CellState ClassifyPixelMean(double v, const PixelThresholds& t) { return StateOf
 OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, const PixelThresholds& thresholds,
                             ImageMapMode mode, CellClassCounts* counts) {
   // Checked first: OpenCV would also print its own warning for a missing file.
-  if (!std::ifstream(image_path)) throw InputError(image_path, 0, "", "cannot open image file");
+  std::ifstream file(image_path, std::ios::binary);
+  if (!file) throw InputError(image_path, 0, "", "cannot open image file");
+  std::string head(8, '\0');
+  file.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  if (!MapImageFormatOf(head))
+    throw InputError(image_path, 0, "",
+                     std::string("not a ") + kMapImageFormats + " image (its first bytes match none of them)");
   // A corrupt file can make a decoder throw (cv::Exception) instead of
   // returning an empty image.
   cv::Mat image;

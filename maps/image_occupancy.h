@@ -59,8 +59,9 @@ bool CheckPixelThresholds(const PixelThresholds& t, std::string* field, std::str
 CellState ClassifyPixelMean(double v, const PixelThresholds& t);
 
 // Reads the image at image_path and classifies every pixel (see above).
-// Throws InputError(image_path, 0, ...) when the image cannot be opened or
-// decoded or has an unsupported depth or channel count, and (raw mode)
+// Throws InputError(image_path, 0, ...) when the image cannot be opened, is
+// not one of the map image formats (image_signature.h), cannot be decoded,
+// or has an unsupported depth or channel count, and (raw mode)
 // naming the offending pixel's row and column. Thresholds must be valid.
 // Adds each cell's class to *counts when given (raw 255 is never observed;
 // every other unknown pixel lies between the thresholds).

@@ -81,7 +81,24 @@ TEST(ImageMapLoader, MissingOrUndecodableImageIsAnInputErrorNamingIt) {
   o.resolution_m = 0.1;
   EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(dir.Path("absent.png"), o); }, 0, "", "cannot open image file"));
   const std::string junk = dir.Write("junk.png", "not a png");
-  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(junk, o); }, 0, "", "cannot decode"));
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(junk, o); }, 0, "", "not a PNG, PNM (PGM/PPM/PBM), JPEG or BMP"));
+  const std::string cut = dir.Write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8) + "truncated");
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(cut, o); }, 0, "", "cannot decode"));
+}
+
+// A tests/fuzz finding: a DICOM file ("DICM" at byte 128) reached OpenCV's
+// GDCM decoder, which aborts the process on a malformed file. Only the map
+// image formats reach OpenCV now.
+TEST(ImageMapLoader, OtherImageFormatsAreRefusedBeforeDecoding) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  std::string dicom(128, '\xff');
+  dicom += "DICM";
+  const std::string path = dir.Write("scan.png", dicom);
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(path, o); }, 0, "", "its first bytes match none of them"));
+  for (const char* pgm : {"P5\n2 1\n255\n\x01\x02", "P2 2 1 255 0 255\n"})
+    EXPECT_NO_THROW(LoadImageMap(dir.Write("ok.pgm", pgm), o)) << pgm;
 }
 
 TEST(ImageMapLoader, SixteenBitImagesAreRejectedNotRescaled) {
