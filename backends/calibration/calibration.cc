@@ -5,18 +5,28 @@
 
 namespace rc {
 
-CalibrationReport Calibrate(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
-                            const BackendPreset& ours) {
+namespace {
+
+CalibrationReport Report(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
+                         const BackendPreset& ours, bool include_runs) {
   CalibrationReport report;
   report.ours_name = ours.name;
   report.workload_notes = workloads.notes;
-  report.rows = DelibotRows(workloads, artifact, ours, &report.workload_notes);
+  report.rows = DelibotRows(workloads, artifact, ours, &report.workload_notes, include_runs);
   for (CalibrationRow& row : CollisionRows(workloads, artifact, ours)) report.rows.push_back(std::move(row));
   return report;
 }
 
-CalibrationReport CalibrateOneColumn(const CalibrationWorkloads& workloads, const BackendPreset& preset) {
-  return Calibrate(workloads, preset, preset);  // the row builders price a shared preset once
+}  // namespace
+
+CalibrationReport Calibrate(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
+                            const BackendPreset& ours) {
+  return Report(workloads, artifact, ours, true);
+}
+
+CalibrationReport CalibrateOneColumn(const CalibrationWorkloads& workloads, const BackendPreset& preset,
+                                     bool include_runs) {
+  return Report(workloads, preset, preset, include_runs);  // the row builders price a shared preset once
 }
 
 }  // namespace rc

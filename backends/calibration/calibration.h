@@ -23,6 +23,9 @@ CalibrationReport Calibrate(const CalibrationWorkloads& workloads, const Backend
                             const BackendPreset& ours);
 // The report priced once, under `preset` (both columns hold its values):
 // what the sensitivity sweep measures per variant, at half the cost.
-CalibrationReport CalibrateOneColumn(const CalibrationWorkloads& workloads, const BackendPreset& preset);
+// Without `include_runs`, no whole DeliBot run rows (the sweep prices those
+// for every variant at once: DelibotRunRowsUnderVariants).
+CalibrationReport CalibrateOneColumn(const CalibrationWorkloads& workloads, const BackendPreset& preset,
+                                     bool include_runs = true);
 
 }  // namespace rc

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <array>
+#include <map>
+#include <memory>
+
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/why_sentences.h"
 #include "robocore/shipped_programs.h"
@@ -40,35 +44,84 @@ DelibotColumn PriceFirstUpdate(const CalibrationWorkloads& w, RayCastMethod meth
   return c;
 }
 
-DelibotColumn PriceRun(const DelibotRunWorkload& run, const CalibrationOptions& o, const BackendPreset& preset) {
+DelibotSettings RunSettings(const CalibrationOptions& o, const RayKernelChoices& kernel,
+                            const BackendParameters& params) {
   DelibotSettings s;
   s.ray_caster = RayCastMethod::kMarch;
   s.mcl.particle_count = o.run_particles;
   s.mcl.beams.beam_step = o.run_beam_step;
-  s.mcl.record_choices = preset.kernel;
+  s.mcl.record_choices = kernel;
   s.max_records = o.run_max_records;
   s.price_backends = true;
-  s.backend_params = preset.backend;
+  s.backend_params = params;
   s.ledger.replay_sms = 1;  // as rcbench delibot: SM 0 replayed exactly, the rest estimated
-  const DelibotResult result = RunDelibot(run.grid, run.trace, nullptr, s);
-  DelibotColumn c;
-  const std::vector<std::string>& names = result.pricing.backends;
-  for (const DelibotRow& row : result.rows) {
-    ++c.records;
-    if (!row.priced || !row.pricing.priced) continue;
-    ++c.updates;
-    c.queries += double(row.rays);
-    c.nodes += double(row.nodes);
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (names[i] == "simt") c.simt.Add(row.pricing.costs[i]);
-      if (names[i] == "ttaplus") c.tta.Add(row.pricing.costs[i]);
-      if (names[i] == "robocore") c.robo.Add(row.pricing.costs[i]);
-    }
+  return s;
+}
+
+// Where a record's address sample puts warps (AddressSample::SamePlacement):
+// a record sampled for one placement cannot be replayed under another.
+using Placement = std::array<int, 4>;
+Placement PlacementOf(const GpuParams& gpu) {
+  return {gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes};
+}
+
+// One filter run per placement among `variants` (the run's answers do not
+// depend on the cost parameters, so every variant sees the same launches);
+// each update's launches are priced on the three compared backends under
+// every variant as they are recorded, sharing each launch's memory replays
+// among the variants whose memory system agrees (PricingContext). An
+// update's launches are summed before they reach a side, as the ledger
+// sums them.
+std::vector<DelibotColumn> PriceRunUnderVariants(const DelibotRunWorkload& run, const CalibrationOptions& o,
+                                                 const RayKernelChoices& kernel,
+                                                 const std::vector<BackendParameters>& variants) {
+  std::vector<DelibotColumn> columns(variants.size());
+  std::map<Placement, std::vector<std::size_t>> groups;
+  for (std::size_t v = 0; v < variants.size(); ++v) groups[PlacementOf(variants[v].gpu)].push_back(v);
+  static const char* const kSides[] = {"simt", "ttaplus", "robocore"};
+  for (const auto& [placement, members] : groups) {
+    std::vector<std::unique_ptr<Backend>> backends;  // member-major, kSides order
+    for (std::size_t v : members)
+      for (const char* side : kSides) backends.push_back(Backend::Create(side, variants[v]));
+    DelibotSettings s = RunSettings(o, kernel, variants[members.front()]);
+    s.on_priced_launches = [&](const std::vector<const KernelRecord*>& launches) {
+      std::vector<BatchCost> sums(backends.size());
+      std::vector<char> started(backends.size(), 0);  // not vector<bool>: written by several threads
+      double queries = 0, nodes = 0;
+      for (const KernelRecord* record : launches) {
+        if (record->query_count() == 0) continue;  // as BackendLedger::AddLaunch
+        queries += double(record->query_count());
+        nodes += double(record->total_nodes());
+        PricingContext context(*record);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (long b = 0; b < static_cast<long>(backends.size()); ++b) {
+          BatchCost cost = backends[b]->Price(*record, context);
+          if (!started[b])
+            sums[b] = std::move(cost), started[b] = 1;
+          else
+            sums[b] += cost;
+        }
+      }
+      if (queries == 0) return;
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        DelibotColumn& c = columns[members[m]];
+        ++c.updates;
+        c.queries += queries;
+        c.nodes += nodes;
+        c.simt.Add(sums[3 * m]);
+        c.tta.Add(sums[3 * m + 1]);
+        c.robo.Add(sums[3 * m + 2]);
+      }
+    };
+    const DelibotResult result = RunDelibot(run.grid, run.trace, nullptr, s);
+    for (std::size_t v : members) columns[v].records = static_cast<long>(result.rows.size());
   }
-  RecordOptions options = RecordOptionsFor(RayCastMethod::kMarch, preset.kernel);
-  c.mix = LoopMixOf(options.program ? *options.program : *ShippedStepProgram(StepProgramKind::kGridMarch));
-  c.cell_bytes = options.layout.grid_cell_bytes;
-  return c;
+  RecordOptions options = RecordOptionsFor(RayCastMethod::kMarch, kernel);
+  for (DelibotColumn& c : columns) {
+    c.mix = LoopMixOf(options.program ? *options.program : *ShippedStepProgram(StepProgramKind::kGridMarch));
+    c.cell_bytes = options.layout.grid_cell_bytes;
+  }
+  return columns;
 }
 
 std::string ProgramClause(const DelibotColumn& c, const std::string& method) {
@@ -114,20 +167,28 @@ void AddPair(std::vector<CalibrationRow>& rows, const std::string& what, const s
   rows.push_back(tta);
 }
 
+void AddRunPair(std::vector<CalibrationRow>& rows, const std::string& run, const CalibrationOptions& o,
+                const DelibotColumn& artifact, const DelibotColumn& ours) {
+  const std::string workload =
+      fmt::format("{} updates of {:.0f} rays x {:.1f} nodes ({} records, {} particles x {} beams)", ours.updates,
+                  ours.queries / double(ours.updates), ours.nodes / ours.queries, ours.records, o.run_particles,
+                  (180 + o.run_beam_step - 1) / o.run_beam_step);
+  AddPair(rows, "DeliBot MCL, whole run (" + run + ", march)", "march", CalibrationScale::kPaperScale, workload,
+          artifact, ours);
+}
+
 }  // namespace
 
 std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const BackendPreset& artifact,
-                                        const BackendPreset& ours, std::vector<std::string>* notes) {
+                                        const BackendPreset& ours, std::vector<std::string>* notes,
+                                        bool include_runs) {
   std::vector<CalibrationRow> rows;
   for (const DelibotRunWorkload& run : w.runs) {
-    const DelibotColumn o = PriceRun(run, w.options, ours);
-    const DelibotColumn a = &artifact == &ours ? o : PriceRun(run, w.options, artifact);
-    const std::string workload =
-        fmt::format("{} updates of {:.0f} rays x {:.1f} nodes ({} records, {} particles x {} beams)", o.updates,
-                    o.queries / double(o.updates), o.nodes / o.queries, o.records, w.options.run_particles,
-                    (180 + w.options.run_beam_step - 1) / w.options.run_beam_step);
-    AddPair(rows, "DeliBot MCL, whole run (" + run.name + ", march)", "march", CalibrationScale::kPaperScale, workload,
-            a, o);
+    if (!include_runs) break;
+    const DelibotColumn o = PriceRunUnderVariants(run, w.options, ours.kernel, {ours.backend}).front();
+    const DelibotColumn a =
+        &artifact == &ours ? o : PriceRunUnderVariants(run, w.options, artifact.kernel, {artifact.backend}).front();
+    AddRunPair(rows, run.name, w.options, a, o);
     if (notes)
       notes->push_back("DeliBot " + run.name + ": " + std::to_string(run.trace.scans.size()) +
                        " laser records, march ray caster, " + std::to_string(w.options.run_particles) +
@@ -141,6 +202,17 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
     const std::string workload = fmt::format("1 update of {:.0f} rays x {:.1f} nodes", o.queries, o.nodes / o.queries);
     AddPair(rows, std::string("DeliBot MCL (") + ToString(method) + ")", ToString(method),
             CalibrationScale::kSmallBatch, workload, a, o);
+  }
+  return rows;
+}
+
+std::vector<std::vector<CalibrationRow>> DelibotRunRowsUnderVariants(const CalibrationWorkloads& w,
+                                                                     const RayKernelChoices& kernel,
+                                                                     const std::vector<BackendParameters>& variants) {
+  std::vector<std::vector<CalibrationRow>> rows(variants.size());
+  for (const DelibotRunWorkload& run : w.runs) {
+    const std::vector<DelibotColumn> columns = PriceRunUnderVariants(run, w.options, kernel, variants);
+    for (std::size_t v = 0; v < variants.size(); ++v) AddRunPair(rows[v], run.name, w.options, columns[v], columns[v]);
   }
   return rows;
 }

@@ -19,8 +19,21 @@
 
 namespace rc {
 
-// `artifact` and `ours` the same object: priced once.
+// `artifact` and `ours` the same object: priced once. Without
+// `include_runs`, the small-batch rows only.
 std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& workloads, const BackendPreset& artifact,
-                                        const BackendPreset& ours, std::vector<std::string>* notes = nullptr);
+                                        const BackendPreset& ours, std::vector<std::string>* notes = nullptr,
+                                        bool include_runs = true);
+
+// The whole-run rows (both columns the variant's), per variant, for the
+// sensitivity sweep: each run is filtered once per placement of warps on
+// SMs among the variants (once, unless a variant moves gpu.sms,
+// warps_per_block, warp_size or sector_bytes), recorded with `kernel`'s
+// choices, and every update is priced under every variant as it is
+// recorded. Each variant's rows equal DelibotRows' for a preset of that
+// variant and `kernel` (tests/calibration/delibot_run_sweep_test.cc).
+std::vector<std::vector<CalibrationRow>> DelibotRunRowsUnderVariants(const CalibrationWorkloads& workloads,
+                                                                     const RayKernelChoices& kernel,
+                                                                     const std::vector<BackendParameters>& variants);
 
 }  // namespace rc

@@ -34,32 +34,14 @@ bool InQuickSubset(const ParameterVariants& parameter) {
   return NamedByTheIssue(parameter.key) || std::string(parameter.spec.source).rfind("assumption", 0) == 0;
 }
 
-Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& measure,
-                            const SensitivityOptions& options) {
+Sensitivity SweepParametersTogether(const BackendParameters& base, const MeasureAllRows& measure_all,
+                                    const SensitivityOptions& options) {
   Sensitivity s;
-  const std::vector<CalibrationRow> baseline = measure(base);
-  for (const CalibrationRow& row : baseline) {
-    s.results.push_back({row.result, row.unit});
-    s.baseline.push_back(row.ours);
-    s.points.push_back({s.results.size() - 1, "", "default", row.ours});
-  }
-  auto record = [&](const std::string& key, const std::string& value) {
-    BackendParameters varied;
-    try {
-      varied = WithParameter(base, key, value);
-    } catch (const InputError& e) {
-      s.skipped.push_back(key + "=" + value + ": " + e.what());
-      return;
-    }
-    const std::vector<CalibrationRow> rows = measure(varied);
-    if (rows.size() != s.results.size())
-      throw std::logic_error("the calibration rows changed with " + key + "=" + value);
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      if (rows[r].result != s.results[r].name)
-        throw std::logic_error("the calibration rows changed order with " + key + "=" + value);
-      s.points.push_back({r, key, value, rows[r].ours});
-    }
+  struct Variant {
+    std::string key, value;
   };
+  std::vector<Variant> variants;
+  std::vector<BackendParameters> parameter_sets = {base};
   for (const ParameterVariants& p : SweepVariants(base)) {
     if (options.quick && !InQuickSubset(p)) continue;
     std::vector<std::string> values = p.alternatives;
@@ -73,9 +55,47 @@ Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& me
     }
     if (values.empty()) continue;
     ++s.parameters_swept;
-    for (const std::string& v : values) record(p.key, v);
+    for (const std::string& v : values) {
+      try {
+        parameter_sets.push_back(WithParameter(base, p.key, v));
+        variants.push_back({p.key, v});
+      } catch (const InputError& e) {
+        s.skipped.push_back(p.key + "=" + v + ": " + e.what());
+      }
+    }
+  }
+  const std::vector<std::vector<CalibrationRow>> measured = measure_all(parameter_sets);
+  if (measured.size() != parameter_sets.size())
+    throw std::logic_error("the sweep measured " + std::to_string(measured.size()) + " parameter sets of " +
+                           std::to_string(parameter_sets.size()));
+  for (const CalibrationRow& row : measured.front()) {
+    s.results.push_back({row.result, row.unit});
+    s.baseline.push_back(row.ours);
+    s.points.push_back({s.results.size() - 1, "", "default", row.ours});
+  }
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const std::vector<CalibrationRow>& rows = measured[v + 1];
+    const std::string what = variants[v].key + "=" + variants[v].value;
+    if (rows.size() != s.results.size()) throw std::logic_error("the calibration rows changed with " + what);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      if (rows[r].result != s.results[r].name)
+        throw std::logic_error("the calibration rows changed order with " + what);
+      s.points.push_back({r, variants[v].key, variants[v].value, rows[r].ours});
+    }
   }
   return s;
+}
+
+Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& measure,
+                            const SensitivityOptions& options) {
+  return SweepParametersTogether(
+      base,
+      [&](const std::vector<BackendParameters>& sets) {
+        std::vector<std::vector<CalibrationRow>> rows;
+        for (const BackendParameters& p : sets) rows.push_back(measure(p));
+        return rows;
+      },
+      options);
 }
 
 void WriteSensitivityCsv(const std::string& path, const Sensitivity& s) {

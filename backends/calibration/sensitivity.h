@@ -63,6 +63,15 @@ using MeasureRows = std::function<std::vector<CalibrationRow>(const BackendParam
 
 Sensitivity SweepParameters(const BackendParameters& base, const MeasureRows& measure,
                             const SensitivityOptions& options = {});
+// The same, with every parameter set measured in one call (the baseline
+// first, then each variant the parameter checks accept): for workloads
+// that price many parameter sets more cheaply together than one by one
+// (a whole DeliBot run, filtered once and priced under every variant).
+// Returns one row list per parameter set, in the order given.
+using MeasureAllRows =
+    std::function<std::vector<std::vector<CalibrationRow>>(const std::vector<BackendParameters>& parameter_sets)>;
+Sensitivity SweepParametersTogether(const BackendParameters& base, const MeasureAllRows& measure_all,
+                                    const SensitivityOptions& options = {});
 
 // Whether the parameter is in the quick subset.
 bool InQuickSubset(const ParameterVariants& parameter);

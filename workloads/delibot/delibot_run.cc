@@ -160,6 +160,13 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
       row.pricing = ledger->EndIteration(ran ? &step.work->record : nullptr);
       row.priced = true;
       row.pricing_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - pricing_start).count();
+      if (settings.on_priced_launches) {
+        std::vector<const KernelRecord*> launches;
+        if (step.check_records)
+          for (const KernelRecord& check : *step.check_records) launches.push_back(&check);
+        if (ran) launches.push_back(&step.work->record);
+        if (!launches.empty()) settings.on_priced_launches(launches);
+      }
     }
     row.spread_m = estimate.spread_m;
     row.mode_weight = estimate.mode_weight;

@@ -62,6 +62,13 @@ struct DelibotSettings {
   bool price_backends = false;
   BackendParameters backend_params;
   LedgerOptions ledger;
+  // With price_backends: called once per update that launched kernel work,
+  // with its launches (the injection check's batches first, then the
+  // update's), after the ledger priced them and before they are dropped.
+  // For a caller that prices the same run under other parameters as it goes
+  // (the calibration's sensitivity sweep); the records keep the ledger's
+  // address sample (LedgerOptions::replay_sms).
+  std::function<void(const std::vector<const KernelRecord*>& launches)> on_priced_launches;
 };
 
 struct DelibotRow {

@@ -13,6 +13,8 @@
 //   DIR/sensitivity.csv  ratio,parameter,value,result
 //   DIR/flips.md         the parameters whose range flips a result
 //   DIR/sensitivity.png  a tornado plot per result (scripts/plot_sensitivity.py)
+//   DIR/sensitivity_artifact.csv, flips_artifact.md, sensitivity_artifact.png
+//                        the same around the artifact preset's values
 //
 //   rcbench calibrate --out out/calibration [--backend-params artifact|FILE.json] [--data ../shared/data]
 //                     [--sensitivity [--quick]]
@@ -21,6 +23,7 @@
 #include <iostream>
 
 #include "backends/calibration/calibration.h"
+#include "backends/calibration/delibot_calibration.h"
 #include "backends/calibration/sensitivity.h"
 #include "common/atomic_file.h"
 #include "common/exit_codes.h"
@@ -71,40 +74,45 @@ void Plot(const std::string& script, const std::string& input, const std::string
     std::cout << "plot    not made here; run: " << plot << "\n";
 }
 
-// Sweeps the ours column's parameters (the artifact preset fixed) and sets
-// each swept row's ours range to the lowest and highest value the sweep
-// found. The sweep prices the small-batch rows and the paper-scale SACT
-// scenes, not the whole DeliBot runs: a run re-records its filter under
-// each variant's kernel choices (minutes per variant), which would put the
-// sweep at hours; those rows keep no range, and the report says none.
-void RunSensitivity(const CalibrateCli& cli, const BackendPreset& artifact, const BackendPreset& ours,
-                    CalibrationReport& report) {
-  CalibrationOptions sweep_options = cli.options;
-  sweep_options.delibot_runs = false;
-  const CalibrationWorkloads workloads = MakeCalibrationWorkloads(sweep_options);
+// Sweeps one column's parameters, the other preset's values included as
+// variants, and sets each row's range for that column to the lowest and
+// highest value the sweep found. Every row is swept: the small batches and
+// SACT scenes re-priced per variant, the whole DeliBot runs filtered once
+// and priced under every variant as they run (DelibotRunRowsUnderVariants).
+// Writes DIR/sensitivity<suffix>.csv, flips<suffix>.md and the plot.
+void SweepColumn(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendPreset& swept,
+                 const BackendPreset& other, const std::string& suffix, bool ours_column,
+                 CalibrationReport& report) {
   SensitivityOptions options;
   options.quick = cli.quick;
-  options.artifact = &artifact.backend;
+  options.artifact = &other.backend;
   std::cout << "sweeping " << (cli.quick ? "the quick subset of the" : "every") << " declared parameter"
-            << (cli.quick ? "s" : "") << "...\n";
-  const Sensitivity s = SweepParameters(
-      ours.backend,
-      [&](const BackendParameters& p) {
-        return CalibrateOneColumn(workloads, BackendPreset{ours.name, p, ours.kernel}).rows;
+            << (cli.quick ? "s" : "") << " of the " << (ours_column ? "ours" : "artifact preset") << " column...\n";
+  const Sensitivity s = SweepParametersTogether(
+      swept.backend,
+      [&](const std::vector<BackendParameters>& sets) {
+        std::vector<std::vector<CalibrationRow>> rows = DelibotRunRowsUnderVariants(workloads, swept.kernel, sets);
+        for (std::size_t v = 0; v < sets.size(); ++v)
+          for (CalibrationRow& row :
+               CalibrateOneColumn(workloads, BackendPreset{swept.name, sets[v], swept.kernel}, false).rows)
+            rows[v].push_back(std::move(row));
+        return rows;
       },
       options);
-  const std::string csv = cli.out_dir + "/sensitivity.csv", flips = cli.out_dir + "/flips.md";
+  const std::string csv = cli.out_dir + "/sensitivity" + suffix + ".csv";
+  const std::string flips = cli.out_dir + "/flips" + suffix + ".md";
   WriteSensitivityCsv(csv, s);
   WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, s); });
   std::cout << s.parameters_swept << " parameters swept, " << s.points.size() - s.results.size() << " variants priced, "
             << s.skipped.size() << " refused by the parameter checks\n";
   WriteFlipTable(std::cout, s);
   std::cout << "sweep   " << csv << "\nflips   " << flips << "\n";
-  Plot(SourceScript("plot_sensitivity.py"), csv, cli.out_dir + "/sensitivity.png");
+  Plot(SourceScript("plot_sensitivity.py"), csv, cli.out_dir + "/sensitivity" + suffix + ".png");
   const std::vector<ResultRange> ranges = RangesOf(s);
   for (std::size_t i = 0; i < ranges.size(); ++i)
     for (CalibrationRow& row : report.rows)
-      if (row.result == s.results[i].name) row.ours_range = ValueRange{ranges[i].low, ranges[i].high};
+      if (row.result == s.results[i].name)
+        (ours_column ? row.ours_range : row.artifact_range) = ValueRange{ranges[i].low, ranges[i].high};
 }
 
 void Run(const CalibrateCli& cli) {
@@ -115,7 +123,10 @@ void Run(const CalibrateCli& cli) {
   std::cout << "pricing (artifact preset and " << ours.name << ")...\n";
   CalibrationReport report = Calibrate(workloads, artifact, ours);
 
-  if (cli.sensitivity) RunSensitivity(cli, artifact, ours, report);
+  if (cli.sensitivity) {
+    SweepColumn(cli, workloads, ours, artifact, "", true, report);
+    SweepColumn(cli, workloads, artifact, ours, "_artifact", false, report);
+  }
   const std::string md = cli.out_dir + "/calibration.md";
   const std::string csv = cli.out_dir + "/calibration.csv";
   WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
@@ -138,7 +149,7 @@ void AddCalibrateCommand(CLI::App& app) {
                   "parameters (see rcbench backends; may hold a \"kernel\" object, as backends/presets/artifact.json)");
   cmd->add_flag("--sensitivity", cli->sensitivity,
                 "Also sweep every declared parameter over x0.5 and x2 (choices: every value), one at a time: "
-                "sensitivity.csv, flips.md, sensitivity.png");
+                "sensitivity.csv, flips.md, sensitivity.png; and around the artifact preset: *_artifact.*");
   cmd->add_flag("--quick", cli->quick,
                 "With --sensitivity: only the parameters whose source is an assumption and those issue #20 names")
       ->needs("--sensitivity");
