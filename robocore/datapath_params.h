@@ -67,9 +67,11 @@ struct DatapathConfig {
   int pre_process_initiation_cycles = 4;
   int box_normal_initiation_cycles = 3;
   int edge_edge_initiation_cycles = 3;
-  // RoboCore only. Cycles CTRL adds to decide "separating axis: exit" after
-  // a SACT unit. Assumption: 0, the check overlaps the unit's last stage (the
-  // artifact's 194-cycle full test is exactly 14 + 6*12 + 9*12).
+  // RoboCore only. Cycles CTRL adds when its check after a SACT unit fires
+  // ("separating axis: exit"); a check that does not fire adds none.
+  // Assumption: 0, the check overlaps the unit's last stage (the artifact's
+  // 194-cycle full test is exactly 14 + 6*12 + 9*12); the artifact preset
+  // charges 1, its RETURN op.
   int ctrl_exit_cycles = 0;
 };
 

@@ -164,9 +164,12 @@ std::vector<PlannedOp> SectionTiming::Plan(std::uint8_t exit) const {
       PlannedOp p;
       p.opcode = op.opcode;
       p.unit = prev;
-      p.latency = config_.ctrl_exit_cycles;
       p.ctrl = true;
       p.fires = fired = op.return_index == fired_return;
+      // Only the check that fires costs cycles: the artifact appends one
+      // RETURN op after the separating axis and none after the others
+      // (docs/artifact_preset.md, "Values read from the artifact's code").
+      p.latency = p.fires ? config_.ctrl_exit_cycles : 0;
       plan.push_back(p);
       continue;
     }

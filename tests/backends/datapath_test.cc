@@ -120,6 +120,23 @@ TEST(SectionTiming, SactExitAtAxisKRoboCoreVersusTtaPlus) {
   EXPECT_EQ(robo_ops, 1u + 15u + 1u);
 }
 
+// CTRL's exit cycles are charged once, on the check that fires, as the
+// artifact runs one RETURN op after the separating axis and none after the
+// others; a test that reaches the last axis pays nothing for CTRL.
+TEST(SectionTiming, CtrlExitCyclesAreChargedOnlyOnTheFiringCheck) {
+  const auto sact = ShippedStepProgram(StepProgramKind::kSactTest);
+  DatapathConfig with = RoboCore();
+  with.ctrl_exit_cycles = 5;
+  const SectionTiming robo(Loop(sact), RoboCore());
+  const SectionTiming charged(Loop(sact), with);
+  for (int k = 0; k < 15; ++k) {
+    const auto e = static_cast<std::uint8_t>(k);
+    EXPECT_EQ(charged.Cost(e).cycles, robo.Cost(e).cycles + 5u) << "axis " << k;
+    EXPECT_EQ(charged.Cost(e).ctrl_exits, static_cast<std::uint32_t>(k + 1)) << "checks evaluated";
+  }
+  EXPECT_EQ(charged.Cost(kNoExit).cycles, robo.Cost(kNoExit).cycles);
+}
+
 TEST(SectionTiming, SactUnitsArePipelined) {
   const SectionTiming robo(Loop(ShippedStepProgram(StepProgramKind::kSactTest)), RoboCore());
   const SectionCost& c = robo.Cost(kNoExit);
