@@ -24,6 +24,7 @@ enum class StreamPurpose : std::uint64_t {
   kSimulation = 5,
   kMapGeneration = 6,
   kTest = 7,
+  kStartProbe = 8,  // the adaptive scheduler's start probe (workloads/delibot/start_probe.h)
 };
 
 class RandomStream {

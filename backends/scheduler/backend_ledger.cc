@@ -109,8 +109,12 @@ AddressSample BackendLedger::RecordSample() const {
   return sample;
 }
 
-void BackendLedger::Prepare(const KernelRecord& template_record, std::size_t queries_per_batch,
-                            std::uint32_t max_nodes) {
+std::size_t BackendLedger::StartProbeQueries(std::size_t first_batch_queries) {
+  return std::min(first_batch_queries, kStartProbeMaxQueries);
+}
+
+void BackendLedger::Prepare(const KernelRecord& template_record, std::size_t queries_per_batch, std::uint32_t max_nodes,
+                            const KernelRecord* start_probe) {
   if (prepared_) return;
   prepared_ = true;
   if (options_.policy.kind == SchedulerKind::kThreshold && !options_.threshold_overridden) {
@@ -120,10 +124,12 @@ void BackendLedger::Prepare(const KernelRecord& template_record, std::size_t que
     options_.policy.threshold_nodes_per_query = crossing.threshold_nodes_per_query;
     threshold_has_crossing_ = crossing.has_crossing;
   } else if (options_.policy.kind == SchedulerKind::kAdaptive || options_.policy.kind == SchedulerKind::kOracle) {
-    const KernelRecord probe = MakeSpreadProbe(template_record, queries_per_batch, max_nodes, RecordSample());
     std::vector<const Backend*> candidates;
     for (std::size_t k : candidate_index_) candidates.push_back(backend_ptrs_[k]);
-    const std::vector<BatchCost> costs = PriceAll(candidates, probe);
+    const std::vector<BatchCost> costs =
+        start_probe && start_probe->query_count() > 0
+            ? PriceAll(candidates, *start_probe)
+            : PriceAll(candidates, MakeSpreadProbe(template_record, queries_per_batch, max_nodes, RecordSample()));
     std::size_t best = 0;
     for (std::size_t k = 1; k < costs.size(); ++k)
       if (costs[k].cycles < costs[best].cycles) best = k;

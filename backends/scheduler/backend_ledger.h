@@ -13,6 +13,7 @@
 #include "backends/backend.h"
 #include "backends/scheduler/backend_scheduler.h"
 #include "backends/scheduler/crossover_threshold.h"
+#include "common/parameter_spec.h"
 
 namespace rc {
 
@@ -82,6 +83,23 @@ struct LedgerSummary {
   int replay_sms = 0;                            // SMs replayed exactly when a priced record was sampled; 0 = every SM
 };
 
+// The most queries a start probe (BackendLedger::Prepare) holds. A probe
+// as large as the first batch prices it best (the batch's size moves the
+// CUDA cores' cost against the RT units' by up to 2x, docs/scheduling.md),
+// but costs what casting and pricing that batch costs, and a global
+// localization's first batch can hold 10^8 rays. 2^16 queries are 8 full
+// waves of the default GPU (8 SMs x 32 warps x 32 threads). Measured on the
+// hall (docs/scheduling.md, "Where to start"): a DeliBot probe of 2^16 rays
+// ranks the backends as one of the first update's 300,000 does, each
+// backend's cycles relative to the cheapest within 7% of their value
+// there, and costs 0.13-0.23 s on the host.
+inline constexpr std::size_t kStartProbeMaxQueries = std::size_t{1} << 16;
+inline constexpr ParameterSpec kStartProbeMaxQueriesSpec{
+    "queries", 1024, 1 << 24,
+    "own measurement: hall scene, DeliBot probes of 16,380 to 300,000 rays (docs/scheduling.md, \"Where to start\")"};
+static_assert(kStartProbeMaxQueriesSpec.min <= kStartProbeMaxQueries &&
+              kStartProbeMaxQueries <= kStartProbeMaxQueriesSpec.max);
+
 class BackendLedger {
  public:
   BackendLedger(const BackendParameters& params, LedgerOptions options);
@@ -97,11 +115,26 @@ class BackendLedger {
   //   threshold  the crossover threshold (crossover_threshold.h); without
   //              this call it is derived at the first priced iteration
   //              instead (max_nodes 1024);
-  //   adaptive   where to start: the candidate cheapest on a probe batch
-  //              whose queries fetch max_nodes / 2 nodes each (nothing has
-  //              been measured yet; without this call it starts on the
-  //              first candidate).
-  void Prepare(const KernelRecord& template_record, std::size_t queries_per_batch, std::uint32_t max_nodes = 1024);
+  //   adaptive   where to start (nothing has been measured yet): the
+  //              candidate cheapest on `start_probe`, a batch the workload
+  //              recorded before its first iteration from what it knows in
+  //              advance, drawn as its first batch will be (DeliBot:
+  //              workloads/delibot/start_probe.h), at most
+  //              StartProbeQueries() queries; without one, on
+  //              MakeSpreadProbe(template_record, queries_per_batch,
+  //              max_nodes), every length from 1 to max_nodes equally
+  //              often. Without this call it starts on the first candidate.
+  void Prepare(const KernelRecord& template_record, std::size_t queries_per_batch, std::uint32_t max_nodes = 1024,
+               const KernelRecord* start_probe = nullptr);
+  // Whether Prepare chooses where to start from a probe (the adaptive
+  // policy, and the oracle's online stand-in): a workload need not record
+  // a start probe otherwise.
+  bool ChoosesStart() const {
+    return options_.policy.kind == SchedulerKind::kAdaptive || options_.policy.kind == SchedulerKind::kOracle;
+  }
+  // The queries a start probe for a first batch of `first_batch_queries`
+  // needs: all of them, up to kStartProbeMaxQueries.
+  static std::size_t StartProbeQueries(std::size_t first_batch_queries);
   // The backend for the coming iteration, from the previous iteration's
   // counter.
   const std::string& BeginIteration();

@@ -6,12 +6,13 @@
 //           range 10 m: short rays throughout.
 // For each ray caster the test pins the iterations at which the adaptive
 // policy switched and those at which the hindsight oracle's choice changed
-// (over all backends), and the paper's pair {simt, robocore}: which one the
-// oracle over that pair chooses on each update, summarised as the range of
-// the per-update cycle ratio simt / robocore. A model or policy change that
-// moves a decision fails here; regenerate the pinned values deliberately
-// (the failure message prints them) and say why in the commit. The study
-// these scenes come from is docs/scheduling.md ("Scenes").
+// (over all backends), that the policy starts on the oracle's backend, that
+// it ends within 2% of the oracle, and the paper's pair {simt, robocore}:
+// which one the oracle over that pair chooses on each update, summarised as
+// the range of the per-update cycle ratio simt / robocore. A model or policy
+// change that moves a decision fails here; regenerate the pinned values
+// deliberately (the failure message prints them) and say why in the commit.
+// The study these scenes come from is docs/scheduling.md ("Scenes").
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -79,10 +80,10 @@ struct Expected {
   int simt_wins, robocore_wins;
 };
 
-// max_gap_percent: the acceptance's 2%, except where the first update
-// dominates the run (see the hall test).
-void ExpectDecisions(const DelibotResult& r, const Expected& e, const std::string& scene,
-                     double max_gap_percent = 2.0) {
+// Issue #20's acceptance: within 2% of the oracle.
+constexpr double kMaxGapPercent = 2.0;
+
+void ExpectDecisions(const DelibotResult& r, const Expected& e, const std::string& scene) {
   ASSERT_TRUE(r.priced);
   const SceneDecisions d = Decide(r);
   const std::string what = scene + " " + ToString(e.caster);
@@ -91,7 +92,13 @@ void ExpectDecisions(const DelibotResult& r, const Expected& e, const std::strin
   EXPECT_EQ(d.simt_wins, e.simt_wins) << what << ": simt/robocore per update in [" << d.min_ratio << ", " << d.max_ratio
                                       << "]";
   EXPECT_EQ(d.robocore_wins, e.robocore_wins) << what;
-  EXPECT_LE(r.pricing.gap_to_oracle_percent, max_gap_percent) << what;
+  // Where the policy starts (nothing measured yet): on these scenes the
+  // start probe picks the oracle's backend for the first priced update.
+  const auto first =
+      std::find_if(r.rows.begin(), r.rows.end(), [](const DelibotRow& row) { return row.pricing.priced; });
+  ASSERT_NE(first, r.rows.end()) << what;
+  EXPECT_EQ(first->pricing.backend, r.pricing.oracle_choice[static_cast<std::size_t>(first - r.rows.begin())]) << what;
+  EXPECT_LE(r.pricing.gap_to_oracle_percent, kMaxGapPercent) << what;
   EXPECT_EQ(r.pricing.oracle_lasting_changes_followed, r.pricing.oracle_lasting_changes) << what;
 }
 
@@ -103,7 +110,7 @@ TEST(ScheduleScenesTest, OpenHallGlobalLocalizationLongRaysEarly) {
   sim.geometry.max_range_m = 40.0;
   const SimulatedTrace trace = SimulateTrace(grid, sim);
   const std::vector<Expected> expected = {
-      {RayCastMethod::kMarch, {1, 2}, {1}, 0, 27},
+      {RayCastMethod::kMarch, {2}, {1}, 0, 27},
       {RayCastMethod::kDda, {2, 4}, {1, 3}, 26, 1},
       {RayCastMethod::kRayMarching, {2}, {1}, 0, 27},
   };
@@ -113,9 +120,11 @@ TEST(ScheduleScenesTest, OpenHallGlobalLocalizationLongRaysEarly) {
     s.beam.max_range_m = 40.0;
     // The first update (10,000 particles) holds about 90% of the run's
     // cycles, and the policy picks its backend before any counter exists,
-    // from a probe (BackendLedger::Prepare); a near-tie missed there (march:
-    // TTA+-cr for TTA+, 2.5% dearer) is the whole gap, hence 3%.
-    ExpectDecisions(RunDelibot(grid, trace.trace, nullptr, s), e, "hall", 3.0);
+    // from a start probe (workloads/delibot/start_probe.h); a near-tie
+    // missed there is the whole gap (march: TTA+-cr for TTA+ is 2.5% dearer
+    // on that update, and the spread probe that picked it left the run 2.3%
+    // above the oracle).
+    ExpectDecisions(RunDelibot(grid, trace.trace, nullptr, s), e, "hall");
   }
 }
 
@@ -126,7 +135,7 @@ TEST(ScheduleScenesTest, OfficeTrackingShortRays) {
   sim.record_count = 40;
   const SimulatedTrace trace = SimulateTrace(grid, sim);
   const std::vector<Expected> expected = {
-      {RayCastMethod::kMarch, {1}, {}, 0, 32},
+      {RayCastMethod::kMarch, {}, {}, 0, 32},
       {RayCastMethod::kDda, {}, {}, 32, 0},
       {RayCastMethod::kRayMarching, {}, {}, 0, 32},
   };

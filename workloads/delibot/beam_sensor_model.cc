@@ -110,12 +110,8 @@ void BeamSensorModel::FillQueries(const std::vector<Pose2>& particles, const Las
   const int beams_per_particle = beams.Count(geometry.beam_count);
   for (long i = begin; i < end; ++i) {
     const Pose2 sensor = SensorPose(particles[i], geometry);
-    for (int k = 0; k < beams_per_particle; ++k) {
-      RayQuery& q = batch.queries[static_cast<std::size_t>(i) * beams_per_particle + k];
-      q.origin_x_m = sensor.x;
-      q.origin_y_m = sensor.y;
-      q.angle_rad = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
-    }
+    for (int k = 0; k < beams_per_particle; ++k)
+      batch.queries[static_cast<std::size_t>(i) * beams_per_particle + k] = BeamQuery(sensor, geometry, beams, k);
   }
 }
 

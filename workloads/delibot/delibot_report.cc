@@ -247,6 +247,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
   if (result.priced) {
     out["backends"] = LedgerSummaryJson(result.pricing, s.ledger);
     out["backends"]["pricing_host_s"] = result.pricing_wall_s;
+    out["backends"]["prepare_host_s"] = result.prepare_wall_s;
     out["backends"]["filter_host_s"] = m.wall_s;
   }
   return out;

@@ -165,6 +165,9 @@ struct DelibotResult {
   bool priced = false;
   LedgerSummary pricing;  // valid when priced
   double pricing_wall_s = 0.0;
+  // Of pricing_wall_s, what the policy derived before the first update
+  // (BackendLedger::Prepare, with the start probe's cast).
+  double prepare_wall_s = 0.0;
   // False for an engine that does not report its kernel work (MRPT's
   // localizer): rays and nodes are then written as empty, not as 0.
   bool work_counted = true;

@@ -35,7 +35,24 @@ Pose2 MonteCarloLocalizer::RandomFreePose(RandomStream& stream) const {
   return {(ix + stream.Uniform()) * r, (iy + stream.Uniform()) * r, stream.Uniform(-kPi, kPi)};
 }
 
+Pose2 MonteCarloLocalizer::PoseAround(RandomStream& stream) const {
+  constexpr int kMaxTries = 1000;
+  const InitialSpread& a = initial_;
+  Pose2 p = a.pose;
+  for (int attempt = 0; attempt < kMaxTries; ++attempt) {
+    p = {a.pose.x + stream.Gaussian(a.sigma_xy_m), a.pose.y + stream.Gaussian(a.sigma_xy_m),
+         WrapAngle(a.pose.theta + stream.Gaussian(a.sigma_theta_rad))};
+    if (grid_.IsFreePoint(p.x, p.y)) break;
+  }
+  return p;
+}
+
+Pose2 MonteCarloLocalizer::DrawInitialPose(RandomStream& stream) const {
+  return initial_.around ? PoseAround(stream) : RandomFreePose(stream);
+}
+
 void MonteCarloLocalizer::InitializeUniform() {
+  initial_ = InitialSpread{};
   const double cell_area_m2 = grid_.resolution_m() * grid_.resolution_m();
   const std::size_t n = InitialParticleCount(options_, static_cast<double>(free_cells_.size()) * cell_area_m2);
   particles_.resize(n);
@@ -48,18 +65,12 @@ void MonteCarloLocalizer::InitializeUniform() {
 }
 
 void MonteCarloLocalizer::InitializeAround(const Pose2& pose, double sigma_xy_m, double sigma_theta_rad) {
+  initial_ = InitialSpread{true, pose, sigma_xy_m, sigma_theta_rad};
   const auto n = static_cast<std::size_t>(options_.particle_count);
   particles_.resize(n);
-  constexpr int kMaxTries = 1000;
   for (std::size_t i = 0; i < n; ++i) {
     RandomStream stream(options_.seed, StreamPurpose::kInitialization, 0, i);
-    Pose2 p = pose;
-    for (int attempt = 0; attempt < kMaxTries; ++attempt) {
-      p = {pose.x + stream.Gaussian(sigma_xy_m), pose.y + stream.Gaussian(sigma_xy_m),
-           WrapAngle(pose.theta + stream.Gaussian(sigma_theta_rad))};
-      if (grid_.IsFreePoint(p.x, p.y)) break;
-    }
-    particles_[i] = p;
+    particles_[i] = PoseAround(stream);
   }
   log_weights_.assign(n, -std::log(static_cast<double>(n)));
   dense_initial_set_ = false;

@@ -53,6 +53,11 @@ class MonteCarloLocalizer {
   void InitializeUniform();
   // Tracking: particles around a known pose, rejecting non-free positions.
   void InitializeAround(const Pose2& pose, double sigma_xy_m, double sigma_theta_rad);
+  // One pose drawn from `stream` as the last Initialize* drew each particle
+  // (uniform over free space, or around the tracking start): what the first
+  // update's particles look like before it runs, for a caller that must not
+  // see them (the scheduler's start probe, start_probe.h).
+  Pose2 DrawInitialPose(RandomStream& stream) const;
 
   // Processes one laser record (its odometry pose and ranges). `iteration`
   // keys the random streams and must increase by one per record.
@@ -66,6 +71,9 @@ class MonteCarloLocalizer {
 
  private:
   Pose2 RandomFreePose(RandomStream& stream) const;
+  // A free pose around `around` (InitializeAround), or the last draw after
+  // kMaxTries non-free ones.
+  Pose2 PoseAround(RandomStream& stream) const;
   // clusters: the hypotheses of the current particles, with their log
   // masses (ClusterLogMasses), or null to resample plainly.
   void Resample(std::uint64_t iteration, const HypothesisClusters* clusters,
@@ -85,6 +93,12 @@ class MonteCarloLocalizer {
   MclOptions options_;
   std::vector<std::uint32_t> free_cells_;
   std::vector<Pose2> particles_;
+  // The initial distribution: uniform over free space, or around a pose.
+  struct InitialSpread {
+    bool around = false;
+    Pose2 pose;
+    double sigma_xy_m = 0.0, sigma_theta_rad = 0.0;
+  } initial_;
   std::vector<double> log_weights_;      // normalized: sum of exp == 1
   std::vector<double> log_likelihoods_;  // scratch
   SensorUpdateWork work_;

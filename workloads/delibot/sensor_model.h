@@ -70,4 +70,10 @@ inline Pose2 SensorPose(const Pose2& robot, const LaserGeometry& geometry) {
           robot.y + geometry.offset_forward_m * std::sin(robot.theta), robot.theta};
 }
 
+// The ray of selected beam k (0-based among the selected) from a sensor at
+// `sensor` (SensorPose): a scan's queries, beam-minor.
+inline RayQuery BeamQuery(const Pose2& sensor, const LaserGeometry& geometry, const BeamSelection& beams, int k) {
+  return {sensor.x, sensor.y, sensor.theta + geometry.BeamAngle(k * beams.beam_step)};
+}
+
 }  // namespace rc
