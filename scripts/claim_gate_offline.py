@@ -27,7 +27,7 @@ with its one-sided 95 % Clopper-Pearson upper bound, and, against the old
 gate, the correct claims the other gate loses or delays.
 
 Usage: scripts/claim_gate_offline.py [--set NAME=GLOB ...] [--fixed-threshold X]
-       [beam-model options: --z-hit 0.5 --z-short 0.05 --z-max 0.05 --z-rand 0.5
+       [beam-model options (z_max drops out): --z-hit 0.5 --z-short 0.05 --z-rand 0.5
         --sigma-hit 0.2 --lambda-short 0.1 --max-range 10 --consistency-sigmas 3
         --beams 180 --sustain 10 --alpha 0.01]
 Standard library only.
@@ -154,7 +154,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--set", action="append", required=True, help="NAME=GLOB of timelines with ground truth")
     ap.add_argument("--fixed-threshold", type=float, help="also grade a window-mean gate at this value")
-    for name, default in (("z-hit", 0.5), ("z-short", 0.05), ("z-max", 0.05), ("z-rand", 0.5), ("sigma-hit", 0.2),
+    for name, default in (("z-hit", 0.5), ("z-short", 0.05), ("z-rand", 0.5), ("sigma-hit", 0.2),
                           ("lambda-short", 0.1), ("max-range", 10.0), ("consistency-sigmas", 3.0), ("alpha", 0.01)):
         ap.add_argument("--" + name, type=float, default=default)
     ap.add_argument("--beams", type=int, default=180, help="beams per scan (the CMU SICK: 180)")
