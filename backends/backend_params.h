@@ -159,7 +159,7 @@ struct TtaPlusParams {
   X(double, sact_latency_scale, 1.0, "factor", 0.1, 10,                                \
     "sweep knob on the three SACT units' latencies (paper: x0.5 to x2); 1 = paper")    \
   X(int, ctrl_exit_cycles, 0, "core cycles", 0, 64,                                    \
-    "assumption: the firing check overlaps the last stage (artifact full test 194 = 14 + 6*12 + 9*12)") \
+    "assumption: overlaps the last stage (artifact full test 194 = 14 + 6*12 + 9*12)") \
   X(int, decode_config_cycles_per_layout, 1, "core cycles", 0, 1000,                   \
     "assumption: one layout register write per node kind, at every launch")
 

@@ -61,9 +61,7 @@ DelibotSettings RunSettings(const CalibrationOptions& o, const RayKernelChoices&
 // Where a record's address sample puts warps (AddressSample::SamePlacement):
 // a record sampled for one placement cannot be replayed under another.
 using Placement = std::array<int, 4>;
-Placement PlacementOf(const GpuParams& gpu) {
-  return {gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes};
-}
+Placement PlacementOf(const GpuParams& gpu) { return {gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes}; }
 
 // One filter run per placement among `variants` (the run's answers do not
 // depend on the cost parameters, so every variant sees the same launches);
@@ -180,8 +178,7 @@ void AddRunPair(std::vector<CalibrationRow>& rows, const std::string& run, const
 }  // namespace
 
 std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const BackendPreset& artifact,
-                                        const BackendPreset& ours, std::vector<std::string>* notes,
-                                        bool include_runs) {
+                                        const BackendPreset& ours, std::vector<std::string>* notes, bool include_runs) {
   std::vector<CalibrationRow> rows;
   for (const DelibotRunWorkload& run : w.runs) {
     if (!include_runs) break;

@@ -19,6 +19,7 @@
 #include "backends/calibration/calibration.h"
 #include "backends/calibration/pricing_helpers.h"
 #include "backends/calibration/sact_datapath_variants.h"
+#include "calibration/small_calibration_options.h"
 #include "common/input_error.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
@@ -27,17 +28,7 @@
 namespace rc {
 namespace {
 
-CalibrationOptions SmallOptions() {
-  CalibrationOptions o;
-  o.data_dir = RC_SHARED_DATA_DIR;
-  o.particles = 24;
-  o.beams = 60;
-  o.random_obbs = 200;
-  o.min_sact_queries = 700;
-  o.run_particles = 40;
-  o.run_max_records = 12;
-  return o;
-}
+CalibrationOptions SmallOptions() { return test::SmallCalibrationOptions(); }
 
 class CalibrationTest : public ::testing::Test {
  protected:

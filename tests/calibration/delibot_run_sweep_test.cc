@@ -9,20 +9,14 @@
 
 #include "backends/backend_params.h"
 #include "backends/calibration/delibot_calibration.h"
+#include "calibration/small_calibration_options.h"
 
 namespace rc {
 namespace {
 
 CalibrationOptions SmallRuns() {
-  CalibrationOptions o;
-  o.data_dir = RC_SHARED_DATA_DIR;
-  o.particles = 24;
-  o.beams = 60;
-  o.random_obbs = 200;
-  o.min_sact_queries = 700;
+  CalibrationOptions o = test::SmallCalibrationOptions();
   o.scenes = {};  // no SACT scene: only the DeliBot rows are compared
-  o.run_particles = 40;
-  o.run_max_records = 12;
   return o;
 }
 

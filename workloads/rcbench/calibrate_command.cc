@@ -81,8 +81,7 @@ void Plot(const std::string& script, const std::string& input, const std::string
 // and priced under every variant as they run (DelibotRunRowsUnderVariants).
 // Writes DIR/sensitivity<suffix>.csv, flips<suffix>.md and the plot.
 void SweepColumn(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendPreset& swept,
-                 const BackendPreset& other, const std::string& suffix, bool ours_column,
-                 CalibrationReport& report) {
+                 const BackendPreset& other, const std::string& suffix, bool ours_column, CalibrationReport& report) {
   SensitivityOptions options;
   options.quick = cli.quick;
   options.artifact = &other.backend;
