@@ -77,8 +77,9 @@ std::vector<DelibotColumn> PriceRunUnderVariants(const DelibotRunWorkload& run, 
   std::map<Placement, std::vector<std::size_t>> groups;
   for (std::size_t v = 0; v < variants.size(); ++v) groups[PlacementOf(variants[v].gpu)].push_back(v);
   static const char* const kSides[] = {"simt", "ttaplus", "robocore"};
-  for (const auto& [placement, members] : groups) {
-    std::vector<std::unique_ptr<Backend>> backends;  // member-major, kSides order
+  for (const auto& group : groups) {
+    const std::vector<std::size_t>& members = group.second;  // a named reference: C++17 lambdas cannot capture bindings
+    std::vector<std::unique_ptr<Backend>> backends;          // member-major, kSides order
     for (std::size_t v : members)
       for (const char* side : kSides) backends.push_back(Backend::Create(side, variants[v]));
     DelibotSettings s = RunSettings(o, kernel, variants[members.front()]);
