@@ -181,18 +181,19 @@ void AddRunPair(std::vector<CalibrationRow>& rows, const std::string& run, const
 std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const BackendPreset& artifact,
                                         const BackendPreset& ours, std::vector<std::string>* notes, bool include_runs) {
   std::vector<CalibrationRow> rows;
-  for (const DelibotRunWorkload& run : w.runs) {
-    if (!include_runs) break;
-    const DelibotColumn o = PriceRunUnderVariants(run, w.options, ours.kernel, {ours.backend}).front();
-    const DelibotColumn a =
-        &artifact == &ours ? o : PriceRunUnderVariants(run, w.options, artifact.kernel, {artifact.backend}).front();
-    AddRunPair(rows, run.name, w.options, a, o);
-    if (notes)
-      notes->push_back("DeliBot " + run.name + ": " + std::to_string(run.trace.scans.size()) +
-                       " laser records, march ray caster, " + std::to_string(w.options.run_particles) +
-                       " particles, every " + std::to_string(w.options.run_beam_step) +
-                       "th beam, global localization; every update priced on every backend (memory replayed on "
-                       "SM 0, the rest estimated).");
+  if (include_runs) {
+    for (const DelibotRunWorkload& run : w.runs) {
+      const DelibotColumn o = PriceRunUnderVariants(run, w.options, ours.kernel, {ours.backend}).front();
+      const DelibotColumn a =
+          &artifact == &ours ? o : PriceRunUnderVariants(run, w.options, artifact.kernel, {artifact.backend}).front();
+      AddRunPair(rows, run.name, w.options, a, o);
+      if (notes)
+        notes->push_back("DeliBot " + run.name + ": " + std::to_string(run.trace.scans.size()) +
+                         " laser records, march ray caster, " + std::to_string(w.options.run_particles) +
+                         " particles, every " + std::to_string(w.options.run_beam_step) +
+                         "th beam, global localization; every update priced on every backend (memory replayed on "
+                         "SM 0, the rest estimated).");
+    }
   }
   for (RayCastMethod method : {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching}) {
     const DelibotColumn o = PriceFirstUpdate(w, method, ours);
