@@ -4,6 +4,8 @@
 // every 4th bucket of maze512-32-9 (2000 of its 8000 scenarios; a maze makes
 // A* expand nearly every free cell, so the whole file takes minutes on 2
 // cores). Set RC_MOVINGAI_ALL_BUCKETS=1 to check all of maze512 as well.
+// A sanitizer build checks every 40th maze512 bucket and every 10th
+// 64room_005 bucket (about 200 scenarios each; tests/support/sanitizer_build.h).
 // The Intel map has no .scen file: there A* is compared with an independent
 // Dijkstra on a few queries.
 #include <gtest/gtest.h>
@@ -22,6 +24,7 @@
 #include <random>
 
 #include "maps/movingai_map_loader.h"
+#include "support/sanitizer_build.h"
 #include "support/test_data.h"
 #include "workloads/carribot/grid_planner.h"
 #include "workloads/carribot/movingai_scenario_reader.h"
@@ -124,13 +127,14 @@ TEST(MovingAiOptimality, Boston0_256) {
 
 TEST(MovingAiOptimality, Room64_005) {
   RC_REQUIRE_SHARED_DATA("movingai/64room_005.map");
-  ExpectScenariosOptimal("64room_005.map");
+  ExpectScenariosOptimal("64room_005.map", test::FullOrUnderSanitizer(1, 10));
 }
 
 TEST(MovingAiOptimality, Maze512_32_9) {
   RC_REQUIRE_SHARED_DATA("movingai/maze512-32-9.map");
   const char* all = std::getenv("RC_MOVINGAI_ALL_BUCKETS");
-  ExpectScenariosOptimal("maze512-32-9.map", all != nullptr && std::string(all) == "1" ? 1 : 4);
+  const bool every_bucket = all != nullptr && std::string(all) == "1";
+  ExpectScenariosOptimal("maze512-32-9.map", every_bucket ? 1 : test::FullOrUnderSanitizer(4, 40));
 }
 
 TEST(MovingAiOptimality, IntelMatchesDijkstra) {

@@ -1,7 +1,9 @@
 // Property tests of the staged SACT against the exact reference: 10^6
 // random pairs (half of them built at or near exact contact), in double and
 // float, with the error bands of sact.h as the pass criterion; the
-// artifact's row/column bug must fail the same test.
+// artifact's row/column bug must fail the same test. A sanitizer build
+// scores a tenth of the pairs (a quarter in the 100,000-pair tests;
+// tests/support/sanitizer_build.h).
 //
 // Truth per pair: a certificate when one exists (a separating axis checked
 // on all 16 corners, or a common point strictly inside both boxes), else
@@ -18,11 +20,13 @@
 
 #include "overlap_oracle.h"
 #include "pair_generator.h"
+#include "support/sanitizer_build.h"
 
 namespace rc::test {
 namespace {
 
-constexpr std::uint64_t kPairs = 1'000'000;
+constexpr std::uint64_t kPairs = FullOrUnderSanitizer<std::uint64_t>(1'000'000, 100'000);
+constexpr std::uint64_t kSmallRunPairs = FullOrUnderSanitizer<std::uint64_t>(100'000, 25'000);
 constexpr std::uint64_t kSeed = 20260;
 constexpr long double kEps = 1e-6L;  // SactOptions default
 constexpr long double kDoubleUlp = std::numeric_limits<double>::epsilon() / 2;
@@ -182,19 +186,19 @@ TEST(SactPropertyEpsilon, WithoutEpsilonTouchingPairsCanComeOutSeparated) {
   SactOptions<double> no_epsilon;
   no_epsilon.parallel_epsilon = 0;
   const Band rounding_only{64, kDoubleUlp, 0};
-  const PropertyRun run = RunPairs(kSeed + 2, 100'000, no_epsilon, false, rounding_only);
-  run.d.Print("double SACT, epsilon 0, 100,000 pairs");
+  const PropertyRun run = RunPairs(kSeed + 2, kSmallRunPairs, no_epsilon, false, rounding_only);
+  run.d.Print("double SACT, epsilon 0");
   EXPECT_EQ(run.d.outside_band, 0u) << "every error is a rounding-level one";
   EXPECT_GT(run.d.touching_false_separations, 0u);
-  const PropertyRun with = RunPairs(kSeed + 2, 100'000, {}, false);
+  const PropertyRun with = RunPairs(kSeed + 2, kSmallRunPairs, {}, false);
   EXPECT_EQ(with.d.touching_false_separations, 0u);
 }
 
 TEST(SactPropertySpheres, SpherePretestsKeepTheAnswersInTheBand) {
   SactOptions<double> spheres;
   spheres.sphere_pretests = true;
-  const PropertyRun run = RunPairs(kSeed + 3, 100'000, spheres, false);
-  run.d.Print("double SACT with sphere pre-tests, 100,000 pairs");
+  const PropertyRun run = RunPairs(kSeed + 3, kSmallRunPairs, spheres, false);
+  run.d.Print("double SACT with sphere pre-tests");
   EXPECT_EQ(run.d.outside_band, 0u);
   EXPECT_EQ(run.d.false_separations, 0u);
 }

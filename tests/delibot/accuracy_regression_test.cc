@@ -10,6 +10,7 @@
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "real_log_recipes.h"
+#include "support/sanitizer_build.h"
 #include "support/test_data.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/trace_simulator.h"
@@ -51,7 +52,8 @@ void ExpectGlobalLocalization(const OccupancyGrid& grid, std::uint64_t seed, int
 
 TEST(AccuracyRegressionTest, GlobalLocalizationOnTheOfficeMap) {
   const OccupancyGrid grid = GenerateOfficeMap(OfficeMapOptions{});
-  for (std::uint64_t seed = 1; seed <= 3; ++seed) ExpectGlobalLocalization(grid, seed, 400, 3000);
+  const std::uint64_t seeds = test::FullOrUnderSanitizer(3, 1);
+  for (std::uint64_t seed = 1; seed <= seeds; ++seed) ExpectGlobalLocalization(grid, seed, 400, 3000);
 }
 
 TEST(AccuracyRegressionTest, TrackingOnTheOfficeMapKeepsMedianErrorBelowTenCentimetres) {
@@ -117,6 +119,7 @@ TEST(AccuracyRegressionTest, InjectionCheckKeepsATrackedFilterFromJumping) {
 }
 
 TEST(AccuracyRegressionTest, GlobalLocalizationOnSimulatedWean) {
+  RC_RELEASE_ONLY("GlobalLocalizationOnTheOfficeMap, the same check on another map");
   RC_REQUIRE_SHARED_DATA("wean/wean.dat");
   const OccupancyGrid grid = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
   ExpectGlobalLocalization(grid, 3, 500, 5000);
@@ -129,6 +132,7 @@ TEST(AccuracyRegressionTest, GlobalLocalizationOnSimulatedWean) {
 // convergence); taking the edge of mapped free space for a surface
 // (--lf-unknown edge) keeps it.
 TEST(AccuracyRegressionTest, UnknownSpaceAsAnEdgeMatchesTheSimulatorOnWean) {
+  RC_RELEASE_ONLY("LikelihoodFieldTest.UnknownSpaceIsAMissOrAnEdgeSurface and the cautious recipe's real-log tests");
   RC_REQUIRE_SHARED_DATA("wean/wean.dat");
   const OccupancyGrid grid = LoadCmuMap(test::SharedDataPath("wean/wean.dat"));
   const Simulated sim = Simulate(grid, 3, 1000);

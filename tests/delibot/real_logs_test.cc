@@ -32,6 +32,7 @@
 
 #include "maps/map_loader.h"
 #include "real_log_recipes.h"
+#include "support/sanitizer_build.h"
 #include "support/test_data.h"
 #include "traces/trace_reader.h"
 #include "workloads/delibot/delibot_defaults.h"
@@ -102,6 +103,17 @@ double PositionError(const DelibotRow& row, const Pose2& reference) {
   return std::hypot(row.estimate.x - reference.x, row.estimate.y - reference.y);
 }
 
+// The logs a parameterized suite checks: the given ones in a Release build;
+// in a sanitizer build only robotdata4, the shortest, which every suite
+// includes (tests/support/sanitizer_build.h).
+std::vector<RealLog> LogsToCheck(const std::vector<RealLog>& logs) {
+  if (!test::kSanitizerBuild) return logs;
+  std::vector<RealLog> shortest;
+  for (const RealLog& log : logs)
+    if (log.name == "robotdata4") shortest.push_back(log);
+  return shortest;
+}
+
 class RealLogTracking : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogTracking, BeamModelFollowsTheScanMatchingReference) {
@@ -118,7 +130,8 @@ TEST_P(RealLogTracking, BeamModelFollowsTheScanMatchingReference) {
     EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << "record " << c.record;
 }
 
-INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking, ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata4), PrintName);
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogTracking,
+                         ::testing::ValuesIn(LogsToCheck({kRobotdata1, kRobotdata2, kRobotdata4})), PrintName);
 
 using test::RealLogRecipe;
 
@@ -149,8 +162,8 @@ TEST_P(RealLogGlobalLocalization, LikelihoodFieldRecipeEndsAtTheReference) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Wean, RealLogGlobalLocalization, ::testing::Values(kRobotdata2, kRobotdata3, kRobotdata4),
-                         PrintName);
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogGlobalLocalization,
+                         ::testing::ValuesIn(LogsToCheck({kRobotdata2, kRobotdata3, kRobotdata4})), PrintName);
 
 // With nav2's update gating the recipe also localizes robotdata1 (3 of 3
 // seeds), at the price of robotdata2 (1 of 3; docs/real_logs.md).
@@ -168,6 +181,7 @@ TEST(RealLogGlobalLocalization, GatedRecipeLocalizesRobotdata1) {
 // working set out of the dense first set) keeps the true door of robotdata1
 // alive where the product loses it (3 of 3 seeds against 1 of 3; docs/real_logs.md).
 TEST(RealLogGlobalLocalization, CubeSumRecipeLocalizesRobotdata1) {
+  RC_RELEASE_ONLY("BeamModelTest.AmclCubeSumMatchesNav2sFormula and the recipe's other real-log tests");
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
   DelibotSettings s = RealLogRecipe();
@@ -218,7 +232,8 @@ TEST_P(RealLogHypothesisFloor, OwnClaimOfConvergenceHolds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
-                         ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4), PrintName);
+                         ::testing::ValuesIn(LogsToCheck({kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4})),
+                         PrintName);
 
 // At a fixed size the floor holds only particle_count / (2 * floor)
 // hypotheses: at robotdata1's second update 17 places are within 21 nats,
@@ -227,6 +242,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogHypothesisFloor,
 // are alive keeps it, and the set is back at 2000 by the claim (10 of 10
 // seeds on robotdata1, 3 and 4; docs/real_logs_particles.md).
 TEST(RealLogGrowingSet, KeepsTheTruePlaceThatAFixedSizeDrops) {
+  RC_RELEASE_ONLY("ParticleSetGrowthTest and RealLogHypothesisFloor (the same recipe and floor)");
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
   DelibotSettings s = RealLogRecipe();
@@ -279,7 +295,8 @@ TEST_P(RealLogCautiousRecipe, EveryRunClaimsAndEveryClaimHolds) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Wean, RealLogCautiousRecipe,
-                         ::testing::Values(kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4), PrintName);
+                         ::testing::ValuesIn(LogsToCheck({kRobotdata1, kRobotdata2, kRobotdata3, kRobotdata4})),
+                         PrintName);
 
 // rcbench's defaults (docs/defaults.md): the likelihood field while rivals
 // are alive, then the beam model. Checked where each stage matters:
@@ -319,7 +336,8 @@ TEST_P(RealLogDefaultSettings, ClaimsOnlyWhatHoldsAndTracksWithTheBeamModel) {
   EXPECT_LT(PositionError(r.rows.back(), GetParam().checkpoints.back().reference), 0.3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Wean, RealLogDefaultSettings, ::testing::Values(kRobotdata3, kRobotdata4), PrintName);
+INSTANTIATE_TEST_SUITE_P(Wean, RealLogDefaultSettings, ::testing::ValuesIn(LogsToCheck({kRobotdata3, kRobotdata4})),
+                         PrintName);
 
 // The plain filter (DelibotSettings' own member defaults, and rcbench's
 // defaults before docs/defaults.md: beam model, 2000 particles, recovery on)
@@ -328,6 +346,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogDefaultSettings, ::testing::Values(kRobotd
 // so no claim stands at the end and the run does not report itself
 // localized.
 TEST(RealLogPlainFilter, NoClaimStandsWhereThePlainFilterIsLost) {
+  RC_RELEASE_ONLY("RealLogEveryBeam and MclLocalizationTest (the plain filter's settings)");
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, DelibotSettings{});
