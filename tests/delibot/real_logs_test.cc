@@ -346,7 +346,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogDefaultSettings, ::testing::ValuesIn(LogsT
 // so no claim stands at the end and the run does not report itself
 // localized.
 TEST(RealLogPlainFilter, NoClaimStandsWhereThePlainFilterIsLost) {
-  RC_RELEASE_ONLY("RealLogEveryBeam and MclLocalizationTest (the plain filter's settings)");
+  RC_RELEASE_ONLY("RealLogEveryBeam (the plain filter's settings, all four logs, 150 records each)");
   RC_REQUIRE_SHARED_DATA("wean/robotdata1.log");
   const WeanInputs in = Load("robotdata1");
   const DelibotResult r = RunDelibot(in.map.grid, in.trace, nullptr, DelibotSettings{});
