@@ -335,15 +335,23 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
   };
   auto add = [](std::uint64_t& cycles, double extra) { cycles += static_cast<std::uint64_t>(std::llround(extra)); };
-  // A warp's queries in order of node count (ties in launch order).
-  std::vector<std::size_t> mine, theirs;
+  // A warp's queries in order of node count, ties in launch order: sorted
+  // as keys (node count, lane), which are distinct, so an unstable sort
+  // gives the stable order without a buffer.
+  std::vector<std::uint64_t> keys;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
+    const std::size_t first = std::size_t{warp} * lanes, end = std::min(n, first + lanes);
+    keys.clear();
+    for (std::size_t q = first; q < end; ++q) keys.push_back(std::uint64_t{record.nodes(q)} << 32 | (q - first));
+    std::sort(keys.begin(), keys.end());
     out.clear();
-    for (std::size_t q = std::size_t{warp} * lanes; q < std::min(n, (std::size_t{warp} + 1) * lanes); ++q)
-      out.push_back(q);
-    std::stable_sort(out.begin(), out.end(),
-                     [&](std::size_t a, std::size_t b) { return record.nodes(a) < record.nodes(b); });
+    for (std::uint64_t key : keys) out.push_back(first + (key & 0xffffffffu));
   };
+  // Each twin lends to a warp of every unsampled SM: its order is sorted
+  // once, when first borrowed.
+  std::vector<std::size_t> mine;
+  std::vector<std::vector<std::size_t>> twin_order(pattern.coalesced ? 0 : twins.size());
+  std::vector<bool> twin_sorted(twin_order.size(), false);
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (sampled_sm[sm]) continue;
     profile.sm_sector_requests[sm] =
@@ -359,7 +367,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
       ByNodes(w, mine);
-      ByNodes(twin, theirs);
+      const std::size_t t = k % twins.size();
+      if (!twin_sorted[t]) ByNodes(twin, twin_order[t]), twin_sorted[t] = true;
+      const std::vector<std::size_t>& theirs = twin_order[t];
       for (std::size_t i = 0; i < mine.size(); ++i) {
         const std::size_t q = mine[i];
         const bool paired = i < theirs.size() && record.nodes(theirs[i]) > 0;
