@@ -10,7 +10,10 @@
 // benchmarks skip with a message.
 //
 //   BM_Kernel/<method>          CastRayBatch (the functional kernel)
-//   BM_KernelRecorded/<method>  CastRayBatchRecorded (kernel + record)
+//   BM_KernelRecorded/<method>/<sampled>
+//                               CastRayBatchRecorded (kernel + record);
+//                               sampled 0 keeps every address, 1 one SM's
+//                               of 8 (the CLI's default sample)
 //   BM_PriceAll/<method>        the five modelled backends on one record,
 //                               sharing the memory replay (PriceAll)
 //   BM_Price/<backend>/<method> one backend alone
@@ -114,7 +117,9 @@ void BM_KernelRecorded(benchmark::State& state) {
   const int m = static_cast<int>(state.range(0));
   std::vector<RayHit> hits;
   KernelRecord record;
-  for (auto _ : state) CastRayBatchRecorded(*w->scenes[m], w->batch, hits, record);
+  RecordOptions options;
+  options.sample.sampled_sms = static_cast<int>(state.range(1));
+  for (auto _ : state) CastRayBatchRecorded(*w->scenes[m], w->batch, hits, record, options);
   SetCounters(state, w->records[m]);
   state.SetLabel(ToString(kMethods[m]));
 }
@@ -175,7 +180,7 @@ void BM_Overhead(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Kernel)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_KernelRecorded)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_KernelRecorded)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_PriceAll)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Overhead)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Price)
