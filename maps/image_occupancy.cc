@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "common/input_error.h"
+#include "maps/image_codec.h"
 #include "maps/grid_size_limits.h"
 #include "maps/image_signature.h"
 
@@ -89,7 +89,7 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, 
   // returning an empty image.
   cv::Mat image;
   try {
-    image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+    image = DecodeImageFile(image_path);
   } catch (const cv::Exception& e) {
     throw InputError(image_path, 0, "", std::string("cannot decode the image (corrupt): ") + e.what());
   }

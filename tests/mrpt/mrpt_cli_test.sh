@@ -38,4 +38,28 @@ for bad in truncated corrupt; do
   grep -q "$work/$bad.rawlog" "$work/$bad.out" || { cat "$work/$bad.out"; fail "$bad rawlog error does not name the file"; }
   [[ ! -e $work/$bad.csv ]] || fail "$bad rawlog left a partial timeline"
 done
+# rcbench opens MRPT from its module (librcbench_mrpt.so); MRPT's
+# allocations must still count against the allocation budget of rcbench's
+# operator new. A scan declaring about 4e9 ranges (the demo log's first scan,
+# its 361-range count with the two high bytes set) is an input error, not a
+# 16 GB allocation.
+/usr/bin/python3 - "$data/localization_demo.rawlog" "$work/huge_scan.rawlog" <<'PY' || fail "cannot write huge_scan.rawlog"
+import gzip, struct, sys
+data = bytearray(gzip.decompress(open(sys.argv[1], "rb").read()))
+scan = data.find(b"CObservation2DRangeScan")
+count = data.find(struct.pack("<I", 361), data.find(b"CPose3D", scan))
+assert scan >= 0 and count >= 0
+data[count + 2] = data[count + 3] = 0xF0
+open(sys.argv[2], "wb").write(data)
+PY
+"$rcbench" delibot --map $data/localization_demo.simplemap.gz --trace "$work/huge_scan.rawlog" --quiet \
+  --timeline "$work/huge.csv" > "$work/huge.out" 2>&1
+code=$?
+[[ $code -eq 1 ]] || { cat "$work/huge.out"; fail "a scan of 4e9 ranges exited $code, expected 1 (input error)"; }
+grep -q "would take more than" "$work/huge.out" || { cat "$work/huge.out"; fail "no allocation-budget error"; }
+[[ ! -e $work/huge.csv ]] || fail "the huge scan left a partial timeline"
+
+# The binary itself does not link MRPT: a run that reads no MRPT file never
+# loads it.
+if ldd "$rcbench" | grep -q libmrpt; then fail "rcbench links MRPT directly (it belongs in librcbench_mrpt.so)"; fi
 echo "PASS"

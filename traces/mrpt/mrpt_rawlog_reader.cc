@@ -227,16 +227,6 @@ class RawlogParser {
 
 }  // namespace
 
-bool HasRawlogExtension(const std::string& path) {
-  std::string name = std::filesystem::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  auto ends_with = [&](const std::string& suffix) {
-    return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-  };
-  return ends_with(".rawlog") || ends_with(".rawlog.gz");
-}
-
 SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& options, TraceReadStats* stats) {
   TraceReadStats local_stats;
   TraceReadStats& s = stats ? *stats : local_stats;

@@ -52,6 +52,7 @@ SensorTrace ReadMrptRawlog(const std::string& path, const RawlogReadOptions& opt
                            TraceReadStats* stats = nullptr);
 
 // True when the path names a rawlog by extension: .rawlog or .rawlog.gz.
+// (Defined with the dispatch, mrpt_trace_dispatch.cc, which needs no MRPT.)
 bool HasRawlogExtension(const std::string& path);
 
 }  // namespace rc

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "common/atomic_file.h"
+#include "maps/image_codec.h"
 #include "workloads/carribot/footprint_geometry.h"
 
 namespace rc {
@@ -90,7 +90,7 @@ void WritePathPlot(const std::string& png_path, const OccupancyGrid& grid, const
                cv::LINE_AA, kSubpixelBits);
   }
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", canvas.image(), png)) throw std::runtime_error(png_path + ": PNG encoding failed");
+  if (!EncodePng(canvas.image(), png)) throw std::runtime_error(png_path + ": PNG encoding failed");
   AtomicFile file(png_path);
   file.stream().write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   file.Commit();

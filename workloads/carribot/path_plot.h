@@ -7,8 +7,8 @@
 // Orientation as every rcbench image: row 0 is the largest y (y up), so a
 // MovingAI map appears mirrored top to bottom against its text file. Small
 // maps are magnified by an integer factor (up to 8) so that the longer side
-// has at least 512 pixels. Written through OpenCV (imencode) and committed
-// atomically.
+// has at least 512 pixels. Written through OpenCV's PNG encoder
+// (maps/image_codec.h) and committed atomically.
 #include <optional>
 #include <string>
 
