@@ -15,10 +15,23 @@
 // it in (RC_MODULE_DIR, so test binaries elsewhere in the build tree find
 // it). A module that cannot be opened, or lacks the symbol, throws
 // std::runtime_error naming every path tried and the loader's message.
+#include <stdexcept>
 #include <string>
 
 namespace rc {
 
 void* OpenModuleEntry(const std::string& module, const std::string& symbol);
+
+// A module's table of entry points: its extern "C" `symbol` is a function
+// returning `const Api*`, and Api's first member, `size`, holds
+// sizeof(Api) as the module was built (a module from another build throws).
+template <typename Api>
+const Api& OpenModuleApi(const std::string& module, const std::string& symbol) {
+  using Entry = const Api* (*)();
+  const Api* api = reinterpret_cast<Entry>(OpenModuleEntry(module, symbol))();
+  if (api->size != sizeof(Api))
+    throw std::runtime_error("rcbench's " + module + " module comes from another build (rebuild it with the binary)");
+  return *api;
+}
 
 }  // namespace rc

@@ -2,8 +2,6 @@
 // to librcbench_mrpt.so, opened on the first call (mrpt_module_api.h). Test
 // and benchmark binaries link the adapters themselves (rc::mrpt_maps,
 // rc::mrpt_io, rc::mrpt_engine) instead; no binary links both.
-#include <stdexcept>
-
 #include "common/on_demand_module.h"
 #include "workloads/delibot/mrpt/mrpt_localizer.h"
 #include "workloads/rcbench/mrpt_module_api.h"
@@ -12,15 +10,8 @@ namespace rc {
 namespace {
 
 const MrptModuleApi& Module() {
-  static const MrptModuleApi* const api = [] {
-    using Entry = const MrptModuleApi* (*)();
-    const auto entry = reinterpret_cast<Entry>(OpenModuleEntry("mrpt", "rc_mrpt_module_api"));
-    const MrptModuleApi* table = entry();
-    if (table->size != sizeof(MrptModuleApi))
-      throw std::runtime_error("rcbench's mrpt module comes from another build (rebuild it with the binary)");
-    return table;
-  }();
-  return *api;
+  static const MrptModuleApi& api = OpenModuleApi<MrptModuleApi>("mrpt", "rc_mrpt_module_api");
+  return api;
 }
 
 }  // namespace
