@@ -39,8 +39,9 @@ void* OpenModuleEntry(const std::string& module, const std::string& symbol) {
         tried += "\n  " + path + ": no such file";
         continue;
       }
-      // RTLD_LOCAL: the module's own copies of rcbench's code stay private
-      // to it (it is linked with -Bsymbolic and hidden archive symbols).
+      // RTLD_LOCAL: a module's symbols stay out of the global scope, so they
+      // never take the place of rcbench's (the MRPT module's adapters have
+      // the names of rcbench's forwarders to them).
       handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
       if (handle) break;
       tried += "\n  " + path + ": " + dlerror();
