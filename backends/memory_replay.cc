@@ -350,8 +350,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // Each twin lends to a warp of every unsampled SM: its order is sorted
   // once, when first borrowed.
   std::vector<std::size_t> mine;
-  std::vector<std::vector<std::size_t>> twin_order(pattern.coalesced ? 0 : twins.size());
-  std::vector<bool> twin_sorted(twin_order.size(), false);
+  std::vector<std::vector<std::size_t>> twin_order(pattern.coalesced ? 0 : twins.size());  // empty until sorted
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (sampled_sm[sm]) continue;
     profile.sm_sector_requests[sm] =
@@ -368,7 +367,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // its tie to query length, which decide the warp's slowest lane.
       ByNodes(w, mine);
       const std::size_t t = k % twins.size();
-      if (!twin_sorted[t]) ByNodes(twin, twin_order[t]), twin_sorted[t] = true;
+      if (twin_order[t].empty()) ByNodes(twin, twin_order[t]);  // a warp has at least one query
       const std::vector<std::size_t>& theirs = twin_order[t];
       for (std::size_t i = 0; i < mine.size(); ++i) {
         const std::size_t q = mine[i];

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "common/input_error.h"
-#include "maps/image_codec.h"
 #include "maps/grid_size_limits.h"
+#include "maps/image_codec.h"
 #include "maps/image_signature.h"
 
 namespace rc {

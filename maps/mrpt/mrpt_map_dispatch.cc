@@ -1,25 +1,15 @@
 #include "maps/mrpt/mrpt_map_dispatch.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
+#include "common/file_names.h"
 #include "common/input_error.h"
 #include "maps/mrpt/mrpt_map_loader.h"
 
 namespace rc {
 namespace {
 
-bool EndsWith(const std::string& path, const std::string& suffix) {
-  std::string name = std::filesystem::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 std::string DetectMrptFormat(const std::string& path) {
-  if (EndsWith(path, ".gridmap") || EndsWith(path, ".gridmap.gz")) return "gridmap";
-  if (EndsWith(path, ".simplemap") || EndsWith(path, ".simplemap.gz")) return "simplemap";
+  if (FileNameEndsWith(path, ".gridmap") || FileNameEndsWith(path, ".gridmap.gz")) return "gridmap";
+  if (FileNameEndsWith(path, ".simplemap") || FileNameEndsWith(path, ".simplemap.gz")) return "simplemap";
   return "";
 }
 

@@ -38,6 +38,7 @@ for bad in truncated corrupt; do
   grep -q "$work/$bad.rawlog" "$work/$bad.out" || { cat "$work/$bad.out"; fail "$bad rawlog error does not name the file"; }
   [[ ! -e $work/$bad.csv ]] || fail "$bad rawlog left a partial timeline"
 done
+
 # rcbench opens MRPT from its module (librcbench_mrpt.so); MRPT's
 # allocations must still count against the allocation budget of rcbench's
 # operator new. A scan declaring about 4e9 ranges (the demo log's first scan,

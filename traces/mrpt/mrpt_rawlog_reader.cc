@@ -1,10 +1,8 @@
 #include "traces/mrpt/mrpt_rawlog_reader.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <vector>

@@ -1,23 +1,13 @@
 #include "traces/mrpt/mrpt_trace_dispatch.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
+#include "common/file_names.h"
 #include "common/input_error.h"
 
 namespace rc {
 
 bool HasRawlogExtension(const std::string& path) {
-  std::string name = std::filesystem::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  auto ends_with = [&](const std::string& suffix) {
-    return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-  };
-  return ends_with(".rawlog") || ends_with(".rawlog.gz");
+  return FileNameEndsWith(path, ".rawlog") || FileNameEndsWith(path, ".rawlog.gz");
 }
-
 
 std::string TraceFormatNamesWithRawlog() { return "auto, cmu, rowild, carmen or rawlog"; }
 
