@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <omp.h>
+
 #include "backends/cache_model.h"
 
 namespace rc {
@@ -604,64 +606,62 @@ ExitProfile ProfileExits(const KernelRecord& record) {
     return profile;
   }
   const std::uint8_t* exits = record.node_exits.data();
-  // Distinct exits of query q: "no exit" first (most passes have none),
-  // then the rare exits in first-seen order. One scan that skips whole
-  // words of "no exit" (all bits set) at a time.
-  auto tally = [&](std::size_t q, std::uint8_t* variant, std::uint32_t* passes) {
-    const std::uint8_t* p = exits + offsets[q];
-    const std::uint8_t* end = exits + offsets[q + 1];
-    const auto size = static_cast<std::uint32_t>(end - p);
-    std::uint8_t seen[256];
-    std::uint32_t seen_passes[256];
-    std::uint32_t distinct = 0, with_exit = 0;
-    auto add = [&](std::uint8_t exit) {
-      const auto v = static_cast<std::uint8_t>(1 + exit);
-      std::uint32_t i = 0;
-      while (i < distinct && seen[i] != v) ++i;
-      if (i == distinct) {
-        seen[i] = v;
-        seen_passes[i] = 0;
-        ++distinct;
-      }
-      ++seen_passes[i];
-      ++with_exit;
-    };
-    for (; end - p >= 8; p += 8) {
-      std::uint64_t word;
-      std::memcpy(&word, p, 8);
-      if (word == ~std::uint64_t{0}) continue;
-      for (int b = 0; b < 8; ++b)
-        if (p[b] != kNoExit) add(p[b]);
-    }
-    for (; p < end; ++p)
-      if (*p != kNoExit) add(*p);
-    std::uint32_t out = 0;
-    if (with_exit < size) {
-      variant[0] = 0;
-      passes[0] = size - with_exit;
-      out = 1;
-    }
-    for (std::uint32_t i = 0; i < distinct; ++i, ++out) {
-      variant[out] = seen[i];
-      passes[out] = seen_passes[i];
-    }
-    return out;
+  // One pass over the exits: each thread tallies a contiguous range of
+  // queries into its own lists, which are then concatenated in query order
+  // (the profile does not depend on the thread count). Per query: a count
+  // per exit value, "no exit" first (most passes have none), then the rare
+  // exits in first-seen order.
+  struct Part {
+    std::vector<std::uint32_t> sizes;  // per query of the range
+    std::vector<std::uint8_t> variant;
+    std::vector<std::uint32_t> passes;
   };
+  const int threads = std::max(1, omp_get_max_threads());
+  std::vector<Part> parts(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto used = static_cast<std::size_t>(omp_get_num_threads());
+    Part& part = parts[t];
+    const std::size_t first = n * t / used, last = n * (t + 1) / used;
+    part.sizes.reserve(last - first);
+    part.variant.reserve(2 * (last - first));
+    part.passes.reserve(2 * (last - first));
+    std::array<std::uint32_t, 256> count{};
+    std::array<std::uint8_t, 256> seen{};
+    for (std::size_t q = first; q < last; ++q) {
+      std::uint32_t distinct = 0;
+      for (std::uint64_t i = offsets[q]; i < offsets[q + 1]; ++i) {
+        const std::uint8_t e = exits[i];
+        if (count[e]++ == 0) seen[distinct++] = e;
+      }
+      const std::size_t before = part.variant.size();
+      if (count[kNoExit] > 0) {
+        part.variant.push_back(0);
+        part.passes.push_back(count[kNoExit]);
+        count[kNoExit] = 0;
+      }
+      for (std::uint32_t i = 0; i < distinct; ++i) {
+        const std::uint8_t e = seen[i];
+        if (e == kNoExit) continue;
+        part.variant.push_back(static_cast<std::uint8_t>(1 + e));
+        part.passes.push_back(count[e]);
+        count[e] = 0;
+      }
+      part.sizes.push_back(static_cast<std::uint32_t>(part.variant.size() - before));
+    }
+  }
   ExitProfile profile;
   profile.offsets.assign(n + 1, 0);
-#pragma omp parallel for schedule(static)
-  for (long q = 0; q < static_cast<long>(n); ++q) {
-    std::uint8_t variant[256];
-    std::uint32_t passes[256];
-    profile.offsets[q + 1] = tally(static_cast<std::size_t>(q), variant, passes);
+  std::size_t q = 0;
+  for (const Part& part : parts) {
+    for (const std::uint32_t size : part.sizes) {
+      profile.offsets[q + 1] = profile.offsets[q] + size;
+      ++q;
+    }
+    profile.variant.insert(profile.variant.end(), part.variant.begin(), part.variant.end());
+    profile.passes.insert(profile.passes.end(), part.passes.begin(), part.passes.end());
   }
-  for (std::size_t q = 0; q < n; ++q) profile.offsets[q + 1] += profile.offsets[q];
-  profile.variant.resize(profile.offsets[n]);
-  profile.passes.resize(profile.offsets[n]);
-#pragma omp parallel for schedule(static)
-  for (long q = 0; q < static_cast<long>(n); ++q)
-    tally(static_cast<std::size_t>(q), profile.variant.data() + profile.offsets[q],
-          profile.passes.data() + profile.offsets[q]);
   return profile;
 }
 

@@ -64,11 +64,24 @@ void KernelRecord::Validate() const {
     }
     if (address_offsets.back() != fetch_addresses.size()) fail("address offsets do not end at the address count");
   }
+  // Branch-free scans first (records hold millions of fetches); the slow
+  // search for the culprit only when one fails.
   const int returns = program->ReturnIfCount(ProgramSection::kLoop);
-  for (std::uint8_t e : exits_per_query() ? last_exits : node_exits)
-    if (e != kNoExit && e >= returns)
-      fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" + program->name() + "' has " +
-           std::to_string(returns));
+  const std::vector<std::uint8_t>& exits = exits_per_query() ? last_exits : node_exits;
+  std::uint8_t highest = 0;  // 1 + the highest RETURN_IF named (kNoExit + 1 wraps to 0)
+  for (const std::uint8_t e : exits) highest = std::max(highest, static_cast<std::uint8_t>(e + 1));
+  if (highest > returns)
+    for (std::uint8_t e : exits)
+      if (e != kNoExit && e >= returns)
+        fail("an exit names RETURN_IF #" + std::to_string(e) + " but the loop of '" + program->name() + "' has " +
+             std::to_string(returns));
+  std::uint64_t lowest_address = ~std::uint64_t{0}, highest_address = 0;
+  for (const std::uint64_t a : fetch_addresses) {
+    lowest_address = std::min(lowest_address, a);
+    highest_address = std::max(highest_address, a);
+  }
+  for (const MemoryRegion& r : regions)
+    if (lowest_address >= r.base && highest_address + node_bytes <= r.base + r.bytes()) return;  // one region holds all
   for (std::uint64_t a : fetch_addresses) {
     bool inside = false;
     for (const MemoryRegion& r : regions) inside = inside || (a >= r.base && a + node_bytes <= r.base + r.bytes());

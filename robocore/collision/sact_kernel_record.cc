@@ -28,8 +28,14 @@ class TouchedSectors {
   }
   void Mark(std::uint32_t node) {
     const std::uint64_t offset = std::uint64_t{node} * node_bytes_;
-    for (std::uint64_t s = offset >> shift_; s <= (offset + node_bytes_ - 1) >> shift_; ++s)
-      bits_[s >> 6] |= std::uint64_t{1} << (s & 63);
+    const std::uint64_t first = offset >> shift_, last = (offset + node_bytes_ - 1) >> shift_;
+    if (first == last || ((first ^ last) >> 6) != 0) {
+      for (std::uint64_t s = first; s <= last; ++s) bits_[s >> 6] |= std::uint64_t{1} << (s & 63);
+      return;
+    }
+    // The node's sectors share one word (the common case): one mask.
+    const std::uint64_t span = last - first + 1;
+    bits_[first >> 6] |= ((span == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << span) - 1)) << (first & 63);
   }
   void Merge(const TouchedSectors& other) {
     for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] |= other.bits_[w];
@@ -219,10 +225,12 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   record->address_offsets.clear();
   if (!sample.KeepsAll()) {
     record->address_offsets.assign(obbs.size() + 1, 0);
-    for (long i = 0; i < n; ++i)
-      record->address_offsets[i + 1] =
-          record->address_offsets[i] +
-          (sample.KeepsQuery(static_cast<std::size_t>(i)) ? (*outcomes)[i].nodes_visited : 0);
+    for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
+      const long lo = b * block, hi = std::min(n, lo + block);
+      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
+      for (long i = lo; i < hi; ++i)
+        record->address_offsets[i + 1] = record->address_offsets[i] + (keep ? (*outcomes)[i].nodes_visited : 0);
+    }
   }
   std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
   for (long b = 0; b < blocks; ++b) {

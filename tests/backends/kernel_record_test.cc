@@ -152,6 +152,14 @@ TEST(KernelRecord, ValidateCatchesInconsistentRecords) {
   KernelRecord bad_offsets = ok;
   bad_offsets.fetch_offsets.back() = 1;
   EXPECT_THROW(bad_offsets.Validate(), std::logic_error);
+  // Two regions with a gap: addresses in either are valid, one in the gap
+  // (between the lowest and highest valid ones) is not.
+  KernelRecord two_regions = ok;
+  two_regions.regions.push_back(test::ByteRegion(8192, 64));
+  two_regions.fetch_addresses[1] = 8192 + 63;
+  EXPECT_NO_THROW(two_regions.Validate());
+  two_regions.fetch_addresses[0] = 6000;
+  EXPECT_THROW(two_regions.Validate(), std::logic_error);
 }
 
 TEST(RoboCoreApi, ExecuteRecordsTheConfiguredProgramAndChecksTheDecode) {

@@ -106,6 +106,23 @@ TEST(CarribotRun, EveryBackendPolicyGivesIdenticalPathsAndPrices) {
   }
 }
 
+// The adaptive policy starts the configuration space's fill on the backend
+// cheapest on the fill's first launch (its start probe): with one launch,
+// the set-up iteration runs its cheapest backend.
+TEST(CarribotRun, TheFillStartsOnTheBackendCheapestOnItsFirstLaunch) {
+  const OccupancyGrid grid = test::RandomGrid(40, 30, 0.1, 5);
+  const CarribotResult run = RunCarribot(grid, RandomQueries(grid, 1, 3),
+                                         KernelSettings(0.6, 1.4, FootprintCheckMode::kPrecomputed), false);
+  ASSERT_TRUE(run.has_setup);
+  ASSERT_EQ(run.setup_kernel.launches, 1u);
+  ASSERT_TRUE(run.setup_pricing.priced);
+  std::uint64_t cheapest = run.setup_pricing.costs.front().cycles;
+  for (const BatchCost& c : run.setup_pricing.costs) cheapest = std::min(cheapest, c.cycles);
+  EXPECT_EQ(run.setup_pricing.chosen_cycles, static_cast<double>(cheapest)) << run.setup_pricing.backend;
+  EXPECT_FALSE(run.setup_pricing.switched);
+  EXPECT_GT(run.pricing_wall_s, 0.0);
+}
+
 // An iteration of many launches costs the sum of its launches priced alone.
 TEST(CarribotRun, AnIterationCostsTheSumOfItsLaunches) {
   // One thread: these launches are a warp each, and prices do not depend

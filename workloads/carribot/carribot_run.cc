@@ -22,12 +22,40 @@ double SecondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 // in the kernel's pass (its addresses kept for the ledger's sample of SMs,
 // --replay-sms) and priced on every backend into the ledger's open
 // iteration. Without a ledger nothing is recorded: the checker's own
-// counters give the work.
+// counters give the work. The ledger's preparation is pricing work too,
+// and is timed with it.
 class LaunchRecorder {
  public:
   LaunchRecorder(KernelFootprintChecker& checker, BackendLedger* ledger) : checker_(checker), ledger_(ledger) {
     if (ledger)
       checker.set_record_observer([this](const KernelRecord& record) { Record(record); }, ledger->RecordSample());
+  }
+  // Prepares the ledger now, with no start probe (Prepare's spread of
+  // lengths: cheap for the per-expansion launches of a few queries).
+  void PrepareNow(const KernelRecord& layout, std::size_t queries_per_batch) {
+    const auto t0 = Clock::now();
+    ledger_->Prepare(layout, queries_per_batch);
+    pricing_wall_s_ += SecondsSince(t0);
+  }
+  // Prepares the ledger at the first launch, with that launch as the start
+  // probe, then begins the ledger's iteration. For the configuration
+  // space's fill: its first launch is the first batch exactly as the run
+  // knows it in advance (its poses depend on the map and the footprint
+  // only), and it costs nothing extra to record; Prepare's spread of
+  // lengths up to 1024 nodes would instead price 65,536 queries of 512
+  // nodes on average against the fill's 19 (twice the fill's node fetches,
+  // measured: 41% of a priced Intel scale-1 run).
+  void PrepareAtFirstLaunch(KernelRecord layout, std::size_t queries_per_batch) {
+    pending_layout_ = std::move(layout);
+    pending_batch_ = queries_per_batch;
+    prepare_pending_ = true;
+  }
+  // If no launch came: prepares without a probe and begins the iteration.
+  void FinishPendingPrepare() {
+    if (!prepare_pending_) return;
+    prepare_pending_ = false;
+    PrepareNow(pending_layout_, pending_batch_);
+    ledger_->BeginIteration();
   }
   // The work since the last call.
   KernelWork TakeWork() {
@@ -50,6 +78,11 @@ class LaunchRecorder {
     open_.queries += record.query_count();
     open_.node_visits += record.total_nodes();
     const auto t0 = Clock::now();
+    if (prepare_pending_) {
+      prepare_pending_ = false;
+      ledger_->Prepare(pending_layout_, pending_batch_, kMaxNodesUnknown, &record);
+      ledger_->BeginIteration();
+    }
     // A per-expansion launch is a handful of queries (one warp): the cost
     // models' OpenMP loops over SMs then have nothing to share, and their
     // fork/join costs far more than the pricing (measured 60x on a loaded
@@ -62,11 +95,17 @@ class LaunchRecorder {
     pricing_wall_s_ += SecondsSince(t0);
   }
 
+  // Prepare's default bound on a query's node fetches (its threshold
+  // policy's search range); a start probe makes it unused by the adaptive one.
+  static constexpr std::uint32_t kMaxNodesUnknown = 1024;
   const KernelFootprintChecker& checker_;
   BackendLedger* ledger_;
   KernelWork open_;
   KernelWork taken_;  // the checker's counters at the last TakeWork (no ledger)
   double pricing_wall_s_ = 0.0;
+  bool prepare_pending_ = false;
+  KernelRecord pending_layout_;
+  std::size_t pending_batch_ = 0;
 };
 
 // A record with the kernel's program and tree layout, for the adaptive
@@ -104,24 +143,27 @@ CarribotResult RunCarribot(const OccupancyGrid& grid, const std::vector<Carribot
   std::unique_ptr<LaunchRecorder> recorder;
   if (on_kernel) {
     checker = std::make_unique<KernelFootprintChecker>(grid);
-    if (settings.price_backends) {
-      ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
-      // Per expansion: at most 10 successors (8 steps, 2 turns) per launch.
-      const std::size_t batch = precomputed ? std::min(ConfigurationSpace::kDefaultMaxBatch,
-                                                       grid.cell_count() * settings.planner.footprint->heading_count)
-                                            : 10;
-      ledger->Prepare(LayoutRecord(*checker), batch);
-    }
+    if (settings.price_backends) ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);
     recorder = std::make_unique<LaunchRecorder>(*checker, ledger.get());
+    if (ledger) {
+      // Per expansion: at most 10 successors (8 steps, 2 turns) per launch.
+      if (precomputed)
+        recorder->PrepareAtFirstLaunch(LayoutRecord(*checker),
+                                       std::min(ConfigurationSpace::kDefaultMaxBatch,
+                                                grid.cell_count() * settings.planner.footprint->heading_count));
+      else
+        recorder->PrepareNow(LayoutRecord(*checker), 10);
+    }
   }
 
-  if (ledger && precomputed) ledger->BeginIteration();
+  // The set-up iteration (precomputed fill) begins at its first launch.
   const std::unique_ptr<GridPlanner> planner = GridPlanner::Create(grid, settings.planner, checker.get());
   out.setup_wall_s = planner->setup_wall_s();
   out.turn_cost_cells = planner->turn_cost_cells();
   out.heading_count = planner->heading_count();
   if (on_kernel && precomputed) {
     out.has_setup = true;
+    if (ledger) recorder->FinishPendingPrepare();
     out.setup_kernel = recorder->TakeWork();
     out.setup_wall_s -= recorder->pricing_wall_s();
     if (ledger) out.setup_pricing = ledger->EndIteration(nullptr);
