@@ -46,12 +46,13 @@ struct TraversalOutcome {
 };
 
 // NodeTest: NodeVisit(const FlatNode<Scalar>&), filling exit, axes_tested
-// and decided_by. `visits`, if given, gets this query's visits appended.
-// `scratch`, if given, holds the pending nodes (its contents are replaced),
-// so a caller running many queries allocates the list once.
-template <typename Scalar, typename NodeTest>
-TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder order, NodeTest&& test,
-                                 std::vector<NodeVisit>* visits, std::vector<std::uint32_t>* scratch = nullptr) {
+// and decided_by. OnVisit: void(const NodeVisit&), called with each visit
+// in order (node set), so a recorder keeps what it needs without a list of
+// visits. `scratch`, if given, holds the pending nodes (its contents are
+// replaced), so a caller running many queries allocates the list once.
+template <typename Scalar, typename NodeTest, typename OnVisit>
+TraversalOutcome VisitBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder order, NodeTest&& test,
+                              OnVisit&& on_visit, std::vector<std::uint32_t>* scratch = nullptr) {
   TraversalOutcome out;
   const auto& nodes = tree.nodes();
   if (nodes.empty()) return out;
@@ -74,7 +75,7 @@ TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder
     visit.node = index;
     ++out.nodes_visited;
     out.last_exit = visit.exit;
-    if (visits) visits->push_back(visit);
+    on_visit(static_cast<const NodeVisit&>(visit));
     if (!visit.overlaps()) continue;
     if (node.is_leaf()) {
       out.collides = true;
@@ -88,6 +89,18 @@ TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder
     }
   }
   return out;
+}
+
+// VisitBoxTree with `visits`, if given, getting this query's visits appended.
+template <typename Scalar, typename NodeTest>
+TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder order, NodeTest&& test,
+                                 std::vector<NodeVisit>* visits, std::vector<std::uint32_t>* scratch = nullptr) {
+  return VisitBoxTree(
+      tree, order, test,
+      [visits](const NodeVisit& v) {
+        if (visits) visits->push_back(v);
+      },
+      scratch);
 }
 
 }  // namespace rc

@@ -184,22 +184,42 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   std::vector<TouchedSectors> touched;
 #pragma omp parallel if (blocks > 1)
   {
-    std::vector<NodeVisit> visits;
     std::vector<std::uint32_t> scratch;
     TouchedSectors mine(mark ? node_count : 0, node_bytes, sample.sector_bytes);
 #pragma omp for schedule(dynamic, 1)
     for (long b = 0; b < blocks; ++b) {
       const long lo = b * block, hi = std::min(n, lo + block);
+      if (!record) {
+        for (long i = lo; i < hi; ++i)
+          (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, [](const NodeVisit&) {}, &scratch);
+        continue;
+      }
+      // Each visit kept as it happens: its exit, and for a kept block its
+      // address, else its sectors marked as touched.
+      std::vector<std::uint8_t>& exits = block_exits[b];
+      std::vector<std::uint64_t>& addresses = block_addresses[b];
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
       for (long i = lo; i < hi; ++i) {
-        visits.clear();
-        (*outcomes)[i] = CollideObb(tree, obbs[i], options, record ? &visits : nullptr, &scratch);
-        if (!record) continue;
-        std::vector<std::uint8_t>& exits = block_exits[b];
-        for (const NodeVisit& v : visits) {
-          exits.push_back(SactExitOf(v));
-          if (mark) mine.Mark(v.node);
-          if (keep) block_addresses[b].push_back(base_address + std::uint64_t{v.node} * node_bytes);
+        if (keep) {
+          (*outcomes)[i] = CollideObbVisiting(
+              tree, obbs[i], options,
+              [&](const NodeVisit& v) {
+                exits.push_back(SactExitOf(v));
+                if (mark) mine.Mark(v.node);
+                addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
+              },
+              &scratch);
+        } else if (mark) {
+          (*outcomes)[i] = CollideObbVisiting(
+              tree, obbs[i], options,
+              [&](const NodeVisit& v) {
+                exits.push_back(SactExitOf(v));
+                mine.Mark(v.node);
+              },
+              &scratch);
+        } else {
+          (*outcomes)[i] = CollideObbVisiting(
+              tree, obbs[i], options, [&](const NodeVisit& v) { exits.push_back(SactExitOf(v)); }, &scratch);
         }
       }
     }

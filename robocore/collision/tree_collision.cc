@@ -14,21 +14,11 @@ TraversalOrder ParseTraversalOrder(const std::string& name) {
 
 namespace {
 
-// One query: its OBB prepared once (PrepareSactObb), then one SACT per
-// visited node.
-template <typename Scalar>
-TraversalOutcome CollidePrepared(const FlatBoxTree<Scalar>& tree, const SactPreparedObb<Scalar>& prepared,
-                                 TraversalOrder order, std::vector<NodeVisit>* visits,
-                                 std::vector<std::uint32_t>* scratch) {
-  auto sact = [&](const FlatNode<Scalar>& node) {
-    const SactResult r = TestPreparedObbAabb(prepared, node.box());
-    NodeVisit v;
-    v.exit = r.separating_axis;
-    v.axes_tested = r.axes_tested;
-    v.decided_by = r.decided_by;
-    return v;
+// A visitor that appends to `visits` when given.
+auto AppendTo(std::vector<NodeVisit>* visits) {
+  return [visits](const NodeVisit& v) {
+    if (visits) visits->push_back(v);
   };
-  return TraverseBoxTree(tree, order, sact, visits, scratch);
 }
 
 }  // namespace
@@ -36,14 +26,14 @@ TraversalOutcome CollidePrepared(const FlatBoxTree<Scalar>& tree, const SactPrep
 template <typename Scalar>
 TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits) {
-  return CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, visits, nullptr);
+  return CollideObbVisiting(tree, obb, options, AppendTo(visits), nullptr);
 }
 
 template <typename Scalar>
 TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits,
                             std::vector<std::uint32_t>* scratch) {
-  return CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, visits, scratch);
+  return CollideObbVisiting(tree, obb, options, AppendTo(visits), scratch);
 }
 
 template <typename Scalar>
@@ -72,8 +62,7 @@ void CollideBatchInto(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Sca
   batch->visits.clear();
   std::vector<std::uint32_t> scratch;
   for (const Obb<Scalar>& obb : obbs) {
-    batch->outcomes.push_back(
-        CollidePrepared(tree, PrepareSactObb(obb, options.sact), options.order, &batch->visits, &scratch));
+    batch->outcomes.push_back(CollideObbVisiting(tree, obb, options, AppendTo(&batch->visits), &scratch));
     batch->visit_offsets.push_back(batch->visits.size());
   }
 }

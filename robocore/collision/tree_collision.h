@@ -43,6 +43,26 @@ TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& 
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits,
                             std::vector<std::uint32_t>* scratch);
 
+// The same, calling on_visit(const NodeVisit&) with each visit in order
+// instead of keeping them (VisitBoxTree): how a recorder keeps each fetch's
+// exit and address without a list of visits. CollideObb is this with a
+// visitor that appends to `visits`.
+template <typename Scalar, typename OnVisit>
+TraversalOutcome CollideObbVisiting(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
+                                    const CollisionOptions<Scalar>& options, OnVisit&& on_visit,
+                                    std::vector<std::uint32_t>* scratch) {
+  const SactPreparedObb<Scalar> prepared = PrepareSactObb(obb, options.sact);
+  auto sact = [&prepared](const FlatNode<Scalar>& node) {
+    const SactResult r = TestPreparedObbAabb(prepared, node.box());
+    NodeVisit v;
+    v.exit = r.separating_axis;
+    v.axes_tested = r.axes_tested;
+    v.decided_by = r.decided_by;
+    return v;
+  };
+  return VisitBoxTree(tree, options.order, sact, on_visit, scratch);
+}
+
 // Tests every box in order until one overlaps: what the tree must equal.
 template <typename Scalar>
 bool CollidesBruteForce(const std::vector<Aabb<Scalar>>& boxes, const Obb<Scalar>& obb,
