@@ -359,7 +359,10 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   if (m.any_non_finite_weight) emit("WARNING: non-finite weights or estimates occurred");
   if (!result.priced) return;
   PrintLedgerSummary(out, result.pricing, s.ledger, s.backend_params.gpu.core_clock_hz, "update", "nodes per ray");
-  emit("pricing host time       {:.3f} s ({:.2f}x the filter's own)", result.pricing_wall_s,
+  // The cost models' own time; the filter's time includes what recording
+  // adds to its casts (docs/pricing.md measures both end to end).
+  emit("pricing host time       {:.3f} s in the cost models ({:.2f}x the filter's own, recording included there)",
+       result.pricing_wall_s,
        m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
 }
 
