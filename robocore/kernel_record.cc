@@ -57,10 +57,18 @@ void KernelRecord::Validate() const {
   } else {
     if (address_offsets.size() != fetch_offsets.size() || address_offsets.front() != 0)
       fail("address offsets: one per query plus one, from 0");
-    for (std::size_t q = 0; q < query_count(); ++q) {
-      const std::uint64_t kept = address_offsets[q + 1] - address_offsets[q];
-      if (address_offsets[q + 1] < address_offsets[q] || kept != (address_sample.KeepsQuery(q) ? nodes(q) : 0))
-        fail("query " + std::to_string(q) + " keeps addresses against its sample");
+    // A block's queries share an SM, so the sample keeps all of them or none.
+    const std::size_t n = query_count();
+    const std::size_t block =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::max(0, address_sample.warp_size)) *
+                                     static_cast<std::size_t>(std::max(0, address_sample.warps_per_block)));
+    for (std::size_t lo = 0; lo < n; lo += block) {
+      const bool keep = address_sample.KeepsQuery(lo);
+      for (std::size_t q = lo; q < std::min(n, lo + block); ++q) {
+        const std::uint64_t kept = address_offsets[q + 1] - address_offsets[q];
+        if (address_offsets[q + 1] < address_offsets[q] || kept != (keep ? nodes(q) : 0))
+          fail("query " + std::to_string(q) + " keeps addresses against its sample");
+      }
     }
     if (address_offsets.back() != fetch_addresses.size()) fail("address offsets do not end at the address count");
   }

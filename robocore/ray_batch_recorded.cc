@@ -237,9 +237,11 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   record.address_offsets.clear();
   if (!sample.KeepsAll()) {
     record.address_offsets.assign(batch.queries.size() + 1, 0);
-    for (long i = 0; i < n; ++i)
-      record.address_offsets[i + 1] =
-          record.address_offsets[i] + (sample.KeepsQuery(static_cast<std::size_t>(i)) ? hits[i].nodes : 0);
+    for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
+      const long lo = b * block, hi = std::min(n, lo + block);
+      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
+      for (long i = lo; i < hi; ++i) record.address_offsets[i + 1] = record.address_offsets[i] + (keep ? hits[i].nodes : 0);
+    }
   }
   std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);
   for (long b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + block_addresses[b].size();
