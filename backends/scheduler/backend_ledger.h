@@ -114,7 +114,7 @@ class BackendLedger {
   // most nodes a query of the workload can fetch:
   //   threshold  the crossover threshold (crossover_threshold.h); without
   //              this call it is derived at the first priced iteration
-  //              instead (max_nodes 1024);
+  //              instead (max_nodes kDefaultMaxNodesPerQuery);
   //   adaptive   where to start (nothing has been measured yet): the
   //              candidate cheapest on `start_probe`, a batch the workload
   //              recorded before its first iteration from what it knows in
@@ -124,7 +124,8 @@ class BackendLedger {
   //              MakeSpreadProbe(template_record, queries_per_batch,
   //              max_nodes), every length from 1 to max_nodes equally
   //              often. Without this call it starts on the first candidate.
-  void Prepare(const KernelRecord& template_record, std::size_t queries_per_batch, std::uint32_t max_nodes = 1024,
+  void Prepare(const KernelRecord& template_record, std::size_t queries_per_batch,
+               std::uint32_t max_nodes = kDefaultMaxNodesPerQuery,
                const KernelRecord* start_probe = nullptr);
   // Whether Prepare chooses where to start from a probe (the adaptive
   // policy, and the oracle's online stand-in): a workload need not record

@@ -22,6 +22,10 @@
 
 namespace rc {
 
+// The bound on the nodes one query fetches when the workload knows none:
+// the threshold's search range and the spread probe's longest query.
+inline constexpr std::uint32_t kDefaultMaxNodesPerQuery = 1024;
+
 // A probe record: `queries` queries of `nodes` fetches each, with the
 // template's program, leaf, regions and node size; addresses kept for the
 // queries `sample` keeps.
@@ -46,7 +50,7 @@ struct CrossoverResult {
 // upper end). The probes keep the addresses `sample` keeps (the ledger's
 // replay sample), so a sampled ledger prices them as cheaply as its batches.
 CrossoverResult DeriveCrossoverThreshold(const Backend& high, const Backend& low, const KernelRecord& template_record,
-                                         std::size_t queries, std::uint32_t max_nodes = 1024,
+                                         std::size_t queries, std::uint32_t max_nodes = kDefaultMaxNodesPerQuery,
                                          const AddressSample& sample = {});
 
 }  // namespace rc

@@ -91,16 +91,18 @@ TraversalOutcome VisitBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder or
   return out;
 }
 
+// A visitor that appends each visit to `visits` (none when null).
+inline auto AppendVisitsTo(std::vector<NodeVisit>* visits) {
+  return [visits](const NodeVisit& v) {
+    if (visits) visits->push_back(v);
+  };
+}
+
 // VisitBoxTree with `visits`, if given, getting this query's visits appended.
 template <typename Scalar, typename NodeTest>
 TraversalOutcome TraverseBoxTree(const FlatBoxTree<Scalar>& tree, TraversalOrder order, NodeTest&& test,
                                  std::vector<NodeVisit>* visits, std::vector<std::uint32_t>* scratch = nullptr) {
-  return VisitBoxTree(
-      tree, order, test,
-      [visits](const NodeVisit& v) {
-        if (visits) visits->push_back(v);
-      },
-      scratch);
+  return VisitBoxTree(tree, order, test, AppendVisitsTo(visits), scratch);
 }
 
 }  // namespace rc

@@ -194,34 +194,17 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
           (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, [](const NodeVisit&) {}, &scratch);
         continue;
       }
-      // Each visit kept as it happens: its exit, and for a kept block its
-      // address, else its sectors marked as touched.
+      // Each visit kept as it happens: its exit, in a sampled record its
+      // sectors marked as touched, and in a kept block its address.
       std::vector<std::uint8_t>& exits = block_exits[b];
       std::vector<std::uint64_t>& addresses = block_addresses[b];
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      for (long i = lo; i < hi; ++i) {
-        if (keep) {
-          (*outcomes)[i] = CollideObbVisiting(
-              tree, obbs[i], options,
-              [&](const NodeVisit& v) {
-                exits.push_back(SactExitOf(v));
-                if (mark) mine.Mark(v.node);
-                addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
-              },
-              &scratch);
-        } else if (mark) {
-          (*outcomes)[i] = CollideObbVisiting(
-              tree, obbs[i], options,
-              [&](const NodeVisit& v) {
-                exits.push_back(SactExitOf(v));
-                mine.Mark(v.node);
-              },
-              &scratch);
-        } else {
-          (*outcomes)[i] = CollideObbVisiting(
-              tree, obbs[i], options, [&](const NodeVisit& v) { exits.push_back(SactExitOf(v)); }, &scratch);
-        }
-      }
+      auto record_visit = [&](const NodeVisit& v) {  // keep and mark are fixed for the block
+        exits.push_back(SactExitOf(v));
+        if (mark) mine.Mark(v.node);
+        if (keep) addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
+      };
+      for (long i = lo; i < hi; ++i) (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
     }
     if (mark) {
 #pragma omp critical(rc_collision_touched_sectors)

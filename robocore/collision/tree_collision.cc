@@ -12,28 +12,17 @@ TraversalOrder ParseTraversalOrder(const std::string& name) {
   throw std::invalid_argument("traversal order '" + name + "': expected dfs or bfs");
 }
 
-namespace {
-
-// A visitor that appends to `visits` when given.
-auto AppendTo(std::vector<NodeVisit>* visits) {
-  return [visits](const NodeVisit& v) {
-    if (visits) visits->push_back(v);
-  };
-}
-
-}  // namespace
-
 template <typename Scalar>
 TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits) {
-  return CollideObbVisiting(tree, obb, options, AppendTo(visits), nullptr);
+  return CollideObbVisiting(tree, obb, options, AppendVisitsTo(visits), nullptr);
 }
 
 template <typename Scalar>
 TraversalOutcome CollideObb(const FlatBoxTree<Scalar>& tree, const Obb<Scalar>& obb,
                             const CollisionOptions<Scalar>& options, std::vector<NodeVisit>* visits,
                             std::vector<std::uint32_t>* scratch) {
-  return CollideObbVisiting(tree, obb, options, AppendTo(visits), scratch);
+  return CollideObbVisiting(tree, obb, options, AppendVisitsTo(visits), scratch);
 }
 
 template <typename Scalar>
@@ -62,7 +51,7 @@ void CollideBatchInto(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Sca
   batch->visits.clear();
   std::vector<std::uint32_t> scratch;
   for (const Obb<Scalar>& obb : obbs) {
-    batch->outcomes.push_back(CollideObbVisiting(tree, obb, options, AppendTo(&batch->visits), &scratch));
+    batch->outcomes.push_back(CollideObbVisiting(tree, obb, options, AppendVisitsTo(&batch->visits), &scratch));
     batch->visit_offsets.push_back(batch->visits.size());
   }
 }

@@ -52,10 +52,9 @@ class LaunchRecorder {
   }
   // If no launch came: prepares without a probe and begins the iteration.
   void FinishPendingPrepare() {
-    if (!prepare_pending_) return;
-    prepare_pending_ = false;
-    PrepareNow(pending_layout_, pending_batch_);
-    ledger_->BeginIteration();
+    const auto t0 = Clock::now();
+    PreparePending(nullptr);
+    pricing_wall_s_ += SecondsSince(t0);
   }
   // The work since the last call.
   KernelWork TakeWork() {
@@ -78,11 +77,7 @@ class LaunchRecorder {
     open_.queries += record.query_count();
     open_.node_visits += record.total_nodes();
     const auto t0 = Clock::now();
-    if (prepare_pending_) {
-      prepare_pending_ = false;
-      ledger_->Prepare(pending_layout_, pending_batch_, kMaxNodesUnknown, &record);
-      ledger_->BeginIteration();
-    }
+    PreparePending(&record);
     // A per-expansion launch is a handful of queries (one warp): the cost
     // models' OpenMP loops over SMs then have nothing to share, and their
     // fork/join costs far more than the pricing (measured 60x on a loaded
@@ -95,9 +90,15 @@ class LaunchRecorder {
     pricing_wall_s_ += SecondsSince(t0);
   }
 
-  // Prepare's default bound on a query's node fetches (its threshold
-  // policy's search range); a start probe makes it unused by the adaptive one.
-  static constexpr std::uint32_t kMaxNodesUnknown = 1024;
+  // A pending preparation, with `probe` as the start probe (null: none),
+  // then the set-up iteration begins.
+  void PreparePending(const KernelRecord* probe) {
+    if (!prepare_pending_) return;
+    prepare_pending_ = false;
+    ledger_->Prepare(pending_layout_, pending_batch_, kDefaultMaxNodesPerQuery, probe);
+    ledger_->BeginIteration();
+  }
+
   const KernelFootprintChecker& checker_;
   BackendLedger* ledger_;
   KernelWork open_;
