@@ -1,0 +1,198 @@
+// gpu_ray_cast_export: the host half of the GPU check (docs/gpu_check.md).
+//
+// Builds the ray-cast benchmark's queries (benchmarks/ray_cast_benchmark.cc:
+// free-cell starts, random headings, 10 m, seed 1; Wean from ../shared/data,
+// else the generated office map), casts them on the host with each method,
+// and writes
+//   <out>/queries.bin  the map, the rays and the host's answers
+//                      (ray_cast_query_file.h), which ray_cast_on_gpu.cu
+//                      runs on a real GPU;
+//   <out>/model.csv    what the SIMT (CUDA-core) model predicts for the same
+//                      launches: each method x order (random, grid) x
+//                      precision (fp64, fp32) x instruction set (ptx,
+//                      sass) x preset, traversal only (no
+//                      beam leaf, as the GPU kernels run it).
+//
+// Presets: "default" (the model's GPU, backend_params.h) and each
+// --preset FILE (backends/presets/h100.json: an H100 SXM5's published
+// figures). Nothing here is fitted to a measurement.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "backends/backend.h"
+#include "backends/backend_preset.h"
+#include "backends/calibration/pricing_helpers.h"
+#include "benchmarks/gpu/ray_cast_query_file.h"
+#include "common/random_stream.h"
+#include "maps/cmu_map_loader.h"
+#include "maps/office_map_generator.h"
+#include "robocore/ray_batch.h"
+#include "robocore/ray_batch_recorded.h"
+#include "robocore/ray_cast.h"
+
+namespace rc {
+namespace {
+
+constexpr RayCastMethod kMethods[gpu_check::kMethodCount] = {RayCastMethod::kMarch, RayCastMethod::kDda,
+                                                             RayCastMethod::kRayMarching};
+
+struct Queries {
+  std::vector<RayQuery> random_order;
+  std::vector<std::uint32_t> grid_order;  // query index at each grid-order position
+};
+
+// The ray-cast benchmark's generator: the first `count` of its queries.
+Queries MakeQueries(const OccupancyGrid& grid, std::size_t count) {
+  Queries q;
+  const std::vector<std::uint32_t> free_cells = grid.FreeCellIndices();
+  RandomStream s(1, StreamPurpose::kTest, 0, 0);
+  const double r = grid.resolution_m();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t c = free_cells[s.Below(free_cells.size())];
+    const int ix = static_cast<int>(c / grid.size_y()), iy = static_cast<int>(c % grid.size_y());
+    const double x = (ix + s.Uniform()) * r, y = (iy + s.Uniform()) * r;
+    q.random_order.push_back({x, y, s.Uniform(-3.14159265, 3.14159265)});
+  }
+  q.grid_order.resize(count);
+  for (std::size_t i = 0; i < count; ++i) q.grid_order[i] = static_cast<std::uint32_t>(i);
+  std::stable_sort(q.grid_order.begin(), q.grid_order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const RayQuery &qa = q.random_order[a], &qb = q.random_order[b];
+    const int ax = static_cast<int>(qa.origin_x_m / r), bx = static_cast<int>(qb.origin_x_m / r);
+    return ax != bx ? ax < bx : qa.origin_y_m < qb.origin_y_m;
+  });
+  return q;
+}
+
+double Ratio(std::uint64_t part, std::uint64_t whole) {
+  return whole == 0 ? 0.0 : static_cast<double>(part) / static_cast<double>(whole);
+}
+
+// The SIMT model's kernel variants priced: precision x instruction set
+// (PTX, as the artifact simulates; SASS, what sm_75 hardware issues).
+constexpr std::pair<SimtPrecision, SimtIsa> kSimtVariants[] = {{SimtPrecision::kFp64, SimtIsa::kPtx},
+                                                               {SimtPrecision::kFp32, SimtIsa::kPtx},
+                                                               {SimtPrecision::kFp64, SimtIsa::kSass},
+                                                               {SimtPrecision::kFp32, SimtIsa::kSass}};
+
+struct PresetColumn {
+  std::string name;
+  BackendParameters params;
+};
+
+int Run(int argc, char** argv) {
+  CLI::App app{"gpu_ray_cast_export: the ray batch, host answers and SIMT-model predictions for the GPU check"};
+  std::string out_dir;
+  std::size_t queries = std::size_t{1} << 19;
+  std::vector<std::string> preset_files;
+  std::string shared_data = RC_SHARED_DATA_DIR;
+  app.add_option("--out", out_dir, "folder for queries.bin and model.csv")->required();
+  app.add_option("--queries", queries, "rays in the batch")->check(CLI::Range(std::size_t{1}, std::size_t{1} << 24));
+  app.add_option("--preset", preset_files, "backend preset file to price under, beside the default")
+      ->check(CLI::ExistingFile);
+  app.add_option("--shared-data", shared_data, "the shared data folder (Wean map)");
+  CLI11_PARSE(app, argc, argv);
+
+  OccupancyGrid grid;
+  std::string map_name;
+  const std::string wean = shared_data + "/wean/wean.dat";
+  if (std::filesystem::exists(wean)) {
+    grid = LoadCmuMap(wean);
+    map_name = "wean";
+  } else {
+    grid = GenerateOfficeMap(OfficeMapOptions{});
+    map_name = "office";
+    std::cerr << "gpu_ray_cast_export: " << wean << " is absent; using the generated office map\n";
+  }
+  const Queries q = MakeQueries(grid, queries);
+  RayBatch random_batch, grid_batch;
+  random_batch.max_range_m = grid_batch.max_range_m = 10.0;
+  random_batch.queries = q.random_order;
+  for (std::uint32_t i : q.grid_order) grid_batch.queries.push_back(q.random_order[i]);
+
+  std::vector<PresetColumn> presets = {{"default", DefaultPreset().backend}};
+  for (const std::string& file : preset_files)
+    presets.push_back({std::filesystem::path(file).stem().string(), LoadBackendPreset(file).backend});
+
+  gpu_check::RayCastQueryFile file;
+  file.size_x = grid.size_x();
+  file.size_y = grid.size_y();
+  file.resolution_m = grid.resolution_m();
+  file.max_range_m = random_batch.max_range_m;
+  file.cells.resize(grid.cell_count());
+  std::transform(grid.cells().begin(), grid.cells().end(), file.cells.begin(),
+                 [](CellState c) { return static_cast<std::uint8_t>(c); });
+  for (const RayQuery& r : q.random_order) {
+    file.origin_x.push_back(r.origin_x_m);
+    file.origin_y.push_back(r.origin_y_m);
+    file.dir_x.push_back(std::cos(r.angle_rad));  // as CastRay computes it
+    file.dir_y.push_back(std::sin(r.angle_rad));
+  }
+  file.grid_order = q.grid_order;
+
+  std::filesystem::create_directories(out_dir);
+  std::ofstream csv(out_dir + "/model.csv");
+  csv << "map,preset,method,order,precision,isa,queries,nodes,cycles,launch_cycles,clock_hz,kernel_s,total_s,"
+         "simt_efficiency,warp_instructions,thread_instructions,sector_requests,l1_hit_rate,l2_hit_rate,bound\n";
+  for (int m = 0; m < gpu_check::kMethodCount; ++m) {
+    const RayCastScene scene(grid, kMethods[m]);
+    if (kMethods[m] == RayCastMethod::kRayMarching) file.distance_m = scene.distance_field()->values();
+    RecordOptions options;
+    options.leaf = LeafProgramKind::kNone;  // the GPU kernels run the traversal alone
+    for (const bool grid_ordered : {false, true}) {
+      const RayBatch& batch = grid_ordered ? grid_batch : random_batch;
+      std::vector<RayHit> hits;
+      KernelRecord record;
+      CastRayBatchRecorded(scene, batch, hits, record, options);
+      if (!grid_ordered) {
+        for (const RayHit& h : hits) {
+          file.host[m].range_m.push_back(h.range_m);
+          file.host[m].nodes.push_back(h.nodes);
+        }
+      }
+      for (const PresetColumn& preset : presets) {
+        for (const auto& [precision, isa] : kSimtVariants) {
+          BackendParameters params = preset.params;
+          params.simt.precision = precision;
+          params.simt.isa = isa;
+          const BatchCost cost = PriceByName({"simt"}, record, params).at("simt");
+          csv << map_name << ',' << preset.name << ',' << gpu_check::kMethodNames[m] << ','
+              << (grid_ordered ? "grid" : "random") << ',' << (precision == SimtPrecision::kFp64 ? "fp64" : "fp32")
+              << ',' << (isa == SimtIsa::kPtx ? "ptx" : "sass") << ',' << cost.queries << ',' << cost.nodes << ','
+              << cost.cycles << ',' << cost.launch_cycles << ',' << cost.clock_hz << ',' << KernelSeconds(cost) << ','
+              << cost.seconds << ',' << cost.simt_efficiency << ',' << cost.warp_instructions << ','
+              << cost.thread_instructions << ',' << cost.memory.sector_requests << ','
+              << Ratio(cost.memory.l1_hits, cost.memory.sector_requests) << ','
+              << Ratio(cost.memory.l2_hits, cost.memory.l2_accesses) << ',' << cost.bound << '\n';
+        }
+      }
+    }
+  }
+  if (file.distance_m.empty()) file.distance_m.assign(grid.cell_count(), 0.0f);
+  std::string error;
+  if (!gpu_check::WriteQueryFile(file, out_dir + "/queries.bin", &error)) {
+    std::cerr << "gpu_ray_cast_export: " << error << '\n';
+    return 1;
+  }
+  csv.close();
+  if (!csv) {
+    std::cerr << "gpu_ray_cast_export: " << out_dir << "/model.csv: write failed\n";
+    return 1;
+  }
+  std::cout << "wrote " << out_dir << "/queries.bin (" << map_name << ", " << file.queries() << " rays) and " << out_dir
+            << "/model.csv\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace rc
+
+int main(int argc, char** argv) { return rc::Run(argc, argv); }

@@ -1,0 +1,159 @@
+#!/usr/bin/python3
+"""The GPU check's report (docs/gpu_check.md): the SIMT model beside a real GPU.
+
+  report.py --model model.csv --measured measured.csv [--profile profile.csv]
+
+model.csv comes from gpu_ray_cast_export (the model's predictions),
+measured.csv from ray_cast_on_gpu and profile.csv from Nsight Compute
+(benchmarks/gpu/run_on_gpu.sh). Prints Markdown tables to standard output:
+
+  answers   FP64 and FP32 answers against the host's
+  time      measured kernel time beside each model column, and the ratio
+  ranking   which method is cheapest, by the GPU and by each model column
+  counters  SIMT efficiency, node-fetch sectors, warp instructions and the
+            SM clock, measured (ncu) beside the model (needs --profile)
+
+Every number is read from the files; nothing is fitted.
+"""
+import argparse
+import csv
+import sys
+from collections import defaultdict
+
+METHODS = ["march", "dda", "rm"]
+ORDERS = ["random", "grid"]
+PRECISIONS = ["fp64", "fp32"]
+# Model columns: (preset, isa, heading).
+MODEL_COLUMNS = [
+    ("h100", "sass", "model, H100 preset, SASS counts"),
+    ("h100", "ptx", "model, H100 preset, PTX counts"),
+    ("default", "ptx", "model, default GPU (8 SMs, 1.365 GHz), PTX"),
+]
+KERNEL_NAME = {"rc_march": "march", "rc_dda": "dda", "rc_rm": "rm"}
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def key(row):
+    return (row["method"], row["order"], row["precision"])
+
+
+def read_profile(path):
+    """{(method, order, precision): {metric: float}} from ncu --csv; the
+    second launch of each configuration (run_on_gpu.sh launches each twice:
+    one warm-up, one timed)."""
+    with open(path, newline="") as f:
+        lines = [line for line in f if line.startswith('"')]
+    launches = defaultdict(dict)
+    for row in csv.DictReader(lines):
+        launches[int(row["ID"])]["kernel"] = row["Kernel Name"]
+        launches[int(row["ID"])][row["Metric Name"]] = float(row["Metric Value"].replace(",", ""))
+    # Launch order is the harness's: method, order, precision, each launched twice.
+    configs = [(m, o, p) for m in METHODS for o in ORDERS for p in PRECISIONS]
+    ids = sorted(launches)
+    if len(ids) != 2 * len(configs):
+        sys.exit(f"report.py: {path}: {len(ids)} profiled launches, expected {2 * len(configs)}")
+    profile = {}
+    for i, config in enumerate(configs):
+        launch = launches[ids[2 * i + 1]]
+        name = launch["kernel"]
+        if KERNEL_NAME.get(name.rsplit("_", 1)[0]) != config[0] or not name.endswith(config[2]):
+            sys.exit(f"report.py: {path}: launch {ids[2 * i + 1]} is {name}, expected {config[0]} {config[2]}")
+        profile[config] = launch
+    return profile
+
+
+def us(seconds):
+    return f"{seconds * 1e6:.1f}"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--model", required=True, help="model.csv from gpu_ray_cast_export")
+    parser.add_argument("--measured", required=True, help="measured.csv from ray_cast_on_gpu")
+    parser.add_argument("--profile", help="profile.csv from ncu (run_on_gpu.sh)")
+    args = parser.parse_args()
+
+    model = {(r["preset"], r["isa"]) + key(r): r for r in read_csv(args.model)}
+    measured = {key(r): r for r in read_csv(args.measured)}
+    configs = [(m, o, p) for m in METHODS for o in ORDERS for p in PRECISIONS]
+    missing = [c for c in configs if c not in measured] + [
+        (preset, isa) + c for preset, isa, _ in MODEL_COLUMNS for c in configs if (preset, isa) + c not in model]
+    if missing:
+        sys.exit(f"report.py: no row for {missing[0]}")
+    device = measured[configs[0]]["device"]
+    queries = int(measured[configs[0]]["queries"])
+    map_name = model[("default", "ptx") + configs[0]]["map"]
+
+    print(f"### Answers ({device}, {queries} rays, {map_name} map)\n")
+    print("| method | order | precision | range differs from the host's | node count differs | largest range difference (m) |")
+    print("|---|---|---|---|---|---|")
+    for c in configs:
+        r = measured[c]
+        print(f"| {c[0]} | {c[1]} | {c[2]} | {r['range_mismatches']} | {r['node_mismatches']} | "
+              f"{float(r['max_range_diff_m']):.3g} |")
+
+    print(f"\n### Kernel time (us; measured: median of {measured[configs[0]]['timed_launches']} launches, "
+          "CUDA events; model: without the launch)\n")
+    print("| method | order | precision | measured | " +
+          " | ".join(f"{heading} (x measured)" for _, _, heading in MODEL_COLUMNS) + " |")
+    print("|---|---|---|---|" + "---|" * len(MODEL_COLUMNS))
+    ratios = defaultdict(list)
+    for c in configs:
+        seconds = float(measured[c]["median_s"])
+        cells = []
+        for preset, isa, _ in MODEL_COLUMNS:
+            predicted = float(model[(preset, isa) + c]["kernel_s"])
+            ratios[(preset, isa)].append(predicted / seconds)
+            cells.append(f"{us(predicted)} ({predicted / seconds:.2f}x)")
+        print(f"| {c[0]} | {c[1]} | {c[2]} | {us(seconds)} | " + " | ".join(cells) + " |")
+    print("| **range of model / measured** | | | | " + " | ".join(
+        f"{min(ratios[(p, i)]):.2f}-{max(ratios[(p, i)]):.2f}x" for p, i, _ in MODEL_COLUMNS) + " |")
+
+    print("\n### Which method is cheapest, and which dearest\n")
+    print("| order | precision | measured | " + " | ".join(h for _, _, h in MODEL_COLUMNS) + " |")
+    print("|---|---|---|" + "---|" * len(MODEL_COLUMNS))
+    for o in ORDERS:
+        for p in PRECISIONS:
+            truth = sorted(METHODS, key=lambda m: float(measured[(m, o, p)]["median_s"]))
+            cells = []
+            for preset, isa, _ in MODEL_COLUMNS:
+                ranked = sorted(METHODS, key=lambda m: float(model[(preset, isa, m, o, p)]["kernel_s"]))
+                agrees = "same order" if ranked == truth else (
+                    "same cheapest" if ranked[0] == truth[0] else "cheapest differs")
+                cells.append(f"{' < '.join(ranked)} ({agrees})")
+            print(f"| {o} | {p} | {' < '.join(truth)} | " + " | ".join(cells) + " |")
+
+    if not args.profile:
+        return
+    profile = read_profile(args.profile)
+    print("\n### Counters (Nsight Compute, one launch each, caches flushed before it; "
+          "model: H100 preset)\n")
+    print("| method | order | precision | SIMT efficiency, measured / model | "
+          "global load sectors, measured / model (node fetches + ray inputs) | "
+          "warp instructions, measured sm_90 SASS / model sm_75 SASS / model PTX (M) | SM clock (GHz) |")
+    print("|---|---|---|---|---|---|---|")
+    for c in configs:
+        counters = profile[c]
+        sass, ptx = model[("h100", "sass") + c], model[("h100", "ptx") + c]
+        efficiency = counters["smsp__thread_inst_executed_per_inst_executed.ratio"] / 32
+        # Each warp loads its 32 rays' four inputs (origin, direction), one
+        # scalar each, coalesced into 32-byte sectors; the model replays the
+        # node fetches alone.
+        scalar_bytes = 8 if c[2] == "fp64" else 4
+        input_sectors = 4 * queries * scalar_bytes // 32
+        modelled_sectors = int(sass["sector_requests"]) + input_sectors
+        measured_sectors = counters["l1tex__t_sectors_pipe_lsu_mem_global_op_ld.sum"]
+        print(f"| {c[0]} | {c[1]} | {c[2]} | {efficiency:.3f} / {float(sass['simt_efficiency']):.3f} | "
+              f"{measured_sectors / 1e6:.3f}M / {modelled_sectors / 1e6:.3f}M "
+              f"({modelled_sectors / measured_sectors:.3f}x) | "
+              f"{counters['smsp__inst_executed.sum'] / 1e6:.1f} / {int(sass['warp_instructions']) / 1e6:.1f} / "
+              f"{int(ptx['warp_instructions']) / 1e6:.1f} | "
+              f"{counters['sm__cycles_elapsed.avg.per_second'] / 1e9:.3f} |")
+
+
+if __name__ == "__main__":
+    main()

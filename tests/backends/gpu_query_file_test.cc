@@ -1,0 +1,119 @@
+// The GPU check's query file (benchmarks/gpu/ray_cast_query_file.h): what
+// the host writes is what the device harness reads, and a damaged file is
+// refused with the field named. And the H100 preset the check prices under
+// loads and says what it says (backends/presets/h100.json).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "backends/backend_preset.h"
+#include "benchmarks/gpu/ray_cast_query_file.h"
+
+namespace rc {
+namespace {
+
+using gpu_check::RayCastQueryFile;
+
+RayCastQueryFile SmallFile() {
+  RayCastQueryFile f;
+  f.size_x = 3;
+  f.size_y = 2;
+  f.resolution_m = 0.1;
+  f.max_range_m = 10.0;
+  f.cells = {0, 1, 0, 0, 1, 0};
+  f.distance_m = {0.1f, 0.0f, 0.2f, 0.1f, 0.0f, 0.3f};
+  f.origin_x = {0.05, 0.25};
+  f.origin_y = {0.05, 0.15};
+  f.dir_x = {1.0, 0.0};
+  f.dir_y = {0.0, -1.0};
+  f.grid_order = {1, 0};
+  for (int m = 0; m < gpu_check::kMethodCount; ++m) {
+    f.host[m].range_m = {0.1f * static_cast<float>(m + 1), 0.15f};
+    f.host[m].nodes = {static_cast<std::uint32_t>(m + 1), 2};
+  }
+  return f;
+}
+
+std::string TempPath(const char* name) { return (std::filesystem::temp_directory_path() / name).string(); }
+
+TEST(GpuQueryFile, WhatIsWrittenIsReadBack) {
+  const RayCastQueryFile f = SmallFile();
+  const std::string path = TempPath("rc_gpu_query_roundtrip.bin");
+  std::string error;
+  ASSERT_TRUE(gpu_check::WriteQueryFile(f, path, &error)) << error;
+  RayCastQueryFile g;
+  ASSERT_TRUE(gpu_check::ReadQueryFile(path, &g, &error)) << error;
+  EXPECT_EQ(g.size_x, 3);
+  EXPECT_EQ(g.size_y, 2);
+  EXPECT_EQ(g.resolution_m, 0.1);
+  EXPECT_EQ(g.cells, f.cells);
+  EXPECT_EQ(g.distance_m, f.distance_m);
+  EXPECT_EQ(g.origin_x, f.origin_x);
+  EXPECT_EQ(g.dir_y, f.dir_y);
+  EXPECT_EQ(g.grid_order, f.grid_order);
+  for (int m = 0; m < gpu_check::kMethodCount; ++m) {
+    EXPECT_EQ(g.host[m].range_m, f.host[m].range_m);
+    EXPECT_EQ(g.host[m].nodes, f.host[m].nodes);
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(GpuQueryFile, InconsistentArraysAreNotWritten) {
+  RayCastQueryFile f = SmallFile();
+  f.host[2].nodes.pop_back();
+  std::string error;
+  EXPECT_FALSE(gpu_check::WriteQueryFile(f, TempPath("rc_gpu_query_bad.bin"), &error));
+  EXPECT_NE(error.find("sizes disagree"), std::string::npos) << error;
+}
+
+TEST(GpuQueryFile, DamagedFilesAreRefusedNamingTheField) {
+  const std::string path = TempPath("rc_gpu_query_damaged.bin");
+  std::string error;
+  ASSERT_TRUE(gpu_check::WriteQueryFile(SmallFile(), path, &error)) << error;
+  const auto size = std::filesystem::file_size(path);
+  RayCastQueryFile g;
+
+  std::filesystem::resize_file(path, size - 1);  // the last answer array is short
+  EXPECT_FALSE(gpu_check::ReadQueryFile(path, &g, &error));
+  EXPECT_NE(error.find("rm answers: truncated"), std::string::npos) << error;
+
+  ASSERT_TRUE(gpu_check::WriteQueryFile(SmallFile(), path, &error)) << error;
+  {
+    std::ofstream more(path, std::ios::binary | std::ios::app);
+    more.put('x');
+  }
+  EXPECT_FALSE(gpu_check::ReadQueryFile(path, &g, &error));
+  EXPECT_NE(error.find("bytes after the last array"), std::string::npos) << error;
+
+  RayCastQueryFile bad_order = SmallFile();
+  bad_order.grid_order = {0, 2};
+  ASSERT_TRUE(gpu_check::WriteQueryFile(bad_order, path, &error)) << error;
+  EXPECT_FALSE(gpu_check::ReadQueryFile(path, &g, &error));
+  EXPECT_NE(error.find("grid_order: index out of range"), std::string::npos) << error;
+
+  {
+    std::ofstream garbage(path, std::ios::binary | std::ios::trunc);
+    garbage << "not a query file at all";
+  }
+  EXPECT_FALSE(gpu_check::ReadQueryFile(path, &g, &error));
+  EXPECT_NE(error.find("magic"), std::string::npos) << error;
+  std::filesystem::remove(path);
+}
+
+TEST(GpuQueryFile, TheH100PresetLoadsWithItsPublishedFigures) {
+  const BackendPreset p = LoadBackendPreset(std::string(RC_SOURCE_DIR) + "/backends/presets/h100.json");
+  EXPECT_EQ(p.backend.gpu.sms, 132);
+  EXPECT_EQ(p.backend.gpu.max_warps_per_sm, 64);
+  EXPECT_EQ(p.backend.gpu.l2_bytes, 50 * 1024 * 1024);
+  EXPECT_EQ(p.backend.simt.fp64_units_per_scheduler, 1);
+  // 10 controllers x 64 bytes x 2 transfers x 2.619 GHz: the datasheet's 3.35 TB/s.
+  EXPECT_NEAR(p.backend.gpu.DramBytesPerCoreCycle() * p.backend.gpu.core_clock_hz, 3.35e12, 0.01e12);
+  // What the preset does not name stays the model's default.
+  EXPECT_EQ(p.backend.simt.fp64_div_latency_cycles, BackendParameters{}.simt.fp64_div_latency_cycles);
+}
+
+}  // namespace
+}  // namespace rc
