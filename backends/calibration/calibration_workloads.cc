@@ -61,12 +61,9 @@ std::vector<Obbd> RandomWorkspaceObbs(const CalibrationOptions& o) {
 
 SactSceneWorkload SceneWorkload(MpinetSceneKind kind, const std::vector<std::vector<Obbd>>& poses,
                                 const CalibrationOptions& o) {
-  const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(kind);
-  const SceneOctree octree = BuildSceneOctree(kind, seed);
-  std::size_t links = 0;
-  for (const auto& pose : poses) links += pose.size();
-  const int yaws = static_cast<int>((static_cast<std::size_t>(o.min_sact_queries) + links - 1) / links);
-  const std::vector<Obbd> queries = JitteredArmQueries(poses, yaws, octree, seed);
+  const SactSceneInputs inputs = MakeSactSceneInputs(kind, poses, o);
+  const SceneOctree& octree = inputs.octree;
+  const std::vector<Obbd>& queries = inputs.queries;
   const FlatBoxTree<double> tree(octree.tree);
   SactSceneWorkload w;
   w.kind = kind;
@@ -82,6 +79,40 @@ SactSceneWorkload SceneWorkload(MpinetSceneKind kind, const std::vector<std::vec
 }
 
 }  // namespace
+
+ArmLinkPoses MakeArmLinkPoses(const CalibrationOptions& o) {
+  const std::string robot_path = o.data_dir + "/" + kRobotObbs;
+  ArmLinkPoses arm;
+  arm.path = robot_path;
+  arm.from_file = std::filesystem::exists(robot_path);
+  std::size_t links = 0;
+  if (arm.from_file) {
+    long pose = -1;
+    for (const RobotObb& r : ReadObbCsv(robot_path)) {
+      if (arm.poses.empty() || r.pose != pose) arm.poses.emplace_back(), pose = r.pose;
+      arm.poses.back().push_back(r.obb);
+      ++links;
+    }
+    arm.source = "the " + std::to_string(arm.poses.size()) + " mpnet_master arm poses (" + std::to_string(links) +
+                 " link OBBs, " + robot_path + ")";
+  } else {
+    for (const Obbd& b : RandomWorkspaceObbs(o)) arm.poses.push_back({b});
+    arm.source = std::to_string(arm.poses.size()) + " seeded random link-size OBBs (no " + robot_path + ")";
+  }
+  return arm;
+}
+
+SactSceneInputs MakeSactSceneInputs(MpinetSceneKind kind, const std::vector<std::vector<Obbd>>& poses,
+                                    const CalibrationOptions& o) {
+  const std::uint64_t seed = o.seed + static_cast<std::uint64_t>(kind);
+  SactSceneInputs inputs;
+  inputs.octree = BuildSceneOctree(kind, seed);
+  std::size_t links = 0;
+  for (const auto& pose : poses) links += pose.size();
+  const int yaws = static_cast<int>((static_cast<std::size_t>(o.min_sact_queries) + links - 1) / links);
+  inputs.queries = JitteredArmQueries(poses, yaws, inputs.octree, seed);
+  return inputs;
+}
 
 std::string SactSceneWorkload::Size() const {
   return fmt::format("{} queries x {:.1f} nodes; {}-node octree ({} box nodes, {:.3g} m voxels)", sact.query_count(),
@@ -108,25 +139,11 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   CalibrationWorkloads w;
   w.options = o;
 
-  const std::string robot_path = o.data_dir + "/" + kRobotObbs;
-  const bool have_robot = std::filesystem::exists(robot_path);
+  const ArmLinkPoses arm = MakeArmLinkPoses(o);
+  const std::vector<std::vector<Obbd>>& poses = arm.poses;
   std::vector<Obbd> links;
-  std::vector<std::vector<Obbd>> poses;  // a pose's links, base to tip
-  if (have_robot) {
-    long pose = -1;
-    for (const RobotObb& r : ReadObbCsv(robot_path)) {
-      if (poses.empty() || r.pose != pose) poses.emplace_back(), pose = r.pose;
-      poses.back().push_back(r.obb);
-      links.push_back(r.obb);
-    }
-  } else {
-    links = RandomWorkspaceObbs(o);
-    for (const Obbd& b : links) poses.push_back({b});
-  }
-  const std::string links_source =
-      have_robot ? "the " + std::to_string(poses.size()) + " mpnet_master arm poses (" + std::to_string(links.size()) +
-                       " link OBBs, " + robot_path + ")"
-                 : std::to_string(links.size()) + " seeded random link-size OBBs (no " + robot_path + ")";
+  for (const auto& pose : poses) links.insert(links.end(), pose.begin(), pose.end());
+  const std::string& links_source = arm.source;
 
   // Paper scale: SACT scenes.
   for (MpinetSceneKind kind : o.scenes) {
@@ -171,7 +188,7 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
                   w.ray_grid.size_x(), w.ray_grid.size_y(), o.particles, o.beams, o.max_range_m));
 
   // Small batch: SACT against the shelf's median-split tree, in float.
-  std::vector<Obbd> obbs = have_robot ? links : RandomWorkspaceObbs(o);
+  const std::vector<Obbd>& obbs = links;
   const std::vector<Aabbd> scene = MakeShelfScene();
   const FlatBoxTree<float> tree(BuildMedianSplitTree(scene));
   std::vector<Obbf> obbs_f;
@@ -185,8 +202,8 @@ CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& o) {
   w.sphere_obb_collisions = spheres.obb_collisions;
   w.notes.push_back(
       std::string("Small batch, SACT: ") +
-      (have_robot ? "mpnet_master robot-link OBBs (" + robot_path + ")"
-                  : "seeded random workspace OBBs (no " + robot_path + ")") +
+      (arm.from_file ? "mpnet_master robot-link OBBs (" + arm.path + ")"
+                     : "seeded random workspace OBBs (no " + arm.path + ")") +
       fmt::format(", {} queries ({} collide), against the shelf scene ({} boxes, {}-node median-split tree, 32-byte "
                   "float nodes), depth-first; {:.2f} nodes per query.",
                   obbs.size(), summary.collisions, scene.size(), tree.nodes().size(), summary.nodes_per_query_mean));

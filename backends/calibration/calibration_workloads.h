@@ -90,4 +90,25 @@ struct CalibrationWorkloads {
 // Throws UsageError for invalid options, InputError for unreadable data.
 CalibrationWorkloads MakeCalibrationWorkloads(const CalibrationOptions& options);
 
+// The arm whose links the SACT scenes are queried with: the mpnet_master
+// poses from options.data_dir, or, without that file, seeded random
+// link-size OBBs, one per pose. Throws InputError for an unreadable file.
+struct ArmLinkPoses {
+  std::vector<std::vector<Obbd>> poses;  // a pose's links, base to tip
+  std::string source;                    // where they came from, for the report
+  std::string path;                      // the mpnet_master file looked for
+  bool from_file = false;                // false: the seeded random OBBs
+};
+ArmLinkPoses MakeArmLinkPoses(const CalibrationOptions& options);
+
+// A paper-scale SACT scene's inputs: the scene's octree and at least
+// options.min_sact_queries jittered arm-link OBBs aimed across it (seed:
+// options.seed + the scene kind). SactSceneWorkload is priced from these.
+struct SactSceneInputs {
+  SceneOctree octree;
+  std::vector<Obbd> queries;
+};
+SactSceneInputs MakeSactSceneInputs(MpinetSceneKind kind, const std::vector<std::vector<Obbd>>& poses,
+                                    const CalibrationOptions& options);
+
 }  // namespace rc

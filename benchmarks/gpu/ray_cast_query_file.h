@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/gpu/binary_io.h"
+
 namespace rc::gpu_check {
 
 inline constexpr char kQueryFileMagic[8] = "RCRAYQ1";
@@ -48,36 +50,11 @@ struct RayCastQueryFile {
   std::size_t queries() const { return origin_x.size(); }
 };
 
-namespace query_file_detail {
-template <typename T>
-void Put(std::ofstream& out, const T& value) {
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-template <typename T>
-void PutArray(std::ofstream& out, const std::vector<T>& values) {
-  out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(T)));
-}
-template <typename T>
-bool Get(std::ifstream& in, T* value) {
-  return static_cast<bool>(in.read(reinterpret_cast<char*>(value), sizeof(T)));
-}
-template <typename T>
-bool GetArray(std::ifstream& in, std::size_t count, std::vector<T>* values) {
-  values->resize(count);
-  return static_cast<bool>(
-      in.read(reinterpret_cast<char*>(values->data()), static_cast<std::streamsize>(count * sizeof(T))));
-}
-inline bool Fail(std::string* error, const std::string& path, const std::string& what) {
-  if (error) *error = path + ": " + what;
-  return false;
-}
-}  // namespace query_file_detail
-
 // Every array must hold its declared count (cells and distance_m
 // size_x * size_y, the rest queries()); returns false with the reason if not,
 // or if the file cannot be written.
 inline bool WriteQueryFile(const RayCastQueryFile& f, const std::string& path, std::string* error) {
-  using namespace query_file_detail;
+  using namespace binary_io;
   const std::size_t cells = static_cast<std::size_t>(f.size_x) * static_cast<std::size_t>(f.size_y);
   const std::size_t n = f.queries();
   bool sizes_agree = f.cells.size() == cells && f.distance_m.size() == cells && f.origin_y.size() == n &&
@@ -109,7 +86,7 @@ inline bool WriteQueryFile(const RayCastQueryFile& f, const std::string& path, s
 // magic, an impossible size, a truncated array, a grid_order entry out of
 // range, or bytes after the last array.
 inline bool ReadQueryFile(const std::string& path, RayCastQueryFile* f, std::string* error) {
-  using namespace query_file_detail;
+  using namespace binary_io;
   std::ifstream in(path, std::ios::binary);
   if (!in) return Fail(error, path, "cannot open");
   char magic[8] = {};
@@ -119,11 +96,11 @@ inline bool ReadQueryFile(const std::string& path, RayCastQueryFile* f, std::str
   if (!Get(in, &f->size_x) || !Get(in, &f->size_y) || !Get(in, &f->resolution_m) || !Get(in, &f->max_range_m) ||
       !Get(in, &n))
     return Fail(error, path, "header: truncated");
-  if (f->size_x <= 0 || f->size_y <= 0 || f->size_x > 1 << 16 || f->size_y > 1 << 16)
-    return Fail(error, path, "size_x, size_y: must be 1 to 65536 cells");
+  if (f->size_x <= 0 || f->size_y <= 0 || std::int64_t{f->size_x} * f->size_y > (std::int64_t{1} << 28))
+    return Fail(error, path, "size_x, size_y: must be positive, at most 2^28 cells in all");
   if (!(f->resolution_m > 0) || !(f->max_range_m > 0))
     return Fail(error, path, "resolution_m, max_range_m: must be > 0");
-  if (n == 0 || n > (std::uint64_t{1} << 28)) return Fail(error, path, "queries: must be 1 to 2^28");
+  if (n == 0 || n > (std::uint64_t{1} << 26)) return Fail(error, path, "queries: must be 1 to 2^26");
   const std::size_t cells = static_cast<std::size_t>(f->size_x) * static_cast<std::size_t>(f->size_y);
   if (!GetArray(in, cells, &f->cells)) return Fail(error, path, "cells: truncated");
   if (!GetArray(in, cells, &f->distance_m)) return Fail(error, path, "distance_m: truncated");

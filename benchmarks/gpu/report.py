@@ -2,6 +2,8 @@
 """The GPU check's report (docs/gpu_check.md): the SIMT model beside a real GPU.
 
   report.py --model model.csv --measured measured.csv [--profile profile.csv]
+            [--sact-model sact_model.csv --sact-measured sact_measured.csv
+             [--sact-profile sact_profile.csv]]
 
 model.csv comes from gpu_ray_cast_export (the model's predictions),
 measured.csv from ray_cast_on_gpu and profile.csv from Nsight Compute
@@ -12,6 +14,8 @@ measured.csv from ray_cast_on_gpu and profile.csv from Nsight Compute
   ranking   which method is cheapest, by the GPU and by each model column
   counters  SIMT efficiency, node-fetch sectors, warp instructions and the
             SM clock, measured (ncu) beside the model (needs --profile)
+  SACT      the collision kernel's outcomes, time and counters the same way
+            (gpu_sact_export, sact_on_gpu)
 
 Every number is read from the files; nothing is fitted.
 """
@@ -41,16 +45,22 @@ def key(row):
     return (row["method"], row["order"], row["precision"])
 
 
-def read_profile(path):
-    """{(method, order, precision): {metric: float}} from ncu --csv; the
-    second launch of each configuration (run_on_gpu.sh launches each twice:
-    one warm-up, one timed)."""
+def read_launches(path):
+    """{launch id: {"kernel": name, metric: float}} from ncu --csv."""
     with open(path, newline="") as f:
         lines = [line for line in f if line.startswith('"')]
     launches = defaultdict(dict)
     for row in csv.DictReader(lines):
         launches[int(row["ID"])]["kernel"] = row["Kernel Name"]
         launches[int(row["ID"])][row["Metric Name"]] = float(row["Metric Value"].replace(",", ""))
+    return launches
+
+
+def read_profile(path):
+    """{(method, order, precision): {metric: float}} from ncu --csv; the
+    second launch of each configuration (run_on_gpu.sh launches each twice:
+    one warm-up, one timed)."""
+    launches = read_launches(path)
     # Launch order is the harness's: method, order, precision, each launched twice.
     configs = [(m, o, p) for m in METHODS for o in ORDERS for p in PRECISIONS]
     ids = sorted(launches)
@@ -66,6 +76,68 @@ def read_profile(path):
     return profile
 
 
+def read_sact_profile(path, configs):
+    """{(scene, repeat, precision): {metric: float}}: the second launch of
+    each configuration, in sact_on_gpu's order (`configs`)."""
+    launches = read_launches(path)
+    ids = sorted(launches)
+    if len(ids) != 2 * len(configs):
+        sys.exit(f"report.py: {path}: {len(ids)} profiled launches, expected {2 * len(configs)}")
+    profile = {}
+    for i, config in enumerate(configs):
+        launch = launches[ids[2 * i + 1]]
+        if launch["kernel"] != "rc_sact_" + config[2]:
+            sys.exit(f"report.py: {path}: launch {ids[2 * i + 1]} is {launch['kernel']}, expected rc_sact_{config[2]}")
+        profile[config] = launch
+    return profile
+
+
+def sact_report(model_path, measured_path, profile_path):
+    model = {(r["scene"], r["repeat"], r["preset"], r["precision"], r["isa"]): r for r in read_csv(model_path)}
+    rows = read_csv(measured_path)
+    configs = [(r["scene"], r["repeat"], r["precision"]) for r in rows]
+    measured = dict(zip(configs, rows))
+    for c in configs:
+        for preset, isa, _ in MODEL_COLUMNS:
+            if (c[0], c[1], preset, c[2], isa) not in model:
+                sys.exit(f"report.py: {model_path}: no row for {c} under {preset}, {isa}")
+    print(f"\n### SACT: outcomes and kernel time ({rows[0]['device']}; us, measured: median of "
+          f"{rows[0]['timed_launches']} launches; model: without the launch)\n")
+    print("| scene | OBBs | precision | outcomes / node counts differing from the host's, stack overflows | measured | " +
+          " | ".join(f"{heading} (x measured)" for _, _, heading in MODEL_COLUMNS) + " |")
+    print("|---|---|---|---|---|" + "---|" * len(MODEL_COLUMNS))
+    ratios = defaultdict(list)
+    for c in configs:
+        r = measured[c]
+        seconds = float(r["median_s"])
+        cells = []
+        for preset, isa, _ in MODEL_COLUMNS:
+            predicted = float(model[(c[0], c[1], preset, c[2], isa)]["kernel_s"])
+            ratios[(preset, isa)].append(predicted / seconds)
+            cells.append(f"{us(predicted)} ({predicted / seconds:.2f}x)")
+        print(f"| {c[0]} | {r['queries']} | {c[2]} | {r['outcome_mismatches']} / {r['node_mismatches']}, "
+              f"{r['stack_overflows']} | {us(seconds)} | " + " | ".join(cells) + " |")
+    print("| **range of model / measured** | | | | | " + " | ".join(
+        f"{min(ratios[(p, i)]):.2f}-{max(ratios[(p, i)]):.2f}x" for p, i, _ in MODEL_COLUMNS) + " |")
+    if not profile_path:
+        return
+    profile = read_sact_profile(profile_path, configs)
+    print("\n### SACT: counters (Nsight Compute; model: H100 preset)\n")
+    print("| scene | OBBs | precision | SIMT efficiency, measured / model | "
+          "warp instructions, measured sm_90 SASS / model sm_75 SASS / model PTX (M) | registers per thread, sm_90 | "
+          "warps active (% of the SM's 64) |")
+    print("|---|---|---|---|---|---|---|")
+    for c in configs:
+        counters = profile[c]
+        sass, ptx = model[(c[0], c[1], "h100", c[2], "sass")], model[(c[0], c[1], "h100", c[2], "ptx")]
+        print(f"| {c[0]} | {measured[c]['queries']} | {c[2]} | "
+              f"{counters['smsp__thread_inst_executed_per_inst_executed.ratio'] / 32:.3f} / "
+              f"{float(sass['simt_efficiency']):.3f} | {counters['smsp__inst_executed.sum'] / 1e6:.2f} / "
+              f"{int(sass['warp_instructions']) / 1e6:.2f} / {int(ptx['warp_instructions']) / 1e6:.2f} | "
+              f"{counters['launch__registers_per_thread']:.0f} | "
+              f"{counters['sm__warps_active.avg.pct_of_peak_sustained_active']:.1f} |")
+
+
 def us(seconds):
     return f"{seconds * 1e6:.1f}"
 
@@ -75,7 +147,12 @@ def main():
     parser.add_argument("--model", required=True, help="model.csv from gpu_ray_cast_export")
     parser.add_argument("--measured", required=True, help="measured.csv from ray_cast_on_gpu")
     parser.add_argument("--profile", help="profile.csv from ncu (run_on_gpu.sh)")
+    parser.add_argument("--sact-model", help="sact_model.csv from gpu_sact_export")
+    parser.add_argument("--sact-measured", help="sact_measured.csv from sact_on_gpu")
+    parser.add_argument("--sact-profile", help="sact_profile.csv from ncu (run_on_gpu.sh)")
     args = parser.parse_args()
+    if bool(args.sact_model) != bool(args.sact_measured):
+        parser.error("--sact-model and --sact-measured go together")
 
     model = {(r["preset"], r["isa"]) + key(r): r for r in read_csv(args.model)}
     measured = {key(r): r for r in read_csv(args.measured)}
@@ -127,9 +204,13 @@ def main():
                 cells.append(f"{' < '.join(ranked)} ({agrees})")
             print(f"| {o} | {p} | {' < '.join(truth)} | " + " | ".join(cells) + " |")
 
-    if not args.profile:
-        return
-    profile = read_profile(args.profile)
+    if args.profile:
+        ray_counters(read_profile(args.profile), model, configs, queries)
+    if args.sact_model:
+        sact_report(args.sact_model, args.sact_measured, args.sact_profile)
+
+
+def ray_counters(profile, model, configs, queries):
     print("\n### Counters (Nsight Compute, one launch each, caches flushed before it; "
           "model: H100 preset)\n")
     print("| method | order | precision | SIMT efficiency, measured / model | "

@@ -1,5 +1,5 @@
-// The GPU check's query file (benchmarks/gpu/ray_cast_query_file.h): what
-// the host writes is what the device harness reads, and a damaged file is
+// The GPU check's query files (benchmarks/gpu/ray_cast_query_file.h,
+// sact_query_file.h): what the host writes is what the device harness reads, and a damaged file is
 // refused with the field named. And the H100 preset the check prices under
 // loads and says what it says (backends/presets/h100.json).
 #include <cstdio>
@@ -11,6 +11,7 @@
 
 #include "backends/backend_preset.h"
 #include "benchmarks/gpu/ray_cast_query_file.h"
+#include "benchmarks/gpu/sact_query_file.h"
 
 namespace rc {
 namespace {
@@ -100,6 +101,48 @@ TEST(GpuQueryFile, DamagedFilesAreRefusedNamingTheField) {
   }
   EXPECT_FALSE(gpu_check::ReadQueryFile(path, &g, &error));
   EXPECT_NE(error.find("magic"), std::string::npos) << error;
+  std::filesystem::remove(path);
+}
+
+gpu_check::SactQueryFile SmallSactFile() {
+  gpu_check::SactQueryFile f;
+  f.scene = "merged cubby";
+  f.parallel_epsilon = 1e-6;
+  f.node_centre = {0, 0, 0, -0.5, 0, 0, 0.5, 0, 0};
+  f.node_half = {1, 1, 1, 0.5, 1, 1, 0.5, 1, 1};
+  f.first_child = {1, 0, 1};
+  f.child_count = {2, 0, 0};
+  f.depth = {0, 1, 1};
+  f.obb_centre = {0.2, 0, 0};
+  f.obb_axes = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  f.obb_half = {0.1, 0.1, 0.1};
+  f.collides = {1};
+  f.colliding_box = {1};
+  f.nodes_visited = {3};
+  return f;
+}
+
+TEST(GpuQueryFile, ASactSceneIsReadBackAndADamagedOneRefused) {
+  const std::string path = TempPath("rc_gpu_sact_roundtrip.bin");
+  std::string error;
+  ASSERT_TRUE(gpu_check::WriteSactFile(SmallSactFile(), path, &error)) << error;
+  gpu_check::SactQueryFile g;
+  ASSERT_TRUE(gpu_check::ReadSactFile(path, &g, &error)) << error;
+  EXPECT_EQ(g.scene, "merged cubby");
+  EXPECT_EQ(g.node_half, SmallSactFile().node_half);
+  EXPECT_EQ(g.obb_axes, SmallSactFile().obb_axes);
+  EXPECT_EQ(g.nodes_visited, SmallSactFile().nodes_visited);
+
+  gpu_check::SactQueryFile outside = SmallSactFile();
+  outside.first_child[0] = 2;  // children 2 and 3 of a 3-node tree
+  ASSERT_TRUE(gpu_check::WriteSactFile(outside, path, &error)) << error;
+  EXPECT_FALSE(gpu_check::ReadSactFile(path, &g, &error));
+  EXPECT_NE(error.find("first_child: a child index is outside the tree"), std::string::npos) << error;
+
+  ASSERT_TRUE(gpu_check::WriteSactFile(SmallSactFile(), path, &error)) << error;
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 4);
+  EXPECT_FALSE(gpu_check::ReadSactFile(path, &g, &error));
+  EXPECT_NE(error.find("nodes_visited: truncated"), std::string::npos) << error;
   std::filesystem::remove(path);
 }
 
