@@ -35,7 +35,7 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "common/random_stream.h"
+#include "benchmarks/ray_cast_queries.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
@@ -64,19 +64,9 @@ const Fixture& GetFixture() {
       f.grid = GenerateOfficeMap(OfficeMapOptions{});
       f.map_name = "office (shared data absent)";
     }
-    const std::vector<std::uint32_t> free_cells = f.grid.FreeCellIndices();
-    RandomStream s(1, StreamPurpose::kTest, 0, 0);
-    const double r = f.grid.resolution_m();
-    for (std::size_t i = 0; i < kQueries; ++i) {
-      const std::uint32_t c = free_cells[s.Below(free_cells.size())];
-      const int ix = static_cast<int>(c / f.grid.size_y()), iy = static_cast<int>(c % f.grid.size_y());
-      f.random_order.push_back({(ix + s.Uniform()) * r, (iy + s.Uniform()) * r, s.Uniform(-3.14159265, 3.14159265)});
-    }
-    f.grid_order = f.random_order;
-    std::sort(f.grid_order.begin(), f.grid_order.end(), [&](const auto& a, const auto& b) {
-      const int ax = static_cast<int>(a[0] / r), bx = static_cast<int>(b[0] / r);
-      return ax != bx ? ax < bx : a[1] < b[1];
-    });
+    const RayCastQueries queries = MakeRayCastQueries(f.grid, kQueries);
+    for (const RayQuery& q : queries.random_order) f.random_order.push_back({q.origin_x_m, q.origin_y_m, q.angle_rad});
+    for (std::uint32_t i : queries.grid_order) f.grid_order.push_back(f.random_order[i]);
     return f;
   }();
   return fixture;

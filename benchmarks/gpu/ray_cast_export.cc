@@ -32,7 +32,8 @@
 #include "backends/backend_preset.h"
 #include "backends/calibration/pricing_helpers.h"
 #include "benchmarks/gpu/ray_cast_query_file.h"
-#include "common/random_stream.h"
+#include "benchmarks/gpu/simt_model_columns.h"
+#include "benchmarks/ray_cast_queries.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
@@ -44,44 +45,6 @@ namespace {
 
 constexpr RayCastMethod kMethods[gpu_check::kMethodCount] = {RayCastMethod::kMarch, RayCastMethod::kDda,
                                                              RayCastMethod::kRayMarching};
-
-struct Queries {
-  std::vector<RayQuery> random_order;
-  std::vector<std::uint32_t> grid_order;  // query index at each grid-order position
-};
-
-// The ray-cast benchmark's generator: the first `count` of its queries.
-Queries MakeQueries(const OccupancyGrid& grid, std::size_t count) {
-  Queries q;
-  const std::vector<std::uint32_t> free_cells = grid.FreeCellIndices();
-  RandomStream s(1, StreamPurpose::kTest, 0, 0);
-  const double r = grid.resolution_m();
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::uint32_t c = free_cells[s.Below(free_cells.size())];
-    const int ix = static_cast<int>(c / grid.size_y()), iy = static_cast<int>(c % grid.size_y());
-    const double x = (ix + s.Uniform()) * r, y = (iy + s.Uniform()) * r;
-    q.random_order.push_back({x, y, s.Uniform(-3.14159265, 3.14159265)});
-  }
-  q.grid_order.resize(count);
-  for (std::size_t i = 0; i < count; ++i) q.grid_order[i] = static_cast<std::uint32_t>(i);
-  std::stable_sort(q.grid_order.begin(), q.grid_order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const RayQuery &qa = q.random_order[a], &qb = q.random_order[b];
-    const int ax = static_cast<int>(qa.origin_x_m / r), bx = static_cast<int>(qb.origin_x_m / r);
-    return ax != bx ? ax < bx : qa.origin_y_m < qb.origin_y_m;
-  });
-  return q;
-}
-
-double Ratio(std::uint64_t part, std::uint64_t whole) {
-  return whole == 0 ? 0.0 : static_cast<double>(part) / static_cast<double>(whole);
-}
-
-// The SIMT model's kernel variants priced: precision x instruction set
-// (PTX, as the artifact simulates; SASS, what sm_75 hardware issues).
-constexpr std::pair<SimtPrecision, SimtIsa> kSimtVariants[] = {{SimtPrecision::kFp64, SimtIsa::kPtx},
-                                                               {SimtPrecision::kFp32, SimtIsa::kPtx},
-                                                               {SimtPrecision::kFp64, SimtIsa::kSass},
-                                                               {SimtPrecision::kFp32, SimtIsa::kSass}};
 
 struct PresetColumn {
   std::string name;
@@ -112,7 +75,7 @@ int Run(int argc, char** argv) {
     map_name = "office";
     std::cerr << "gpu_ray_cast_export: " << wean << " is absent; using the generated office map\n";
   }
-  const Queries q = MakeQueries(grid, queries);
+  const RayCastQueries q = MakeRayCastQueries(grid, queries);
   RayBatch random_batch, grid_batch;
   random_batch.max_range_m = grid_batch.max_range_m = 10.0;
   random_batch.queries = q.random_order;
@@ -140,8 +103,7 @@ int Run(int argc, char** argv) {
 
   std::filesystem::create_directories(out_dir);
   std::ofstream csv(out_dir + "/model.csv");
-  csv << "map,preset,method,order,precision,isa,queries,nodes,cycles,launch_cycles,clock_hz,kernel_s,total_s,"
-         "simt_efficiency,warp_instructions,thread_instructions,sector_requests,l1_hit_rate,l2_hit_rate,bound\n";
+  csv << "map,preset,method,order,precision,isa," << gpu_check::kSimtCostColumns << '\n';
   for (int m = 0; m < gpu_check::kMethodCount; ++m) {
     const RayCastScene scene(grid, kMethods[m]);
     if (kMethods[m] == RayCastMethod::kRayMarching) file.distance_m = scene.distance_field()->values();
@@ -159,19 +121,15 @@ int Run(int argc, char** argv) {
         }
       }
       for (const PresetColumn& preset : presets) {
-        for (const auto& [precision, isa] : kSimtVariants) {
+        for (const auto& [precision, isa] : gpu_check::kSimtVariants) {
           BackendParameters params = preset.params;
           params.simt.precision = precision;
           params.simt.isa = isa;
-          const BatchCost cost = PriceByName({"simt"}, record, params).at("simt");
           csv << map_name << ',' << preset.name << ',' << gpu_check::kMethodNames[m] << ','
-              << (grid_ordered ? "grid" : "random") << ',' << (precision == SimtPrecision::kFp64 ? "fp64" : "fp32")
-              << ',' << (isa == SimtIsa::kPtx ? "ptx" : "sass") << ',' << cost.queries << ',' << cost.nodes << ','
-              << cost.cycles << ',' << cost.launch_cycles << ',' << cost.clock_hz << ',' << KernelSeconds(cost) << ','
-              << cost.seconds << ',' << cost.simt_efficiency << ',' << cost.warp_instructions << ','
-              << cost.thread_instructions << ',' << cost.memory.sector_requests << ','
-              << Ratio(cost.memory.l1_hits, cost.memory.sector_requests) << ','
-              << Ratio(cost.memory.l2_hits, cost.memory.l2_accesses) << ',' << cost.bound << '\n';
+              << (grid_ordered ? "grid" : "random") << ',' << gpu_check::PrecisionName(precision) << ','
+              << gpu_check::IsaName(isa) << ',';
+          gpu_check::WriteSimtCost(csv, PriceByName({"simt"}, record, params).at("simt"));
+          csv << '\n';
         }
       }
     }

@@ -31,17 +31,13 @@
 #include "backends/calibration/calibration_workloads.h"
 #include "backends/calibration/pricing_helpers.h"
 #include "benchmarks/gpu/sact_query_file.h"
+#include "benchmarks/gpu/simt_model_columns.h"
 #include "robocore/collision/flat_box_tree.h"
 #include "robocore/collision/sact_kernel_record.h"
 #include "robocore/collision/tree_collision.h"
 
 namespace rc {
 namespace {
-
-constexpr std::pair<SimtPrecision, SimtIsa> kSimtVariants[] = {{SimtPrecision::kFp64, SimtIsa::kPtx},
-                                                               {SimtPrecision::kFp32, SimtIsa::kPtx},
-                                                               {SimtPrecision::kFp64, SimtIsa::kSass},
-                                                               {SimtPrecision::kFp32, SimtIsa::kSass}};
 
 // The calibration's batch (about 10,000 OBBs, 313 warps) leaves most of a
 // 132-SM GPU idle; the same OBBs repeated this many times fill it.
@@ -98,8 +94,7 @@ int Run(int argc, char** argv) {
   const ArmLinkPoses arm = MakeArmLinkPoses(options);
   std::filesystem::create_directories(out_dir);
   std::ofstream csv(out_dir + "/sact_model.csv");
-  csv << "scene,repeat,preset,precision,isa,queries,nodes,collisions,cycles,launch_cycles,clock_hz,kernel_s,total_s,"
-         "simt_efficiency,warp_instructions,thread_instructions,sector_requests,bound\n";
+  csv << "scene,repeat,preset,precision,isa,collisions," << gpu_check::kSimtCostColumns << '\n';
   for (const MpinetSceneKind kind : kMpinetSceneKinds) {
     const std::string scene = ToString(kind);
     const SactSceneInputs inputs = MakeSactSceneInputs(kind, arm.poses, options);
@@ -114,17 +109,14 @@ int Run(int argc, char** argv) {
       std::uint64_t collisions = 0;
       for (const TraversalOutcome& o : repeated.outcomes) collisions += o.collides ? 1 : 0;
       for (const auto& [preset, base] : presets) {
-        for (const auto& [precision, isa] : kSimtVariants) {
+        for (const auto& [precision, isa] : gpu_check::kSimtVariants) {
           BackendParameters params = base;
           params.simt.precision = precision;
           params.simt.isa = isa;
-          const BatchCost cost = PriceByName({"simt"}, record, params).at("simt");
-          csv << scene << ',' << repeat << ',' << preset << ',' << (precision == SimtPrecision::kFp64 ? "fp64" : "fp32")
-              << ',' << (isa == SimtIsa::kPtx ? "ptx" : "sass") << ',' << cost.queries << ',' << cost.nodes << ','
-              << collisions << ',' << cost.cycles << ',' << cost.launch_cycles << ',' << cost.clock_hz << ','
-              << KernelSeconds(cost) << ',' << cost.seconds << ',' << cost.simt_efficiency << ','
-              << cost.warp_instructions << ',' << cost.thread_instructions << ',' << cost.memory.sector_requests << ','
-              << cost.bound << '\n';
+          csv << scene << ',' << repeat << ',' << preset << ',' << gpu_check::PrecisionName(precision) << ','
+              << gpu_check::IsaName(isa) << ',' << collisions << ',';
+          gpu_check::WriteSimtCost(csv, PriceByName({"simt"}, record, params).at("simt"));
+          csv << '\n';
         }
       }
     }
