@@ -7,11 +7,14 @@
 //   <out>/queries.bin  the map, the rays and the host's answers
 //                      (ray_cast_query_file.h), which ray_cast_on_gpu.cu
 //                      runs on a real GPU;
+//   <out>/leaf.bin     a measured range per ray and the host's beam-model
+//                      log density of each (beam_leaf_file.h), for the
+//                      kernels with their beam leaf;
 //   <out>/model.csv    what the SIMT (CUDA-core) model predicts for the same
-//                      launches: each method x order (random, grid) x
-//                      precision (fp64, fp32) x instruction set (ptx,
-//                      sass) x preset, traversal only (no
-//                      beam leaf, as the GPU kernels run it).
+//                      launches: each method x (traversal alone in random
+//                      and in grid order; with the max-log and with the
+//                      exact beam leaf in random order) x precision (fp64,
+//                      fp32) x instruction set (ptx, sass) x preset.
 //
 // Presets: "default" (the model's GPU, backend_params.h) and each
 // --preset FILE (backends/presets/h100.json: an H100 SXM5's published
@@ -31,14 +34,17 @@
 #include "backends/backend.h"
 #include "backends/backend_preset.h"
 #include "backends/calibration/pricing_helpers.h"
+#include "benchmarks/gpu/beam_leaf_file.h"
 #include "benchmarks/gpu/ray_cast_query_file.h"
 #include "benchmarks/gpu/simt_model_columns.h"
 #include "benchmarks/ray_cast_queries.h"
+#include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/ray_cast.h"
+#include "workloads/delibot/beam_sensor_model.h"
 
 namespace rc {
 namespace {
@@ -57,7 +63,7 @@ int Run(int argc, char** argv) {
   std::size_t queries = std::size_t{1} << 19;
   std::vector<std::string> preset_files;
   std::string shared_data = RC_SHARED_DATA_DIR;
-  app.add_option("--out", out_dir, "folder for queries.bin and model.csv")->required();
+  app.add_option("--out", out_dir, "folder for queries.bin, leaf.bin and model.csv")->required();
   app.add_option("--queries", queries, "rays in the batch")->check(CLI::Range(std::size_t{1}, std::size_t{1} << 24));
   app.add_option("--preset", preset_files, "backend preset file to price under, beside the default")
       ->check(CLI::ExistingFile);
@@ -101,42 +107,84 @@ int Run(int argc, char** argv) {
   }
   file.grid_order = q.grid_order;
 
+  // The beam leaf's inputs: a measured range per ray, the dda range plus
+  // Gaussian noise (0.1 m), clipped to [0, max range]; the beam model's
+  // default parameters at the batch's max range.
+  gpu_check::BeamLeafFile leaf;
+  BeamModelParams beam;
+  beam.max_range_m = random_batch.max_range_m;
+  leaf.z_hit = beam.z_hit;
+  leaf.z_short = beam.z_short;
+  leaf.z_max = beam.z_max;
+  leaf.z_rand = beam.z_rand;
+  leaf.sigma_hit_m = beam.sigma_hit_m;
+  leaf.lambda_short_per_m = beam.lambda_short_per_m;
+  leaf.max_range_m = beam.max_range_m;
+  {
+    std::vector<RayHit> hits;
+    CastRayBatch(RayCastScene(grid, RayCastMethod::kDda), random_batch, hits);
+    RandomStream noise(2, StreamPurpose::kTest, 0, 0);
+    for (const RayHit& h : hits)
+      leaf.measured_m.push_back(std::clamp(h.range_m + 0.1 * noise.Gaussian(), 0.0, beam.max_range_m));
+  }
+
   std::filesystem::create_directories(out_dir);
   std::ofstream csv(out_dir + "/model.csv");
-  csv << "map,preset,method,order,precision,isa," << gpu_check::kSimtCostColumns << '\n';
+  csv << "map,preset,method,order,leaf,precision,isa," << gpu_check::kSimtCostColumns << '\n';
+  // The launches the GPU runs: the traversal alone in random and grid order,
+  // and with the beam leaf (random order) in its two forms.
+  struct Launch {
+    bool grid_ordered;
+    LeafProgramKind leaf;
+  };
+  const Launch launches[] = {
+      {false, LeafProgramKind::kNone}, {true, LeafProgramKind::kNone}, {false, LeafProgramKind::kBeamModel}};
   for (int m = 0; m < gpu_check::kMethodCount; ++m) {
     const RayCastScene scene(grid, kMethods[m]);
     if (kMethods[m] == RayCastMethod::kRayMarching) file.distance_m = scene.distance_field()->values();
-    RecordOptions options;
-    options.leaf = LeafProgramKind::kNone;  // the GPU kernels run the traversal alone
-    for (const bool grid_ordered : {false, true}) {
-      const RayBatch& batch = grid_ordered ? grid_batch : random_batch;
+    for (const Launch& launch : launches) {
+      const RayBatch& batch = launch.grid_ordered ? grid_batch : random_batch;
+      RecordOptions options;
+      options.leaf = launch.leaf;
       std::vector<RayHit> hits;
       KernelRecord record;
       CastRayBatchRecorded(scene, batch, hits, record, options);
-      if (!grid_ordered) {
-        for (const RayHit& h : hits) {
-          file.host[m].range_m.push_back(h.range_m);
-          file.host[m].nodes.push_back(h.nodes);
+      if (!launch.grid_ordered && launch.leaf == LeafProgramKind::kNone) {
+        for (std::size_t i = 0; i < hits.size(); ++i) {
+          file.host[m].range_m.push_back(hits[i].range_m);
+          file.host[m].nodes.push_back(hits[i].nodes);
+          leaf.host_log_density[m].push_back(
+              BeamLogDensity(beam, leaf.measured_m[i], static_cast<double>(hits[i].range_m)));
         }
       }
+      const std::vector<SimtBeamLeaf> leaves =
+          launch.leaf == LeafProgramKind::kNone
+              ? std::vector<SimtBeamLeaf>{SimtBeamLeaf::kMaxLog}
+              : std::vector<SimtBeamLeaf>{SimtBeamLeaf::kMaxLog, SimtBeamLeaf::kExact};
       for (const PresetColumn& preset : presets) {
-        for (const auto& [precision, isa] : gpu_check::kSimtVariants) {
-          BackendParameters params = preset.params;
-          params.simt.precision = precision;
-          params.simt.isa = isa;
-          csv << map_name << ',' << preset.name << ',' << gpu_check::kMethodNames[m] << ','
-              << (grid_ordered ? "grid" : "random") << ',' << gpu_check::PrecisionName(precision) << ','
-              << gpu_check::IsaName(isa) << ',';
-          gpu_check::WriteSimtCost(csv, PriceByName({"simt"}, record, params).at("simt"));
-          csv << '\n';
+        for (const SimtBeamLeaf beam_leaf : leaves) {
+          for (const auto& [precision, isa] : gpu_check::kSimtVariants) {
+            BackendParameters params = preset.params;
+            params.simt.precision = precision;
+            params.simt.isa = isa;
+            params.simt.beam_leaf = beam_leaf;  // read only for a record with a leaf
+            const char* leaf_name = launch.leaf == LeafProgramKind::kNone
+                                        ? "none"
+                                        : (beam_leaf == SimtBeamLeaf::kMaxLog ? "maxlog" : "exact");
+            csv << map_name << ',' << preset.name << ',' << gpu_check::kMethodNames[m] << ','
+                << (launch.grid_ordered ? "grid" : "random") << ',' << leaf_name << ','
+                << gpu_check::PrecisionName(precision) << ',' << gpu_check::IsaName(isa) << ',';
+            gpu_check::WriteSimtCost(csv, PriceByName({"simt"}, record, params).at("simt"));
+            csv << '\n';
+          }
         }
       }
     }
   }
   if (file.distance_m.empty()) file.distance_m.assign(grid.cell_count(), 0.0f);
   std::string error;
-  if (!gpu_check::WriteQueryFile(file, out_dir + "/queries.bin", &error)) {
+  if (!gpu_check::WriteQueryFile(file, out_dir + "/queries.bin", &error) ||
+      !gpu_check::WriteBeamLeafFile(leaf, out_dir + "/leaf.bin", &error)) {
     std::cerr << "gpu_ray_cast_export: " << error << '\n';
     return 1;
   }
@@ -145,8 +193,8 @@ int Run(int argc, char** argv) {
     std::cerr << "gpu_ray_cast_export: " << out_dir << "/model.csv: write failed\n";
     return 1;
   }
-  std::cout << "wrote " << out_dir << "/queries.bin (" << map_name << ", " << file.queries() << " rays) and " << out_dir
-            << "/model.csv\n";
+  std::cout << "wrote " << out_dir << "/queries.bin (" << map_name << ", " << file.queries() << " rays), " << out_dir
+            << "/leaf.bin and " << out_dir << "/model.csv\n";
   return 0;
 }
 

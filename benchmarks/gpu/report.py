@@ -14,6 +14,9 @@ measured.csv from ray_cast_on_gpu and profile.csv from Nsight Compute
   ranking   which method is cheapest, by the GPU and by each model column
   counters  SIMT efficiency, node-fetch sectors, warp instructions and the
             SM clock, measured (ncu) beside the model (needs --profile)
+  leaf      the ray kernels with the max-log and the exact beam leaf:
+            what each adds to the traversal, measured and modelled, and
+            the exact leaf's log densities against the host's
   SACT      the collision kernel's outcomes, time and counters the same way
             (gpu_sact_export, sact_on_gpu)
 
@@ -45,6 +48,10 @@ def key(row):
     return (row["method"], row["order"], row["precision"])
 
 
+def leaf_of(row):
+    return row.get("leaf", "none")
+
+
 def read_launches(path):
     """{launch id: {"kernel": name, metric: float}} from ncu --csv."""
     with open(path, newline="") as f:
@@ -61,11 +68,13 @@ def read_profile(path):
     second launch of each configuration (run_on_gpu.sh launches each twice:
     one warm-up, one timed)."""
     launches = read_launches(path)
-    # Launch order is the harness's: method, order, precision, each launched twice.
+    # Launch order is the harness's: method, order, precision, each launched
+    # twice; then, with a leaf file, the launches with a leaf (not read here).
     configs = [(m, o, p) for m in METHODS for o in ORDERS for p in PRECISIONS]
     ids = sorted(launches)
-    if len(ids) != 2 * len(configs):
-        sys.exit(f"report.py: {path}: {len(ids)} profiled launches, expected {2 * len(configs)}")
+    if len(ids) not in (2 * len(configs), 4 * len(configs)):
+        sys.exit(f"report.py: {path}: {len(ids)} profiled launches, expected {2 * len(configs)} "
+                 f"or, with the leaf, {4 * len(configs)}")
     profile = {}
     for i, config in enumerate(configs):
         launch = launches[ids[2 * i + 1]]
@@ -154,8 +163,9 @@ def main():
     if bool(args.sact_model) != bool(args.sact_measured):
         parser.error("--sact-model and --sact-measured go together")
 
-    model = {(r["preset"], r["isa"]) + key(r): r for r in read_csv(args.model)}
-    measured = {key(r): r for r in read_csv(args.measured)}
+    model_rows, measured_rows = read_csv(args.model), read_csv(args.measured)
+    model = {(r["preset"], r["isa"]) + key(r): r for r in model_rows if leaf_of(r) == "none"}
+    measured = {key(r): r for r in measured_rows if leaf_of(r) == "none"}
     configs = [(m, o, p) for m in METHODS for o in ORDERS for p in PRECISIONS]
     missing = [c for c in configs if c not in measured] + [
         (preset, isa) + c for preset, isa, _ in MODEL_COLUMNS for c in configs if (preset, isa) + c not in model]
@@ -206,8 +216,38 @@ def main():
 
     if args.profile:
         ray_counters(read_profile(args.profile), model, configs, queries)
+    if any(leaf_of(r) != "none" for r in measured_rows):
+        leaf_report(model_rows, measured_rows)
     if args.sact_model:
         sact_report(args.sact_model, args.sact_measured, args.sact_profile)
+
+
+def leaf_report(model_rows, measured_rows):
+    """What the beam leaf adds to each ray kernel (random order), measured
+    and modelled, and how the GPU's exact leaf compares with the host's."""
+    model = {(r["preset"], r["isa"], r["method"], r["precision"], leaf_of(r)): r
+             for r in model_rows if r["order"] == "random"}
+    measured = {(r["method"], r["precision"], leaf_of(r)): r for r in measured_rows if r["order"] == "random"}
+    columns = [(p, i, h) for p, i, h in MODEL_COLUMNS if p == "h100"]
+    print("\n### The beam leaf (random order): kernel time with each leaf, and what it adds to the traversal\n")
+    print("| method | precision | measured: none / max-log / exact (us) | measured: max-log, exact adds | " +
+          " | ".join(f"{h}: max-log, exact adds" for _, _, h in columns) +
+          " | exact leaf's log densities differing from the host's (largest difference) |")
+    print("|---|---|---|---|" + "---|" * len(columns) + "---|")
+    for m in METHODS:
+        for p in PRECISIONS:
+            if any((m, p, leaf) not in measured for leaf in ("none", "maxlog", "exact")):
+                sys.exit(f"report.py: no measured leaf rows for {m} {p}")
+            t = {leaf: float(measured[(m, p, leaf)]["median_s"]) for leaf in ("none", "maxlog", "exact")}
+            cells = []
+            for preset, isa, _ in columns:
+                k = {leaf: float(model[(preset, isa, m, p, leaf)]["kernel_s"]) for leaf in ("none", "maxlog", "exact")}
+                cells.append(f"{k['maxlog'] / k['none'] - 1:+.1%}, {k['exact'] / k['none'] - 1:+.1%}")
+            exact = measured[(m, p, "exact")]
+            print(f"| {m} | {p} | {us(t['none'])} / {us(t['maxlog'])} / {us(t['exact'])} | "
+                  f"{t['maxlog'] / t['none'] - 1:+.1%}, {t['exact'] / t['none'] - 1:+.1%} | " + " | ".join(cells) +
+                  f" | {exact['log_density_differs']} of {exact['queries']} "
+                  f"({float(exact['max_log_density_diff']):.3g}) |")
 
 
 def ray_counters(profile, model, configs, queries):

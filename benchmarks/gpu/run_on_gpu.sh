@@ -4,8 +4,8 @@
 #
 #   benchmarks/gpu/run_on_gpu.sh IN_DIR OUT_DIR
 #
-# IN_DIR holds queries.bin (gpu_ray_cast_export) and sact_*.bin
-# (gpu_sact_export). OUT_DIR receives
+# IN_DIR holds queries.bin and, optionally, leaf.bin (gpu_ray_cast_export),
+# and optionally sact_*.bin (gpu_sact_export). OUT_DIR receives
 #   gpu.txt             nvidia-smi's clocks before, during and after, nvcc's version
 #   measured.csv        ray_cast_on_gpu: timings and answer checks per launch
 #   sact_measured.csv   sact_on_gpu: the same for the collision kernel
@@ -33,14 +33,20 @@ bin_dir=$(mktemp -d)
 for harness in ray_cast_on_gpu sact_on_gpu; do
   "$nvcc" -O3 -arch=native -fmad=false -std=c++17 -I. "benchmarks/gpu/$harness.cu" -o "$bin_dir/$harness"
 done
+leaf=()
+[ -f "$in_dir/leaf.bin" ] && leaf=("$in_dir/leaf.bin")
+shopt -s nullglob
 sact_files=("$in_dir"/sact_*.bin)
+shopt -u nullglob
 
 status=0
 record() { if [ "$status" -eq 0 ]; then status=$1; fi; }
 nvidia-smi --query-gpu=clocks.sm,clocks.mem --format=csv,noheader -lms 20 >"$bin_dir/clocks.txt" &
 sampler=$!
-"$bin_dir/ray_cast_on_gpu" "$in_dir/queries.bin" "$out_dir/measured.csv" || record $?
-"$bin_dir/sact_on_gpu" "$out_dir/sact_measured.csv" "${sact_files[@]}" || record $?
+"$bin_dir/ray_cast_on_gpu" "$in_dir/queries.bin" "$out_dir/measured.csv" "${leaf[@]}" || record $?
+if [ ${#sact_files[@]} -gt 0 ]; then
+  "$bin_dir/sact_on_gpu" "$out_dir/sact_measured.csv" "${sact_files[@]}" || record $?
+fi
 kill "$sampler" || true
 {
   echo "# during the timed runs (clocks.sm, clocks.mem every 20 ms): distinct readings and their counts"
@@ -51,9 +57,11 @@ kill "$sampler" || true
 
 if command -v compute-sanitizer >/dev/null; then
   compute-sanitizer --tool memcheck --error-exitcode 9 "$bin_dir/ray_cast_on_gpu" "$in_dir/queries.bin" \
-    "$bin_dir/memcheck.csv" --profile >"$out_dir/memcheck.txt" 2>&1 || record $?
-  compute-sanitizer --tool memcheck --error-exitcode 9 "$bin_dir/sact_on_gpu" "$bin_dir/sact_memcheck.csv" \
-    --profile "${sact_files[@]}" >"$out_dir/sact_memcheck.txt" 2>&1 || record $?
+    "$bin_dir/memcheck.csv" --profile "${leaf[@]}" >"$out_dir/memcheck.txt" 2>&1 || record $?
+  if [ ${#sact_files[@]} -gt 0 ]; then
+    compute-sanitizer --tool memcheck --error-exitcode 9 "$bin_dir/sact_on_gpu" "$bin_dir/sact_memcheck.csv" \
+      --profile "${sact_files[@]}" >"$out_dir/sact_memcheck.txt" 2>&1 || record $?
+  fi
 fi
 if command -v ncu >/dev/null; then
   metrics=gpu__time_duration.sum,sm__cycles_elapsed.max,sm__cycles_elapsed.avg.per_second
@@ -62,10 +70,12 @@ if command -v ncu >/dev/null; then
   metrics+=,l1tex__t_sectors_pipe_lsu_mem_global_op_ld.sum,l1tex__t_sector_hit_rate.pct,lts__t_sector_hit_rate.pct
   metrics+=,sm__warps_active.avg.pct_of_peak_sustained_active,launch__registers_per_thread
   ncu --clock-control none --csv --metrics "$metrics" "$bin_dir/ray_cast_on_gpu" "$in_dir/queries.bin" \
-    "$bin_dir/profile_run.csv" --profile >"$out_dir/profile.csv" 2>"$bin_dir/ncu.err" ||
-    { echo "# ncu failed on ray_cast_on_gpu:"; tail -5 "$bin_dir/ncu.err"; } >>"$out_dir/gpu.txt"
-  ncu --clock-control none --csv --metrics "$metrics" "$bin_dir/sact_on_gpu" "$bin_dir/sact_profile_run.csv" \
-    --profile "${sact_files[@]}" >"$out_dir/sact_profile.csv" 2>"$bin_dir/ncu.err" ||
-    { echo "# ncu failed on sact_on_gpu:"; tail -5 "$bin_dir/ncu.err"; } >>"$out_dir/gpu.txt"
+    "$bin_dir/profile_run.csv" --profile "${leaf[@]}" >"$out_dir/profile.csv" 2>"$bin_dir/ncu.err" ||
+    { echo "# ncu failed on ray_cast_on_gpu:"; tail -n 5 "$bin_dir/ncu.err"; } >>"$out_dir/gpu.txt"
+  if [ ${#sact_files[@]} -gt 0 ]; then
+    ncu --clock-control none --csv --metrics "$metrics" "$bin_dir/sact_on_gpu" "$bin_dir/sact_profile_run.csv" \
+      --profile "${sact_files[@]}" >"$out_dir/sact_profile.csv" 2>"$bin_dir/ncu.err" ||
+      { echo "# ncu failed on sact_on_gpu:"; tail -n 5 "$bin_dir/ncu.err"; } >>"$out_dir/gpu.txt"
+  fi
 fi
 exit $status

@@ -1,5 +1,5 @@
 // The GPU check's query files (benchmarks/gpu/ray_cast_query_file.h,
-// sact_query_file.h): what the host writes is what the device harness reads, and a damaged file is
+// beam_leaf_file.h, sact_query_file.h): what the host writes is what the device harness reads, and a damaged file is
 // refused with the field named. And the H100 preset the check prices under
 // loads and says what it says (backends/presets/h100.json).
 #include <cstdio>
@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "backends/backend_preset.h"
+#include "benchmarks/gpu/beam_leaf_file.h"
 #include "benchmarks/gpu/ray_cast_query_file.h"
 #include "benchmarks/gpu/sact_query_file.h"
 
@@ -143,6 +144,37 @@ TEST(GpuQueryFile, ASactSceneIsReadBackAndADamagedOneRefused) {
   std::filesystem::resize_file(path, std::filesystem::file_size(path) - 4);
   EXPECT_FALSE(gpu_check::ReadSactFile(path, &g, &error));
   EXPECT_NE(error.find("nodes_visited: truncated"), std::string::npos) << error;
+  std::filesystem::remove(path);
+}
+
+TEST(GpuQueryFile, ABeamLeafFileIsReadBackAndBadParametersRefused) {
+  gpu_check::BeamLeafFile f;
+  f.z_hit = 0.5;
+  f.z_short = 0.05;
+  f.z_max = 0.05;
+  f.z_rand = 0.5;
+  f.sigma_hit_m = 0.2;
+  f.lambda_short_per_m = 0.1;
+  f.max_range_m = 10.0;
+  f.measured_m = {1.0, 10.0};
+  f.host_log_density = {std::vector<double>{-1.0, -3.0}, std::vector<double>{-1.5, -3.0},
+                        std::vector<double>{-1.5, -3.0}};
+  const std::string path = TempPath("rc_gpu_leaf_roundtrip.bin");
+  std::string error;
+  ASSERT_TRUE(gpu_check::WriteBeamLeafFile(f, path, &error)) << error;
+  gpu_check::BeamLeafFile g;
+  ASSERT_TRUE(gpu_check::ReadBeamLeafFile(path, &g, &error)) << error;
+  EXPECT_EQ(g.sigma_hit_m, 0.2);
+  EXPECT_EQ(g.measured_m, f.measured_m);
+  EXPECT_EQ(g.host_log_density[1], f.host_log_density[1]);
+
+  f.sigma_hit_m = 0.0;  // the hit Gaussian needs a width
+  ASSERT_TRUE(gpu_check::WriteBeamLeafFile(f, path, &error)) << error;
+  EXPECT_FALSE(gpu_check::ReadBeamLeafFile(path, &g, &error));
+  EXPECT_NE(error.find("beam parameters"), std::string::npos) << error;
+
+  f.host_log_density[2].pop_back();
+  EXPECT_FALSE(gpu_check::WriteBeamLeafFile(f, path, &error));
   std::filesystem::remove(path);
 }
 
