@@ -30,29 +30,15 @@
 
 #include "backends/cuda/ray_cast_kernels.cu"
 #include "benchmarks/gpu/beam_leaf_file.h"
+#include "benchmarks/gpu/launch_timing.cuh"
 #include "benchmarks/gpu/ray_cast_query_file.h"
 
 namespace {
 
+using rc::gpu_check::Upload;
+
 using rc::gpu_check::BeamLeafFile;
 using rc::gpu_check::RayCastQueryFile;
-
-#define CHECK_CUDA(call)                                                                     \
-  do {                                                                                       \
-    const cudaError_t status_ = (call);                                                      \
-    if (status_ != cudaSuccess) {                                                            \
-      std::fprintf(stderr, "ray_cast_on_gpu: %s: %s\n", #call, cudaGetErrorString(status_)); \
-      std::exit(1);                                                                          \
-    }                                                                                        \
-  } while (0)
-
-template <typename T>
-T* Upload(const std::vector<T>& host) {
-  T* device = nullptr;
-  CHECK_CUDA(cudaMalloc(&device, host.size() * sizeof(T)));
-  CHECK_CUDA(cudaMemcpy(device, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice));
-  return device;
-}
 
 // The batch's rays in one order and precision, on the device.
 template <typename T>
@@ -134,11 +120,8 @@ struct Row {
   double median_s = 0, min_s = 0;
 };
 
-constexpr int kThreadsPerBlock = 256;  // gpu.warps_per_block 8 of the model
-// Launches per configuration: warm-ups, then timed ones. `--profile` runs
-// one of each, for a profiler that replays every launch (run_on_gpu.sh).
-int warmups = 3;
-int timed_launches = 21;
+constexpr int kThreadsPerBlock = 256;       // gpu.warps_per_block 8 of the model
+rc::gpu_check::LaunchCounts launch_counts;  // `--profile`: one warm-up, one timed
 
 // The leaf's inputs on the device (null without a leaf file).
 template <typename T>
@@ -178,34 +161,19 @@ Row RunOne(const RayCastQueryFile& f, int method, bool grid_ordered, Leaf leaf_k
   row.precision = sizeof(T) == 8 ? "fp64" : "fp32";
   row.queries = static_cast<std::size_t>(n);
   cudaFuncAttributes attributes{};
-  CHECK_CUDA(cudaFuncGetAttributes(&attributes, kernel));
+  RC_CHECK_CUDA(cudaFuncGetAttributes(&attributes, kernel));
   row.registers = attributes.numRegs;
 
-  cudaEvent_t start, stop;
-  CHECK_CUDA(cudaEventCreate(&start));
-  CHECK_CUDA(cudaEventCreate(&stop));
-  std::vector<double> seconds;
-  for (int i = 0; i < warmups + timed_launches; ++i) {
-    CHECK_CUDA(cudaEventRecord(start));
-    kernel<<<blocks, kThreadsPerBlock>>>(grid, distance, launch);
-    CHECK_CUDA(cudaEventRecord(stop));
-    CHECK_CUDA(cudaEventSynchronize(stop));
-    CHECK_CUDA(cudaGetLastError());
-    float ms = 0;
-    CHECK_CUDA(cudaEventElapsedTime(&ms, start, stop));
-    if (i >= warmups) seconds.push_back(ms * 1e-3);
-  }
-  CHECK_CUDA(cudaEventDestroy(start));
-  CHECK_CUDA(cudaEventDestroy(stop));
-  std::sort(seconds.begin(), seconds.end());
-  row.timed_launches = static_cast<int>(seconds.size());
-  row.median_s = seconds[seconds.size() / 2];
-  row.min_s = seconds.front();
+  const rc::gpu_check::LaunchTimes times =
+      rc::gpu_check::TimeLaunches(launch_counts, [&] { kernel<<<blocks, kThreadsPerBlock>>>(grid, distance, launch); });
+  row.timed_launches = times.timed;
+  row.median_s = times.median_s;
+  row.min_s = times.min_s;
 
   std::vector<float> got_range(n);
   std::vector<unsigned> got_nodes(n);
-  CHECK_CUDA(cudaMemcpy(got_range.data(), range_m, n * sizeof(float), cudaMemcpyDeviceToHost));
-  CHECK_CUDA(cudaMemcpy(got_nodes.data(), nodes, n * sizeof(unsigned), cudaMemcpyDeviceToHost));
+  RC_CHECK_CUDA(cudaMemcpy(got_range.data(), range_m, n * sizeof(float), cudaMemcpyDeviceToHost));
+  RC_CHECK_CUDA(cudaMemcpy(got_nodes.data(), nodes, n * sizeof(unsigned), cudaMemcpyDeviceToHost));
   const rc::gpu_check::HostAnswers& host = f.host[method];
   for (int i = 0; i < n; ++i) {
     const std::size_t q = grid_ordered ? f.grid_order[i] : static_cast<std::size_t>(i);
@@ -218,7 +186,7 @@ Row RunOne(const RayCastQueryFile& f, int method, bool grid_ordered, Leaf leaf_k
   }
   if (leaf_kind != Leaf::kNone) {
     std::vector<T> got_log(n);
-    CHECK_CUDA(cudaMemcpy(got_log.data(), leaf.log_density, n * sizeof(T), cudaMemcpyDeviceToHost));
+    RC_CHECK_CUDA(cudaMemcpy(got_log.data(), leaf.log_density, n * sizeof(T), cudaMemcpyDeviceToHost));
     const std::vector<double>& expected = leaf.file->host_log_density[method];
     for (int i = 0; i < n; ++i) {  // the leaf runs in random (query) order
       const double got = static_cast<double>(got_log[i]);
@@ -234,6 +202,7 @@ Row RunOne(const RayCastQueryFile& f, int method, bool grid_ordered, Leaf leaf_k
 }  // namespace
 
 int main(int argc, char** argv) {
+  rc::gpu_check::program_name = "ray_cast_on_gpu";
   bool profile = false;
   const char* leaf_path = nullptr;
   bool usage = argc < 3;
@@ -249,7 +218,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: ray_cast_on_gpu QUERIES.bin OUT.csv [--profile] [LEAF.bin]\n");
     return 1;
   }
-  if (profile) warmups = timed_launches = 1;
+  if (profile) launch_counts.warmups = launch_counts.timed = 1;
   RayCastQueryFile f;
   BeamLeafFile leaf_file;
   std::string error;
@@ -264,7 +233,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   cudaDeviceProp props{};
-  CHECK_CUDA(cudaGetDeviceProperties(&props, 0));
+  RC_CHECK_CUDA(cudaGetDeviceProperties(&props, 0));
   std::printf("device: %s, %d SMs, L2 %d bytes; %zu rays on a %d x %d grid\n", props.name, props.multiProcessorCount,
               props.l2CacheSize, f.queries(), f.size_x, f.size_y);
 
@@ -272,8 +241,8 @@ int main(int argc, char** argv) {
   float* df = Upload(f.distance_m);
   float* range_m = nullptr;
   unsigned* nodes = nullptr;
-  CHECK_CUDA(cudaMalloc(&range_m, f.queries() * sizeof(float)));
-  CHECK_CUDA(cudaMalloc(&nodes, f.queries() * sizeof(unsigned)));
+  RC_CHECK_CUDA(cudaMalloc(&range_m, f.queries() * sizeof(float)));
+  RC_CHECK_CUDA(cudaMalloc(&nodes, f.queries() * sizeof(unsigned)));
   const DeviceRays<double> random64 = UploadRays<double>(f, nullptr), grid64 = UploadRays<double>(f, &f.grid_order);
   const DeviceRays<float> random32 = UploadRays<float>(f, nullptr), grid32 = UploadRays<float>(f, &f.grid_order);
 
@@ -284,8 +253,8 @@ int main(int argc, char** argv) {
     std::vector<float> measured32(leaf_file.measured_m.begin(), leaf_file.measured_m.end());
     leaf64.measured_m = Upload(leaf_file.measured_m);
     leaf32.measured_m = Upload(measured32);
-    CHECK_CUDA(cudaMalloc(&leaf64.log_density, f.queries() * sizeof(double)));
-    CHECK_CUDA(cudaMalloc(&leaf32.log_density, f.queries() * sizeof(float)));
+    RC_CHECK_CUDA(cudaMalloc(&leaf64.log_density, f.queries() * sizeof(double)));
+    RC_CHECK_CUDA(cudaMalloc(&leaf32.log_density, f.queries() * sizeof(float)));
   }
 
   // The traversal alone, in both orders, first (report.py reads the

@@ -24,9 +24,12 @@
 #include <cuda_runtime.h>
 
 #include "backends/cuda/sact_kernel.cu"
+#include "benchmarks/gpu/launch_timing.cuh"
 #include "benchmarks/gpu/sact_query_file.h"
 
 namespace {
+
+using rc::gpu_check::Upload;
 
 using rc::gpu_check::SactQueryFile;
 using rc_cuda::FlatNode;
@@ -34,27 +37,9 @@ using rc_cuda::ObbIn;
 using rc_cuda::SactLaunch;
 using rc_cuda::TreeResult;
 
-#define CHECK_CUDA(call)                                                                 \
-  do {                                                                                   \
-    const cudaError_t status_ = (call);                                                  \
-    if (status_ != cudaSuccess) {                                                        \
-      std::fprintf(stderr, "sact_on_gpu: %s: %s\n", #call, cudaGetErrorString(status_)); \
-      std::exit(1);                                                                      \
-    }                                                                                    \
-  } while (0)
-
-constexpr int kLargeRepeat = 16;       // gpu_sact_export's
-constexpr int kThreadsPerBlock = 256;  // gpu.warps_per_block 8 of the model
-int warmups = 3;
-int timed_launches = 21;
-
-template <typename T>
-T* Upload(const std::vector<T>& host) {
-  T* device = nullptr;
-  CHECK_CUDA(cudaMalloc(&device, host.size() * sizeof(T)));
-  CHECK_CUDA(cudaMemcpy(device, host.data(), host.size() * sizeof(T), cudaMemcpyHostToDevice));
-  return device;
-}
+constexpr int kLargeRepeat = 16;            // gpu_sact_export's
+constexpr int kThreadsPerBlock = 256;       // gpu.warps_per_block 8 of the model
+rc::gpu_check::LaunchCounts launch_counts;  // `--profile`: one warm-up, one timed
 
 template <typename T>
 std::vector<FlatNode<T>> NodesOf(const SactQueryFile& f) {
@@ -105,7 +90,7 @@ Row RunOne(const SactQueryFile& f, int repeat) {
   FlatNode<T>* d_nodes = Upload(nodes);
   ObbIn<T>* d_obbs = Upload(obbs);
   TreeResult* d_results = nullptr;
-  CHECK_CUDA(cudaMalloc(&d_results, n * sizeof(TreeResult)));
+  RC_CHECK_CUDA(cudaMalloc(&d_results, n * sizeof(TreeResult)));
   SactLaunch<T> launch{d_nodes, static_cast<int>(nodes.size()),     d_obbs,
                        n,       static_cast<T>(f.parallel_epsilon), d_results};
   void (*kernel)(SactLaunch<T>) = nullptr;
@@ -121,31 +106,16 @@ Row RunOne(const SactQueryFile& f, int repeat) {
   row.repeat = repeat;
   row.queries = static_cast<std::size_t>(n);
   cudaFuncAttributes attributes{};
-  CHECK_CUDA(cudaFuncGetAttributes(&attributes, kernel));
+  RC_CHECK_CUDA(cudaFuncGetAttributes(&attributes, kernel));
   row.registers = attributes.numRegs;
-  cudaEvent_t start, stop;
-  CHECK_CUDA(cudaEventCreate(&start));
-  CHECK_CUDA(cudaEventCreate(&stop));
-  std::vector<double> seconds;
-  for (int i = 0; i < warmups + timed_launches; ++i) {
-    CHECK_CUDA(cudaEventRecord(start));
-    kernel<<<blocks, kThreadsPerBlock>>>(launch);
-    CHECK_CUDA(cudaEventRecord(stop));
-    CHECK_CUDA(cudaEventSynchronize(stop));
-    CHECK_CUDA(cudaGetLastError());
-    float ms = 0;
-    CHECK_CUDA(cudaEventElapsedTime(&ms, start, stop));
-    if (i >= warmups) seconds.push_back(ms * 1e-3);
-  }
-  CHECK_CUDA(cudaEventDestroy(start));
-  CHECK_CUDA(cudaEventDestroy(stop));
-  std::sort(seconds.begin(), seconds.end());
-  row.timed = static_cast<int>(seconds.size());
-  row.median_s = seconds[seconds.size() / 2];
-  row.min_s = seconds.front();
+  const rc::gpu_check::LaunchTimes times =
+      rc::gpu_check::TimeLaunches(launch_counts, [&] { kernel<<<blocks, kThreadsPerBlock>>>(launch); });
+  row.timed = times.timed;
+  row.median_s = times.median_s;
+  row.min_s = times.min_s;
 
   std::vector<TreeResult> got(n);
-  CHECK_CUDA(cudaMemcpy(got.data(), d_results, n * sizeof(TreeResult), cudaMemcpyDeviceToHost));
+  RC_CHECK_CUDA(cudaMemcpy(got.data(), d_results, n * sizeof(TreeResult), cudaMemcpyDeviceToHost));
   for (int i = 0; i < n; ++i) {
     const std::size_t q = static_cast<std::size_t>(i) % f.queries();
     row.nodes += got[i].nodes_visited;
@@ -154,18 +124,19 @@ Row RunOne(const SactQueryFile& f, int repeat) {
       ++row.outcome_mismatches;
     if (got[i].nodes_visited != f.nodes_visited[q]) ++row.node_mismatches;
   }
-  CHECK_CUDA(cudaFree(d_nodes));
-  CHECK_CUDA(cudaFree(d_obbs));
-  CHECK_CUDA(cudaFree(d_results));
+  RC_CHECK_CUDA(cudaFree(d_nodes));
+  RC_CHECK_CUDA(cudaFree(d_obbs));
+  RC_CHECK_CUDA(cudaFree(d_results));
   return row;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  rc::gpu_check::program_name = "sact_on_gpu";
   int first_file = 2;
   if (argc > 2 && std::strcmp(argv[2], "--profile") == 0) {
-    warmups = timed_launches = 1;
+    launch_counts.warmups = launch_counts.timed = 1;
     first_file = 3;
   }
   if (argc <= first_file) {
@@ -173,7 +144,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   cudaDeviceProp props{};
-  CHECK_CUDA(cudaGetDeviceProperties(&props, 0));
+  RC_CHECK_CUDA(cudaGetDeviceProperties(&props, 0));
   std::vector<Row> rows;
   for (int a = first_file; a < argc; ++a) {
     SactQueryFile f;
