@@ -37,27 +37,28 @@ std::string ExitCodeFooter(const std::string& no_path_meaning) {
   return text;
 }
 
-ExitCode ReportException(const std::exception_ptr& error, std::ostream& err) {
+ExitCode ReportException(const std::exception_ptr& error, std::ostream& err, const char* program) {
   try {
     std::rethrow_exception(error);
   } catch (const UsageError& e) {
-    err << "rcbench: usage: " << e.what() << "\n";
+    err << program << ": usage: " << e.what() << "\n";
     return ExitCode::kUsage;
   } catch (const InputError& e) {
-    err << "rcbench: error: " << e.what() << "\n";
+    err << program << ": error: " << e.what() << "\n";
     return ExitCode::kInputError;
   } catch (const OutputError& e) {
-    err << "rcbench: error: " << e.what() << "\n";
+    err << program << ": error: " << e.what() << "\n";
     return ExitCode::kInputError;
   } catch (const std::bad_alloc&) {
-    err << "rcbench: internal error: out of memory in a step no size check foresaw; please report it "
+    err << program
+        << ": internal error: out of memory in a step no size check foresaw; please report it "
            "with the command line\n";
     return ExitCode::kInternalError;
   } catch (const std::exception& e) {
-    err << "rcbench: internal error: " << e.what() << " (please report it with the command line)\n";
+    err << program << ": internal error: " << e.what() << " (please report it with the command line)\n";
     return ExitCode::kInternalError;
   } catch (...) {
-    err << "rcbench: internal error: unknown exception (please report it with the command line)\n";
+    err << program << ": internal error: unknown exception (please report it with the command line)\n";
     return ExitCode::kInternalError;
   }
 }

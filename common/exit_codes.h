@@ -39,10 +39,10 @@ const std::vector<ExitCodeEntry>& ExitCodeTable();
 // subcommand's --help footer. Subcommands that never exit with 3 pass "".
 std::string ExitCodeFooter(const std::string& no_path_meaning);
 
-// Prints one "rcbench: ..." line for the exception to `err` and returns its
-// code: UsageError -> kUsage; InputError, OutputError -> kInputError;
+// Prints one "<program>: ..." line for the exception to `err` and returns
+// its code: UsageError -> kUsage; InputError, OutputError -> kInputError;
 // anything else -> kInternalError.
-ExitCode ReportException(const std::exception_ptr& error, std::ostream& err);
+ExitCode ReportException(const std::exception_ptr& error, std::ostream& err, const char* program = "rcbench");
 
 constexpr int ToInt(ExitCode code) { return static_cast<int>(code); }
 

@@ -38,6 +38,7 @@
 #include "benchmarks/gpu/ray_cast_query_file.h"
 #include "benchmarks/gpu/simt_model_columns.h"
 #include "benchmarks/ray_cast_queries.h"
+#include "common/exit_codes.h"
 #include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
@@ -107,27 +108,6 @@ int Run(int argc, char** argv) {
   }
   file.grid_order = q.grid_order;
 
-  // The beam leaf's inputs: a measured range per ray, the dda range plus
-  // Gaussian noise (0.1 m), clipped to [0, max range]; the beam model's
-  // default parameters at the batch's max range.
-  gpu_check::BeamLeafFile leaf;
-  BeamModelParams beam;
-  beam.max_range_m = random_batch.max_range_m;
-  leaf.z_hit = beam.z_hit;
-  leaf.z_short = beam.z_short;
-  leaf.z_max = beam.z_max;
-  leaf.z_rand = beam.z_rand;
-  leaf.sigma_hit_m = beam.sigma_hit_m;
-  leaf.lambda_short_per_m = beam.lambda_short_per_m;
-  leaf.max_range_m = beam.max_range_m;
-  {
-    std::vector<RayHit> hits;
-    CastRayBatch(RayCastScene(grid, RayCastMethod::kDda), random_batch, hits);
-    RandomStream noise(2, StreamPurpose::kTest, 0, 0);
-    for (const RayHit& h : hits)
-      leaf.measured_m.push_back(std::clamp(h.range_m + 0.1 * noise.Gaussian(), 0.0, beam.max_range_m));
-  }
-
   std::filesystem::create_directories(out_dir);
   std::ofstream csv(out_dir + "/model.csv");
   csv << "map,preset,method,order,leaf,precision,isa," << gpu_check::kSimtCostColumns << '\n';
@@ -150,11 +130,9 @@ int Run(int argc, char** argv) {
       KernelRecord record;
       CastRayBatchRecorded(scene, batch, hits, record, options);
       if (!launch.grid_ordered && launch.leaf == LeafProgramKind::kNone) {
-        for (std::size_t i = 0; i < hits.size(); ++i) {
-          file.host[m].range_m.push_back(hits[i].range_m);
-          file.host[m].nodes.push_back(hits[i].nodes);
-          leaf.host_log_density[m].push_back(
-              BeamLogDensity(beam, leaf.measured_m[i], static_cast<double>(hits[i].range_m)));
+        for (const RayHit& h : hits) {
+          file.host[m].range_m.push_back(h.range_m);
+          file.host[m].nodes.push_back(h.nodes);
         }
       }
       const std::vector<SimtBeamLeaf> leaves =
@@ -181,7 +159,29 @@ int Run(int argc, char** argv) {
       }
     }
   }
-  if (file.distance_m.empty()) file.distance_m.assign(grid.cell_count(), 0.0f);
+
+  // The beam leaf's inputs: a measured range per ray, the host's dda range
+  // plus Gaussian noise (0.1 m), clipped to [0, max range]; the beam model's
+  // default parameters at the batch's max range; the host's exact log
+  // density of each ray for each method (the leaf scores the float range).
+  gpu_check::BeamLeafFile leaf;
+  BeamModelParams beam;
+  beam.max_range_m = random_batch.max_range_m;
+  leaf.z_hit = beam.z_hit;
+  leaf.z_short = beam.z_short;
+  leaf.z_max = beam.z_max;
+  leaf.z_rand = beam.z_rand;
+  leaf.sigma_hit_m = beam.sigma_hit_m;
+  leaf.lambda_short_per_m = beam.lambda_short_per_m;
+  leaf.max_range_m = beam.max_range_m;
+  RandomStream noise(2, StreamPurpose::kTest, 0, 0);
+  for (float range_m : file.host[1].range_m)  // dda
+    leaf.measured_m.push_back(std::clamp(range_m + 0.1 * noise.Gaussian(), 0.0, beam.max_range_m));
+  for (int m = 0; m < gpu_check::kMethodCount; ++m)
+    for (std::size_t i = 0; i < leaf.queries(); ++i)
+      leaf.host_log_density[m].push_back(
+          BeamLogDensity(beam, leaf.measured_m[i], static_cast<double>(file.host[m].range_m[i])));
+
   std::string error;
   if (!gpu_check::WriteQueryFile(file, out_dir + "/queries.bin", &error) ||
       !gpu_check::WriteBeamLeafFile(leaf, out_dir + "/leaf.bin", &error)) {
@@ -201,4 +201,10 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace rc
 
-int main(int argc, char** argv) { return rc::Run(argc, argv); }
+int main(int argc, char** argv) {
+  try {
+    return rc::Run(argc, argv);
+  } catch (...) {  // a bad preset or map file: its name and field, exit 1 (common/exit_codes.h)
+    return rc::ToInt(rc::ReportException(std::current_exception(), std::cerr, "gpu_ray_cast_export"));
+  }
+}

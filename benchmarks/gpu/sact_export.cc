@@ -32,6 +32,7 @@
 #include "backends/calibration/pricing_helpers.h"
 #include "benchmarks/gpu/sact_query_file.h"
 #include "benchmarks/gpu/simt_model_columns.h"
+#include "common/exit_codes.h"
 #include "robocore/collision/flat_box_tree.h"
 #include "robocore/collision/sact_kernel_record.h"
 #include "robocore/collision/tree_collision.h"
@@ -141,4 +142,10 @@ int Run(int argc, char** argv) {
 }  // namespace
 }  // namespace rc
 
-int main(int argc, char** argv) { return rc::Run(argc, argv); }
+int main(int argc, char** argv) {
+  try {
+    return rc::Run(argc, argv);
+  } catch (...) {  // a bad preset or arm file: its name and field, exit 1 (common/exit_codes.h)
+    return rc::ToInt(rc::ReportException(std::current_exception(), std::cerr, "gpu_sact_export"));
+  }
+}
