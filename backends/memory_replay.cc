@@ -182,10 +182,20 @@ class SmReplay {
     const std::uint32_t* owner = owner_.data();
     std::size_t r = 0, group_begin = 0;
     auto group = ~std::uint32_t{0};
-    // Whether `s` is among the group's requests so far: a warp step has at
-    // most 32 lanes and usually a few distinct sectors, and a repeat is
-    // most often a recent one, so scan backwards.
+    // Whether `s` is among the group's requests so far, and if not, notes
+    // it. A sector claims the slot s mod 64 of `recent_` for its group when
+    // the slot holds another group's; so a sector already requested in this
+    // group is in its slot, unless another sector of the group held the slot
+    // first, and only then are the group's requests scanned.
+    recent_.fill(~std::uint64_t{0});
     auto repeat = [&](std::uint32_t s) {
+      std::uint64_t& slot = recent_[s % recent_.size()];
+      const std::uint64_t mine = std::uint64_t{group} << 32 | s;
+      if (slot == mine) return true;
+      if (slot >> 32 != group) {
+        slot = mine;
+        return false;
+      }
       for (std::size_t i = r; i-- > group_begin;)
         if (out_sector[i] == s) return true;
       return false;
@@ -201,7 +211,7 @@ class SmReplay {
         }
         if (one_sector_nodes_) {
           const std::uint32_t s = sector_[e];
-          if (!starts && repeat(s)) continue;
+          if (repeat(s)) continue;
           out_sector[r] = s;
           out_group[r++] = group;
           continue;
@@ -263,6 +273,7 @@ class SmReplay {
   std::vector<std::uint32_t> lane_query_, lane_owner_, step_start_, cursor_;
   std::vector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
   std::vector<std::uint64_t> address_;
+  std::array<std::uint64_t, 64> recent_;  // WalkCoalesced: (group, sector) per slot
 };
 
 // The memory of the SMs a sampled record did not keep, estimated from the
@@ -336,17 +347,21 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
   };
   auto add = [](std::uint64_t& cycles, double extra) { cycles += static_cast<std::uint64_t>(std::llround(extra)); };
-  // A warp's queries in order of node count, ties in launch order: sorted
-  // as keys (node count, lane), which are distinct, so an unstable sort
-  // gives the stable order without a buffer.
+  // A warp's queries in order of node count, ties in launch order: each
+  // lane's key (node count, lane) is distinct, so its place is the number
+  // of smaller keys (a warp has at most 64 lanes: counting is cheaper than
+  // a sort, and has no branch to mispredict).
   std::vector<std::uint64_t> keys;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
     const std::size_t first = std::size_t{warp} * lanes, end = std::min(n, first + lanes);
     keys.clear();
     for (std::size_t q = first; q < end; ++q) keys.push_back(std::uint64_t{record.nodes(q)} << 32 | (q - first));
-    std::sort(keys.begin(), keys.end());
-    out.clear();
-    for (std::uint64_t key : keys) out.push_back(first + (key & 0xffffffffu));
+    out.resize(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      std::size_t place = 0;
+      for (std::uint64_t other : keys) place += other < keys[i];
+      out[place] = first + i;
+    }
   };
   // Each twin lends to a warp of every unsampled SM: its order is sorted
   // once, when first borrowed.

@@ -346,6 +346,26 @@ RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecord
   }
 }
 
+// Appends the indices of a group's fetched cells to their lanes' logs
+// (only lanes that hold a query: the others step on a ray already cast).
+RC_LANES_TARGET inline void LogNodes(const StepResult& step, int g, LaneMask live, LaneNodeLog& log) {
+  alignas(32) std::int32_t index[kRayLanes];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(index), step.index);
+  for (unsigned m = step.fetch & static_cast<unsigned>(live >> (g * kRayLanes)); m != 0; m &= m - 1) {
+    const int l = __builtin_ctz(m);
+    log.lane[g * kRayLanes + l].push_back(static_cast<std::uint32_t>(index[l]));
+  }
+}
+
+// Notes where the queries now in `lanes` begin in their lanes' logs.
+inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
+  for (; lanes != 0; lanes &= lanes - 1) {
+    const int l = __builtin_ctzll(lanes);
+    log.lane_of[s.query[l]] = static_cast<std::uint32_t>(l);
+    log.start_of[s.query[l]] = static_cast<std::uint32_t>(log.lane[l].size());
+  }
+}
+
 // Every group steps once per round; lanes whose ray ended are refilled.
 // Lanes without a query keep stepping harmlessly (every fetch is masked to
 // cells inside the map) until the last ray ends; with a recording, they
@@ -359,6 +379,13 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
   std::size_t next = 0;
   const double r = scene.grid().resolution_m();
   LaneMask live = StartAll(s, queries, count, next, r);
+  LaneNodeLog* log = kRecord ? rec->nodes : nullptr;
+  if (log) {
+    for (std::vector<std::uint32_t>& lane : log->lane) lane.clear();
+    log->lane_of.assign(count, 0);
+    log->start_of.assign(count, 0);
+    LogStarts(s, live, *log);
+  }
   while (live != 0) {
     LaneMask ended = 0, stopped = 0;
     for (int g = 0; g < kGroups; ++g) {
@@ -369,6 +396,7 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
       if constexpr (kRecord) {
         stopped |= static_cast<LaneMask>(step.stopped) << (g * kRayLanes);
         if (rec->touched) MarkTouched(step, *rec);
+        if (log) LogNodes(step, g, live, *log);
       }
     }
     ended &= live;
@@ -379,7 +407,10 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
           rec->last_exits[s.query[l]] = s.nodes[l] == 0 ? kNoExit : (stopped >> l) & 1 ? kRayHitReturn : kRayEndReturn;
         }
     }
-    if (ended != 0) Refill(s, ended, queries, count, next, live, hits, r);
+    if (ended != 0) {
+      Refill(s, ended, queries, count, next, live, hits, r);
+      if (log) LogStarts(s, ended & live, *log);
+    }
   }
 }
 

@@ -24,6 +24,7 @@
 // -march flag is needed.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "robocore/ray_batch.h"
 
@@ -44,9 +45,20 @@ bool RayLanesSupported();
 // indices fit a 32-bit gather.
 bool RayLanesApply(const RayCastScene& scene);
 
+// The index of every node each query of a call fetched, in fetch order, as
+// the lanes leave them: per lane, the queries it ran one after another.
+// Query q's are the first hits[q].nodes entries at NodesOf(q). A recording
+// that keeps addresses asks for it; the buffers keep their capacity from
+// call to call.
+struct LaneNodeLog {
+  std::vector<std::uint32_t> lane[kRaysInFlight];
+  std::vector<std::uint32_t> lane_of, start_of;  // per query of the call
+  const std::uint32_t* NodesOf(std::size_t q) const { return lane[lane_of[q]].data() + start_of[q]; }
+};
+
 // What a recorded batch (robocore/ray_batch_recorded.h) also takes from the
-// lanes: each query's last loop pass's exit, and the sectors its node
-// fetches touched.
+// lanes: each query's last loop pass's exit, the sectors its node fetches
+// touched, and the nodes it fetched.
 struct LaneRecording {
   // Per query: kRayHitReturn when the last fetched node stopped the ray,
   // kRayEndReturn when the next one was out of range or off the map, kNoExit
@@ -59,6 +71,7 @@ struct LaneRecording {
   std::uint64_t offset = 0;         // bytes from the footprint's begin to the fetched structure
   std::uint32_t element_bytes = 1;  // bytes per fetched node
   int sector_shift = 5;             // log2(sector bytes)
+  LaneNodeLog* nodes = nullptr;     // null: not wanted
 };
 
 // Casts queries [0, count) into hits [0, count) with the scene's method.

@@ -157,53 +157,92 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     prototype.element_bytes[k] = r.element_bytes;
   }
   prototype.sector_shift = sector_shift;
-  // Segments of the batch, each cast as a unit: a kept block (scalar, with
-  // the recording visitor), or a run of unkept blocks, cut to at most
-  // kUnkeptSegment queries so that two threads even out (cast in AVX-512
-  // lanes where they apply, ray_batch_lanes.h, which also give the exits and
-  // touched sectors; else scalar with the marking visitor).
-  constexpr long kUnkeptSegment = 2048;
+  // Segments of the batch, each cast as a unit, at most kSegmentQueries
+  // queries so that two threads even out. With the AVX-512 lanes
+  // (ray_batch_lanes.h, which also give the exits, touched sectors and node
+  // indices): a run of unkept blocks, or kept blocks gathered into one
+  // contiguous batch (a sample's kept blocks lie apart, and a lone block
+  // leaves the lanes idle while its last rays finish). Without the lanes:
+  // a run of unkept blocks (scalar, with the marking visitor) or one kept
+  // block (scalar, with the recording visitor).
+  constexpr long kSegmentQueries = 2048;
   struct Segment {
-    long lo, hi;
-    bool keep;
+    std::vector<long> blocks;  // ascending; consecutive unless kept
+    long queries = 0;
+    bool keep = false;
   };
-  std::vector<Segment> segments;
-  for (long b = 0; b < blocks; ++b) {
-    const long lo = b * block, hi = std::min(n, lo + block);
-    const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-    Segment* last = segments.empty() ? nullptr : &segments.back();
-    if (!keep && last && !last->keep && last->hi == lo && hi - last->lo <= kUnkeptSegment)
-      last->hi = hi;
-    else
-      segments.push_back({lo, hi, keep});
-  }
   const bool lanes = RayLanesApply(scene);
+  std::vector<Segment> segments;
+  long open[2] = {-1, -1};  // the segment still taking blocks: unkept, kept
+  for (long b = 0; b < blocks; ++b) {
+    const long size = std::min(n, (b + 1) * block) - b * block;
+    const bool keep = sample.KeepsQuery(static_cast<std::size_t>(b * block));
+    long& last = open[keep];
+    const bool joins = last >= 0 && segments[last].queries + size <= kSegmentQueries &&
+                       (keep ? lanes : segments[last].blocks.back() + 1 == b);
+    if (!joins) {
+      last = static_cast<long>(segments.size());
+      segments.push_back({{}, 0, keep});
+    }
+    segments[last].blocks.push_back(b);
+    segments[last].queries += size;
+  }
   const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
 #pragma omp parallel
   {
     std::vector<std::uint64_t> mine(mark ? (sectors + 63) / 64 : 0, 0);
+    LaneNodeLog log;
+    std::vector<RayQuery> gathered;
+    std::vector<RayHit> gathered_hits;
+    std::vector<std::uint8_t> gathered_exits;
 #pragma omp for schedule(dynamic, 1)
     for (long j = 0; j < static_cast<long>(segments.size()); ++j) {
-      const Segment seg = segments[static_cast<std::size_t>(j)];
-      if (seg.keep) {
+      const Segment& seg = segments[static_cast<std::size_t>(j)];
+      const long lo = seg.blocks.front() * block;
+      LaneRecording lane;
+      lane.touched = mark ? mine.data() : nullptr;
+      lane.offset = fetched.base - footprint_begin;
+      lane.element_bytes = fetched.element_bytes;
+      lane.sector_shift = sector_shift;
+      if (seg.keep && lanes) {
+        gathered.clear();
+        for (long b : seg.blocks)
+          gathered.insert(gathered.end(), batch.queries.begin() + b * block,
+                          batch.queries.begin() + std::min(n, (b + 1) * block));
+        gathered_hits.resize(gathered.size());
+        gathered_exits.assign(gathered.size(), kNoExit);
+        lane.last_exits = gathered_exits.data();
+        lane.nodes = &log;
+        CastRayLanes(scene, gathered.data(), gathered.size(), batch.max_range_m, gathered_hits.data(), &lane);
+        std::size_t g = 0;
+        for (long b : seg.blocks) {
+          std::vector<std::uint64_t>& out = block_addresses[static_cast<std::size_t>(b)];
+          std::size_t fetches = 0;
+          for (std::size_t i = g; i < g + static_cast<std::size_t>(std::min(n, (b + 1) * block) - b * block); ++i)
+            fetches += gathered_hits[i].nodes;
+          out.reserve(fetches);
+          for (long i = b * block; i < std::min(n, (b + 1) * block); ++i, ++g) {
+            hits[i] = gathered_hits[g];
+            last_exit[i] = gathered_exits[g];
+            const std::uint32_t* index = log.NodesOf(g);
+            for (std::uint32_t k = 0; k < gathered_hits[g].nodes; ++k)
+              out.push_back(fetched.base + std::uint64_t{index[k]} * fetched.element_bytes);
+          }
+        }
+      } else if (seg.keep) {
         RecordingVisitor recording = prototype;
-        recording.out = &block_addresses[static_cast<std::size_t>(seg.lo / block)];
+        recording.out = &block_addresses[static_cast<std::size_t>(seg.blocks.front())];
         recording.touched = mark ? mine.data() : nullptr;
-        recording.out->reserve(static_cast<std::size_t>(seg.hi - seg.lo) * 32);
-        for (long i = seg.lo; i < seg.hi; ++i) {
+        recording.out->reserve(static_cast<std::size_t>(seg.queries) * 32);
+        for (long i = lo; i < lo + seg.queries; ++i) {
           const RayQuery& q = batch.queries[i];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, recording);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
         }
       } else if (lanes) {
-        LaneRecording lane;
-        lane.last_exits = last_exit.data() + seg.lo;
-        lane.touched = mine.data();
-        lane.offset = fetched.base - footprint_begin;
-        lane.element_bytes = fetched.element_bytes;
-        lane.sector_shift = sector_shift;
-        CastRayLanes(scene, batch.queries.data() + seg.lo, static_cast<std::size_t>(seg.hi - seg.lo), batch.max_range_m,
-                     hits.data() + seg.lo, &lane);
+        lane.last_exits = last_exit.data() + lo;
+        CastRayLanes(scene, batch.queries.data() + lo, static_cast<std::size_t>(seg.queries), batch.max_range_m,
+                     hits.data() + lo, &lane);
       } else {
         MarkingVisitor marking;
         marking.touched = mine.data();
@@ -212,7 +251,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
           marking.element_bytes[k] = prototype.element_bytes[k];
         }
         marking.sector_shift = sector_shift;
-        for (long i = seg.lo; i < seg.hi; ++i) {
+        for (long i = lo; i < lo + seg.queries; ++i) {
           const RayQuery& q = batch.queries[i];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, marking);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);

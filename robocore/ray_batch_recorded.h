@@ -4,14 +4,14 @@
 //
 // One pass of the kernel, parallel over segments of queries with OpenMP and
 // deterministic: every query's hit, node count and last pass's exit; the
-// addresses of the blocks the sample keeps (scalar, with a recording
-// visitor, into a buffer per block, joined in launch order); and, with a
-// sample, the sectors the whole batch touched. The queries a sample does not
-// keep are cast in CastRayBatch's AVX-512 lanes where they apply
-// (ray_batch_lanes.h). The record does not depend on the thread count.
-// Cost: about CastRayBatch for the unkept queries, the scalar kernel for the
-// kept ones, plus one 8-byte store per kept fetch; a record reused across
-// batches keeps its capacity.
+// addresses of the blocks the sample keeps, in a buffer per block, joined in
+// launch order; and, with a sample, the sectors the whole batch touched.
+// Where CastRayBatch's AVX-512 lanes apply (ray_batch_lanes.h), every query
+// is cast in them, the kept ones with each lane's node indices logged;
+// elsewhere one query at a time, the kept ones with a recording visitor.
+// The record does not depend on the thread count or the path.
+// Cost: about CastRayBatch, plus one 8-byte store per kept fetch; a record
+// reused across batches keeps its capacity.
 #include <string>
 #include <vector>
 

@@ -58,6 +58,41 @@ TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
   EXPECT_EQ(record.leaf_kind, LeafProgramKind::kBeamModel);
 }
 
+// The recorded addresses are the nodes the scalar kernel visits, in its
+// order, for a full record and for a sample's kept queries (cast in AVX-512
+// lanes where the CPU has them, which log each lane's node indices).
+TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
+  struct IndexVisitor {
+    std::vector<std::uint32_t> indices;
+    void Fetch(FetchKind, std::uint32_t index) { indices.push_back(index); }
+  };
+  const OccupancyGrid grid = test::RoomGrid(80, 64, 0.1, 0.05, 3);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 90, 41, 5.5, 4);  // 3690 queries: blocks of 256 on 8 SMs
+  for (int sampled_sms : {0, 1, 3}) {
+    RecordOptions options;
+    if (sampled_sms > 0) options.sample.sampled_sms = sampled_sms;
+    std::vector<RayHit> hits;
+    KernelRecord record;
+    CastRayBatchRecorded(scene, batch, hits, record, options);
+    const MemoryRegion& region = record.regions[0];
+    std::size_t kept = 0;
+    for (std::size_t q = 0; q < batch.queries.size(); ++q) {
+      if (record.sampled() && record.address_offsets[q + 1] == record.address_offsets[q] && record.nodes(q) > 0)
+        continue;
+      IndexVisitor visitor;
+      const RayQuery& query = batch.queries[q];
+      CastRay(scene, query.origin_x_m, query.origin_y_m, query.angle_rad, batch.max_range_m, visitor);
+      ASSERT_EQ(visitor.indices.size(), record.nodes(q)) << sampled_sms << " " << q;
+      for (std::uint32_t k = 0; k < record.nodes(q); ++k)
+        ASSERT_EQ(record.addresses(q)[k], region.base + std::uint64_t{visitor.indices[k]} * region.element_bytes)
+            << sampled_sms << " " << q << " " << k;
+      ++kept;
+    }
+    EXPECT_GT(kept, 0u) << sampled_sms;
+  }
+}
+
 TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
   const RayCastScene scene(grid, GetParam());
