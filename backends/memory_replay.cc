@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -350,13 +351,28 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // A warp's queries in order of node count, ties in launch order: each
   // lane's key (node count, lane) is distinct, so its place is the number
   // of smaller keys (a warp has at most 64 lanes: counting is cheaper than
-  // a sort, and has no branch to mispredict).
+  // a sort, has no branch to mispredict, and in 32 bits, where node counts
+  // allow, runs in SIMD).
   std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> narrow_keys;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
     const std::size_t first = std::size_t{warp} * lanes, end = std::min(n, first + lanes);
     keys.clear();
-    for (std::size_t q = first; q < end; ++q) keys.push_back(std::uint64_t{record.nodes(q)} << 32 | (q - first));
+    std::uint64_t widest = 0;
+    for (std::size_t q = first; q < end; ++q) {
+      keys.push_back(std::uint64_t{record.nodes(q)} << 6 | (q - first));
+      widest = std::max(widest, keys.back());
+    }
     out.resize(keys.size());
+    if (widest <= static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max())) {
+      narrow_keys.assign(keys.begin(), keys.end());
+      for (std::size_t i = 0; i < narrow_keys.size(); ++i) {
+        std::int32_t place = 0;
+        for (std::int32_t other : narrow_keys) place += other < narrow_keys[i];
+        out[static_cast<std::size_t>(place)] = first + i;
+      }
+      return;
+    }
     for (std::size_t i = 0; i < keys.size(); ++i) {
       std::size_t place = 0;
       for (std::uint64_t other : keys) place += other < keys[i];

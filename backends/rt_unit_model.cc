@@ -72,7 +72,12 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
-  const auto exits = context.Exits();
+  // A ray record keeps one exit per query (kernel_record.h: every pass but
+  // the last has none), which prices a query in O(1) without the exit
+  // profile; other records go through the profile. Both sum the same
+  // integer products.
+  const bool exits_per_query = record.exits_per_query();
+  const auto exits = exits_per_query ? nullptr : context.Exits();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int sm = 0; sm < gpu.sms; ++sm) {
     std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
@@ -82,6 +87,19 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
       std::uint64_t slowest = 0;
       for (std::size_t q = lo; q < hi; ++q) {
         std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
+        if (exits_per_query) {
+          const std::uint32_t m = record.nodes(q);
+          const std::uint8_t last = record.last_exits[q];
+          const std::uint32_t quiet = last == kNoExit ? m : m - 1;  // a query without nodes has no exit
+          cycles += quiet * pass_cycles[0];
+          passes[0] += quiet;
+          if (m > 0 && last != kNoExit) {
+            cycles += pass_cycles[1 + last];
+            passes[1 + last] += 1;
+          }
+          slowest = std::max(slowest, cycles);
+          continue;
+        }
         for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
           cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
           passes[exits->variant[i]] += exits->passes[i];
