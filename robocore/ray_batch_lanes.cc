@@ -334,16 +334,14 @@ RC_LANES_TARGET inline StepResult StepRayMarchingGroup(LaneState& s, int g, cons
 }
 
 // Marks the sectors of a group's fetched cells (a recorded batch's touched
-// sectors).
+// sectors): the sector of byte offset + index * element_bytes, in 64 bits,
+// one scatter for the group (lanes that share a sector write the same 1).
 RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec) {
-  alignas(32) std::int32_t index[kRayLanes];
-  _mm256_store_si256(reinterpret_cast<__m256i*>(index), step.index);
-  for (unsigned m = step.fetch; m != 0; m &= m - 1) {
-    const int l = __builtin_ctz(m);
-    const std::uint64_t sector =
-        (rec.offset + static_cast<std::uint64_t>(index[l]) * rec.element_bytes) >> rec.sector_shift;
-    rec.touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
-  }
+  const __m512i index = _mm512_cvtepu32_epi64(step.index);
+  const __m512i byte = _mm512_add_epi64(_mm512_set1_epi64(static_cast<long long>(rec.offset)),
+                                        _mm512_mullo_epi64(index, _mm512_set1_epi64(rec.element_bytes)));
+  const __m512i sector = _mm512_srl_epi64(byte, _mm_cvtsi32_si128(rec.sector_shift));
+  _mm512_mask_i64scatter_epi32(rec.touched, step.fetch, sector, _mm256_set1_epi32(1), 4);
 }
 
 // Appends the indices of a group's fetched cells to their lanes' logs

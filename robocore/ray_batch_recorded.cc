@@ -26,18 +26,18 @@ struct LastFetchVisitor {
   }
 };
 
-// Also marks, in a bitset of the footprint's sectors, the sector of every
-// fetch (a sampled record counts the sectors the whole batch touched).
+// Also marks, in a word per sector of the footprint (LaneRecording::touched),
+// the sector of every fetch (a sampled record counts the sectors the whole
+// batch touched).
 struct MarkingVisitor : LastFetchVisitor {
-  std::uint64_t* touched = nullptr;
+  std::uint32_t* touched = nullptr;
   std::uint64_t offset[2];  // region base - footprint begin
   std::uint32_t element_bytes[2];
   int sector_shift = 5;
 
   void Fetch(FetchKind kind, std::uint32_t index) {
     const int k = static_cast<int>(kind);
-    const std::uint64_t sector = (offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift;
-    touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
+    touched[(offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift] = 1;
     LastFetchVisitor::Fetch(kind, index);
   }
 };
@@ -46,7 +46,7 @@ struct MarkingVisitor : LastFetchVisitor {
 // marks its sector when `touched` is set).
 struct RecordingVisitor : LastFetchVisitor {
   std::vector<std::uint64_t>* out = nullptr;
-  std::uint64_t* touched = nullptr;
+  std::uint32_t* touched = nullptr;
   std::uint64_t base[2];
   std::uint64_t offset[2];
   std::uint32_t element_bytes[2];
@@ -55,10 +55,7 @@ struct RecordingVisitor : LastFetchVisitor {
   void Fetch(FetchKind kind, std::uint32_t index) {
     const int k = static_cast<int>(kind);
     out->push_back(base[k] + std::uint64_t{index} * element_bytes[k]);
-    if (touched) {
-      const std::uint64_t sector = (offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift;
-      touched[sector >> 6] |= std::uint64_t{1} << (sector & 63);
-    }
+    if (touched) touched[(offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift] = 1;
     LastFetchVisitor::Fetch(kind, index);
   }
 };
@@ -148,7 +145,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   while ((1 << sector_shift) < sample.sector_bytes) ++sector_shift;
   const std::uint64_t footprint_begin = record.footprint_begin();
   const std::uint64_t sectors = mark ? ((record.footprint_end() - footprint_begin) >> sector_shift) + 1 : 0;
-  std::vector<std::vector<std::uint64_t>> touched;
+  std::vector<std::vector<std::uint32_t>> touched;
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
     const int k = static_cast<int>(r.kind);
@@ -190,7 +187,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
 #pragma omp parallel
   {
-    std::vector<std::uint64_t> mine(mark ? (sectors + 63) / 64 : 0, 0);
+    std::vector<std::uint32_t> mine(mark ? sectors : 0, 0);
     LaneNodeLog log;
     std::vector<RayQuery> gathered;
     std::vector<RayHit> gathered_hits;
@@ -263,11 +260,10 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   }
   record.touched_sectors = 0;
   if (mark) {
-    for (std::size_t w = 0; w < (sectors + 63) / 64; ++w) {
-      std::uint64_t bits = 0;
-      for (const auto& t : touched) bits |= t[w];
-      record.touched_sectors += static_cast<std::uint64_t>(__builtin_popcountll(bits));
-    }
+    std::vector<std::uint32_t>& all = touched.front();
+    for (std::size_t t = 1; t < touched.size(); ++t)
+      for (std::uint64_t w = 0; w < sectors; ++w) all[w] |= touched[t][w];
+    for (std::uint64_t w = 0; w < sectors; ++w) record.touched_sectors += all[w] != 0;
   }
 
   record.fetch_offsets.assign(batch.queries.size() + 1, 0);
