@@ -296,22 +296,14 @@ class SmReplay {
 // replay is measured in tests/backends/sampled_pricing_test.cc.
 void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
                        const std::vector<std::vector<std::uint32_t>>& sm_warps, const std::vector<std::uint32_t>& steps,
-                       const std::vector<int>& replayed, std::uint64_t l1_latency, bool l2_holds_footprint,
-                       MemoryProfile& profile) {
+                       const std::vector<std::uint64_t>& units, const std::vector<int>& replayed,
+                       std::uint64_t l1_latency, bool l2_holds_footprint, MemoryProfile& profile) {
   const std::size_t n = record.query_count();
   const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
   std::vector<bool> sampled_sm(gpu.sms, false);
   for (int sm : replayed) sampled_sm[sm] = true;
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
-  auto units_of_query = [&](std::size_t q) -> std::uint64_t { return q < n ? record.nodes(q) : 0; };
-  auto units_of_warp = [&](std::uint32_t w) -> std::uint64_t {
-    if (pattern.coalesced) return steps[w];
-    std::uint64_t u = 0;
-    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
-      u += units_of_query(q);
-    return u;
-  };
   auto extra_of_query = [&](std::size_t q) { return owner_cycles[q] - l1_latency * record.nodes(q); };
 
   std::vector<std::uint64_t> sm_units(gpu.sms, 0);
@@ -327,7 +319,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     if (!any) break;
   }
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    for (std::uint32_t w : sm_warps[sm]) sm_units[sm] += units_of_warp(w);
+    for (std::uint32_t w : sm_warps[sm]) sm_units[sm] += units[w];
     all_units += sm_units[sm];
     if (!sampled_sm[sm]) continue;
     sampled_units += sm_units[sm];
@@ -476,12 +468,19 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // thread one per node fetch. Each waits for the L1 at least.
   const std::size_t n = record.query_count();
   const std::size_t warps = WarpCount(record, gpu);
+  // Per warp, its units of work: steps when coalesced, its lanes' node
+  // fetches per thread (what the sampled estimate scales by).
   std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
   std::vector<std::uint32_t> steps(warps, 0);
+  std::vector<std::uint64_t> units(warps, 0);
   for (std::size_t w = 0; w < warps; ++w) {
     sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
-    for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
+    std::uint64_t fetches = 0;
+    for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q) {
       steps[w] = std::max(steps[w], record.nodes(q));
+      fetches += record.nodes(q);
+    }
+    units[w] = pattern.coalesced ? steps[w] : fetches;
   }
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
@@ -539,14 +538,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   if (share_dram) {
     std::uint64_t sampled_units = 0, all_units = 0, sampled_dram = 0;
     for (std::size_t w = 0; w < warps; ++w) {
-      const std::uint64_t units = pattern.coalesced ? steps[w] : 0;
-      std::uint64_t lane_units = 0;
-      if (!pattern.coalesced)
-        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
-          lane_units += record.nodes(q);
-      const std::uint64_t u = pattern.coalesced ? units : lane_units;
-      all_units += u;
-      if (sample.KeepsSm(SmOfWarp(w, gpu))) sampled_units += u;
+      all_units += units[w];
+      if (sample.KeepsSm(SmOfWarp(w, gpu))) sampled_units += units[w];
     }
     for (int sm : replayed) sampled_dram += sms[sm].dram;
     const double expected = static_cast<double>(record.touched_sectors) * static_cast<double>(sampled_units) /
@@ -569,7 +562,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     c.dram_accesses += s.dram;
   }
   if (record.sampled())
-    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, replayed, latency[0], caches.L2().cold(), profile);
+    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, units, replayed, latency[0], caches.L2().cold(),
+                      profile);
   return profile;
 }
 
