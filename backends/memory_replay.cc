@@ -341,7 +341,18 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   auto rate = [&](std::uint64_t extra, std::uint64_t units) {
     return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
   };
-  auto add = [](std::uint64_t& cycles, double extra) { cycles += static_cast<std::uint64_t>(std::llround(extra)); };
+  // cycles += llround(extra), inline for the non-negative extras it gets
+  // (once per query): truncation is the floor, and extra - floor(extra) is
+  // exact (below 2^53 by Sterbenz's lemma; above, extra is whole), so a
+  // half rounds up as llround's does.
+  auto add = [](std::uint64_t& cycles, double extra) {
+    if (!(extra >= 0.0 && extra < 0x1p63)) {
+      cycles += static_cast<std::uint64_t>(std::llround(extra));
+      return;
+    }
+    const auto whole = static_cast<std::uint64_t>(extra);
+    cycles += whole + static_cast<std::uint64_t>(extra - static_cast<double>(whole) >= 0.5);
+  };
   // A warp's queries in order of node count, ties in launch order: each
   // lane's key (node count, lane) is distinct, so its place is the number
   // of smaller keys (a warp has at most 64 lanes: counting is cheaper than
@@ -373,10 +384,10 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       out[place] = first + i;
     }
   };
-  // Each twin lends to a warp of every unsampled SM: its order is sorted
-  // once, when first borrowed.
-  std::vector<std::size_t> mine;
-  std::vector<std::vector<std::size_t>> twin_order(pattern.coalesced ? 0 : twins.size());  // empty until sorted
+  // Each twin lends to a warp of every unsampled SM: its lanes' rates, in
+  // order of node count, are found once, when first borrowed.
+  std::vector<std::size_t> mine, twin_order;
+  std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty until found
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (sampled_sm[sm]) continue;
     profile.sm_sector_requests[sm] =
@@ -393,13 +404,16 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // its tie to query length, which decide the warp's slowest lane.
       ByNodes(w, mine);
       const std::size_t t = k % twins.size();
-      if (twin_order[t].empty()) ByNodes(twin, twin_order[t]);  // a warp has at least one query
-      const std::vector<std::size_t>& theirs = twin_order[t];
+      std::vector<double>& theirs = twin_rates[t];
+      if (theirs.empty()) {  // a warp has at least one query
+        ByNodes(twin, twin_order);
+        for (std::size_t partner : twin_order)
+          theirs.push_back(record.nodes(partner) > 0 ? rate(extra_of_query(partner), record.nodes(partner))
+                                                     : mean_extra);
+      }
       for (std::size_t i = 0; i < mine.size(); ++i) {
         const std::size_t q = mine[i];
-        const bool paired = i < theirs.size() && record.nodes(theirs[i]) > 0;
-        add(owner_cycles[q],
-            (paired ? rate(extra_of_query(theirs[i]), record.nodes(theirs[i])) : mean_extra) * record.nodes(q));
+        add(owner_cycles[q], (i < theirs.size() ? theirs[i] : mean_extra) * record.nodes(q));
       }
     }
   }
