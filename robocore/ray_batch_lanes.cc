@@ -336,12 +336,15 @@ RC_LANES_TARGET inline StepResult StepRayMarchingGroup(LaneState& s, int g, cons
 // Marks the sectors of a group's fetched cells (a recorded batch's touched
 // sectors): the sector of byte offset + index * element_bytes, in 64 bits,
 // one scatter for the group (lanes that share a sector write the same 1).
-RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec) {
+// Only lanes that hold a query: a lane whose ray has ended steps on past
+// its end, to cells the ray never fetched.
+RC_LANES_TARGET inline void MarkTouched(const StepResult& step, int g, LaneMask live, const LaneRecording& rec) {
+  const auto fetch = static_cast<__mmask8>(step.fetch & static_cast<unsigned>(live >> (g * kRayLanes)));
   const __m512i index = _mm512_cvtepu32_epi64(step.index);
   const __m512i byte = _mm512_add_epi64(_mm512_set1_epi64(static_cast<long long>(rec.offset)),
                                         _mm512_mullo_epi64(index, _mm512_set1_epi64(rec.element_bytes)));
   const __m512i sector = _mm512_srl_epi64(byte, _mm_cvtsi32_si128(rec.sector_shift));
-  _mm512_mask_i64scatter_epi32(rec.touched, step.fetch, sector, _mm256_set1_epi32(1), 4);
+  _mm512_mask_i64scatter_epi32(rec.touched, fetch, sector, _mm256_set1_epi32(1), 4);
 }
 
 // Appends the indices of a group's fetched cells to their lanes' logs
@@ -366,8 +369,7 @@ inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
 
 // Every group steps once per round; lanes whose ray ended are refilled.
 // Lanes without a query keep stepping harmlessly (every fetch is masked to
-// cells inside the map) until the last ray ends; with a recording, they
-// mark the sectors of a query already cast, which are marked already.
+// cells inside the map) until the last ray ends; a recording ignores them.
 template <RayCastMethod kMethod, bool kRecord>
 RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, RayHit* hits,
                               const Constants& c, const LaneRecording* rec) {
@@ -393,7 +395,7 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
       ended |= static_cast<LaneMask>(step.ended) << (g * kRayLanes);
       if constexpr (kRecord) {
         stopped |= static_cast<LaneMask>(step.stopped) << (g * kRayLanes);
-        if (rec->touched) MarkTouched(step, *rec);
+        if (rec->touched) MarkTouched(step, g, live, *rec);
         if (log) LogNodes(step, g, live, *log);
       }
     }

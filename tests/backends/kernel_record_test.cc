@@ -93,6 +93,44 @@ TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
   }
 }
 
+// A sample's count of the sectors the whole batch touched is the scalar
+// kernel's, and so are the last exits, on a map large enough that few rays
+// cover it: a lane whose ray has ended steps on past its end until the
+// lanes run dry, and must not count what it steps through (it once did,
+// which made the priced cycles depend on whether the CPU has AVX-512).
+TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
+  struct IndexVisitor {
+    std::vector<std::uint32_t> indices;
+    void Fetch(FetchKind, std::uint32_t index) { indices.push_back(index); }
+  };
+  const OccupancyGrid grid = test::RoomGrid(400, 300, 0.05, 0.01, 11);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 70, 30, 8.0, 12);
+  RecordOptions options;
+  options.sample.sampled_sms = 1;
+  std::vector<RayHit> hits;
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record, options);
+  const MemoryRegion& region = record.regions[0];
+  std::set<std::uint64_t> sectors;
+  for (std::size_t q = 0; q < batch.queries.size(); ++q) {
+    IndexVisitor visitor;
+    const RayQuery& query = batch.queries[q];
+    CastRay(scene, query.origin_x_m, query.origin_y_m, query.angle_rad, batch.max_range_m, visitor);
+    for (std::uint32_t index : visitor.indices)
+      sectors.insert((region.base - record.footprint_begin() + std::uint64_t{index} * region.element_bytes) / 32);
+    std::uint8_t exit = kNoExit;
+    if (!visitor.indices.empty()) {
+      const std::uint32_t last = visitor.indices.back();
+      const bool stops = GetParam() == RayCastMethod::kRayMarching ? scene.distance_field()->values()[last] == 0.0f
+                                                                   : grid.cells()[last] != CellState::kFree;
+      exit = stops ? kRayHitReturn : kRayEndReturn;
+    }
+    ASSERT_EQ(record.last_exits[q], exit) << q;
+  }
+  EXPECT_EQ(record.touched_sectors, sectors.size());
+}
+
 TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
   const RayCastScene scene(grid, GetParam());
