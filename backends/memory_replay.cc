@@ -188,11 +188,12 @@ class SmReplay {
     // holds another group's; so a sector already requested in this group is
     // in its slot, unless another sector of the group held the slot first,
     // and only then are the group's requests scanned. The slot is a
-    // multiplicative hash of the sector: a map's rows are often a multiple of
-    // 64 sectors apart, which s mod 64 would send to one slot.
+    // multiplicative hash of the sector (a map's rows are often a multiple of
+    // 64 sectors apart, which s mod 64 would send to one slot), in a table
+    // large enough that a warp step's 32 sectors rarely share one.
     recent_.fill(~std::uint64_t{0});
     auto repeat = [&](std::uint32_t s) {
-      std::uint64_t& slot = recent_[(s * 0x9E3779B1u) >> 26];
+      std::uint64_t& slot = recent_[(s * 0x9E3779B1u) >> (32 - kRecentBits)];
       const std::uint64_t mine = std::uint64_t{group} << 32 | s;
       if (slot == mine) return true;
       if (slot >> 32 != group) {
@@ -276,7 +277,8 @@ class SmReplay {
   std::vector<std::uint32_t> lane_query_, lane_owner_, step_start_, cursor_;
   std::vector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
   std::vector<std::uint64_t> address_;
-  std::array<std::uint64_t, 64> recent_;  // WalkCoalesced: (group, sector) per slot; the hash keeps 6 bits
+  static constexpr int kRecentBits = 10;
+  std::array<std::uint64_t, std::size_t{1} << kRecentBits> recent_;  // WalkCoalesced: (group, sector) per slot
 };
 
 // The memory of the SMs a sampled record did not keep, estimated from the
