@@ -578,8 +578,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     c.dram_accesses += s.dram;
   }
   if (record.sampled())
-    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, units, replayed, latency[0], caches.L2().cold(),
-                      profile);
+    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, units, replayed, latency[0], caches.L2().cold(), profile);
   return profile;
 }
 

@@ -17,6 +17,17 @@
 namespace rc {
 namespace {
 
+// The node indices the scalar kernel visits for query q, in its order.
+std::vector<std::uint32_t> ScalarVisits(const RayCastScene& scene, const RayBatch& batch, std::size_t q) {
+  struct IndexVisitor {
+    std::vector<std::uint32_t> indices;
+    void Fetch(FetchKind, std::uint32_t index) { indices.push_back(index); }
+  } visitor;
+  const RayQuery& query = batch.queries[q];
+  CastRay(scene, query.origin_x_m, query.origin_y_m, query.angle_rad, batch.max_range_m, visitor);
+  return visitor.indices;
+}
+
 class RecordTest : public ::testing::TestWithParam<RayCastMethod> {};
 
 TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
@@ -62,10 +73,6 @@ TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
 // order, for a full record and for a sample's kept queries (cast in AVX-512
 // lanes where the CPU has them, which log each lane's node indices).
 TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
-  struct IndexVisitor {
-    std::vector<std::uint32_t> indices;
-    void Fetch(FetchKind, std::uint32_t index) { indices.push_back(index); }
-  };
   const OccupancyGrid grid = test::RoomGrid(80, 64, 0.1, 0.05, 3);
   const RayCastScene scene(grid, GetParam());
   const RayBatch batch = test::FanBatch(grid, 90, 41, 5.5, 4);  // 3690 queries: blocks of 256 on 8 SMs
@@ -80,12 +87,10 @@ TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
     for (std::size_t q = 0; q < batch.queries.size(); ++q) {
       if (record.sampled() && record.address_offsets[q + 1] == record.address_offsets[q] && record.nodes(q) > 0)
         continue;
-      IndexVisitor visitor;
-      const RayQuery& query = batch.queries[q];
-      CastRay(scene, query.origin_x_m, query.origin_y_m, query.angle_rad, batch.max_range_m, visitor);
-      ASSERT_EQ(visitor.indices.size(), record.nodes(q)) << sampled_sms << " " << q;
+      const std::vector<std::uint32_t> visits = ScalarVisits(scene, batch, q);
+      ASSERT_EQ(visits.size(), record.nodes(q)) << sampled_sms << " " << q;
       for (std::uint32_t k = 0; k < record.nodes(q); ++k)
-        ASSERT_EQ(record.addresses(q)[k], region.base + std::uint64_t{visitor.indices[k]} * region.element_bytes)
+        ASSERT_EQ(record.addresses(q)[k], region.base + std::uint64_t{visits[k]} * region.element_bytes)
             << sampled_sms << " " << q << " " << k;
       ++kept;
     }
@@ -99,10 +104,6 @@ TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
 // lanes run dry, and must not count what it steps through (it once did,
 // which made the priced cycles depend on whether the CPU has AVX-512).
 TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
-  struct IndexVisitor {
-    std::vector<std::uint32_t> indices;
-    void Fetch(FetchKind, std::uint32_t index) { indices.push_back(index); }
-  };
   const OccupancyGrid grid = test::RoomGrid(400, 300, 0.05, 0.01, 11);
   const RayCastScene scene(grid, GetParam());
   const RayBatch batch = test::FanBatch(grid, 70, 30, 8.0, 12);
@@ -114,14 +115,12 @@ TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
   const MemoryRegion& region = record.regions[0];
   std::set<std::uint64_t> sectors;
   for (std::size_t q = 0; q < batch.queries.size(); ++q) {
-    IndexVisitor visitor;
-    const RayQuery& query = batch.queries[q];
-    CastRay(scene, query.origin_x_m, query.origin_y_m, query.angle_rad, batch.max_range_m, visitor);
-    for (std::uint32_t index : visitor.indices)
+    const std::vector<std::uint32_t> visits = ScalarVisits(scene, batch, q);
+    for (std::uint32_t index : visits)
       sectors.insert((region.base - record.footprint_begin() + std::uint64_t{index} * region.element_bytes) / 32);
     std::uint8_t exit = kNoExit;
-    if (!visitor.indices.empty()) {
-      const std::uint32_t last = visitor.indices.back();
+    if (!visits.empty()) {
+      const std::uint32_t last = visits.back();
       const bool stops = GetParam() == RayCastMethod::kRayMarching ? scene.distance_field()->values()[last] == 0.0f
                                                                    : grid.cells()[last] != CellState::kFree;
       exit = stops ? kRayHitReturn : kRayEndReturn;
