@@ -69,6 +69,48 @@ std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) 
   return stops ? kRayHitReturn : kRayEndReturn;
 }
 
+// A thread's buffers for CastKeptBlocksInLanes, reused segment after segment.
+struct KeptBlocksWork {
+  LaneNodeLog log;
+  std::vector<RayQuery> queries;
+  std::vector<RayHit> hits;
+  std::vector<std::uint8_t> exits;
+};
+
+// Casts a sample's kept blocks (of `block` queries; ascending, not
+// necessarily adjacent) in the lanes as one contiguous batch, then puts each
+// query's hit and last exit in place and appends its node addresses to its
+// block's buffer. `lane` says where to mark touched sectors.
+void CastKeptBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, const std::vector<long>& blocks,
+                           long block, const MemoryRegion& fetched, LaneRecording lane, KeptBlocksWork& work,
+                           RayHit* hits, std::uint8_t* last_exit,
+                           std::vector<std::vector<std::uint64_t>>& block_addresses) {
+  const long n = static_cast<long>(batch.queries.size());
+  auto end_of = [&](long b) { return std::min(n, (b + 1) * block); };
+  work.queries.clear();
+  for (long b : blocks)
+    work.queries.insert(work.queries.end(), batch.queries.begin() + b * block, batch.queries.begin() + end_of(b));
+  work.hits.resize(work.queries.size());
+  work.exits.assign(work.queries.size(), kNoExit);
+  lane.last_exits = work.exits.data();
+  lane.nodes = &work.log;
+  CastRayLanes(scene, work.queries.data(), work.queries.size(), batch.max_range_m, work.hits.data(), &lane);
+  std::size_t g = 0;  // position in the gathered batch
+  for (long b : blocks) {
+    std::vector<std::uint64_t>& out = block_addresses[static_cast<std::size_t>(b)];
+    std::size_t fetches = 0;
+    for (std::size_t i = g; i < g + static_cast<std::size_t>(end_of(b) - b * block); ++i) fetches += work.hits[i].nodes;
+    out.reserve(fetches);
+    for (long i = b * block; i < end_of(b); ++i, ++g) {
+      hits[i] = work.hits[g];
+      last_exit[i] = work.exits[g];
+      const std::uint32_t* index = work.log.NodesOf(g);
+      for (std::uint32_t k = 0; k < work.hits[g].nodes; ++k)
+        out.push_back(fetched.base + std::uint64_t{index[k]} * fetched.element_bytes);
+    }
+  }
+}
+
 }  // namespace
 
 const char* ToString(MarchProgramChoice choice) {
@@ -188,10 +230,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
 #pragma omp parallel
   {
     std::vector<std::uint32_t> mine(mark ? sectors : 0, 0);
-    LaneNodeLog log;
-    std::vector<RayQuery> gathered;
-    std::vector<RayHit> gathered_hits;
-    std::vector<std::uint8_t> gathered_exits;
+    KeptBlocksWork kept;
 #pragma omp for schedule(dynamic, 1)
     for (long j = 0; j < static_cast<long>(segments.size()); ++j) {
       const Segment& seg = segments[static_cast<std::size_t>(j)];
@@ -202,30 +241,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
       lane.element_bytes = fetched.element_bytes;
       lane.sector_shift = sector_shift;
       if (seg.keep && lanes) {
-        gathered.clear();
-        for (long b : seg.blocks)
-          gathered.insert(gathered.end(), batch.queries.begin() + b * block,
-                          batch.queries.begin() + std::min(n, (b + 1) * block));
-        gathered_hits.resize(gathered.size());
-        gathered_exits.assign(gathered.size(), kNoExit);
-        lane.last_exits = gathered_exits.data();
-        lane.nodes = &log;
-        CastRayLanes(scene, gathered.data(), gathered.size(), batch.max_range_m, gathered_hits.data(), &lane);
-        std::size_t g = 0;
-        for (long b : seg.blocks) {
-          std::vector<std::uint64_t>& out = block_addresses[static_cast<std::size_t>(b)];
-          std::size_t fetches = 0;
-          for (std::size_t i = g; i < g + static_cast<std::size_t>(std::min(n, (b + 1) * block) - b * block); ++i)
-            fetches += gathered_hits[i].nodes;
-          out.reserve(fetches);
-          for (long i = b * block; i < std::min(n, (b + 1) * block); ++i, ++g) {
-            hits[i] = gathered_hits[g];
-            last_exit[i] = gathered_exits[g];
-            const std::uint32_t* index = log.NodesOf(g);
-            for (std::uint32_t k = 0; k < gathered_hits[g].nodes; ++k)
-              out.push_back(fetched.base + std::uint64_t{index[k]} * fetched.element_bytes);
-          }
-        }
+        CastKeptBlocksInLanes(scene, batch, seg.blocks, block, fetched, lane, kept, hits.data(), last_exit.data(),
+                              block_addresses);
       } else if (seg.keep) {
         RecordingVisitor recording = prototype;
         recording.out = &block_addresses[static_cast<std::size_t>(seg.blocks.front())];
@@ -275,7 +292,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
       const long lo = b * block, hi = std::min(n, lo + block);
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      for (long i = lo; i < hi; ++i) record.address_offsets[i + 1] = record.address_offsets[i] + (keep ? hits[i].nodes : 0);
+      for (long i = lo; i < hi; ++i)
+        record.address_offsets[i + 1] = record.address_offsets[i] + (keep ? hits[i].nodes : 0);
     }
   }
   std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);
