@@ -309,6 +309,60 @@ TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
   EXPECT_GT(product_ll[0] - product_ll[1], ll[0] - ll[1]);
 }
 
+// A recorded batch above the launch limit runs as launches of whole
+// particles, each handed to the pricing as it is recorded: the same
+// likelihoods and hits as one launch, and launches that together are the
+// one launch's queries, node by node and exit by exit.
+TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.0, 3);
+  BeamModelParams p;
+  p.max_range_m = run.trace.geometry.max_range_m;
+  BeamSensorModel model(std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), p);
+  std::vector<Pose2> particles;
+  for (int i = 0; i < 300; ++i)
+    particles.push_back({run.truth[5].x + 0.01 * (i % 17), run.truth[5].y - 0.01 * (i % 13), 0.02 * i});
+  const BeamSelection beams{6};
+  const int per_particle = beams.Count(run.trace.geometry.beam_count);
+  const LaserScan& scan = run.trace.scans[5];
+
+  SensorUpdateWork one;
+  one.record_kernel = true;
+  one.record_sample.sampled_sms = 1;
+  std::vector<double> one_ll;
+  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, one_ll, one);
+
+  SensorUpdateWork split = one;
+  split.max_rays_per_launch = 1000;
+  std::vector<std::size_t> queries;
+  std::vector<std::uint32_t> nodes;
+  std::vector<std::uint8_t> exits;
+  auto keep = [&](const KernelRecord& r) {
+    ASSERT_NO_THROW(r.Validate());
+    queries.push_back(r.query_count());
+    for (std::size_t q = 0; q < r.query_count(); ++q) nodes.push_back(r.nodes(q));
+    exits.insert(exits.end(), r.last_exits.begin(), r.last_exits.end());
+  };
+  split.price_launch = keep;
+  std::vector<double> split_ll;
+  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, split_ll, split);
+  keep(split.record);  // the last launch
+
+  EXPECT_EQ(split_ll, one_ll);
+  ASSERT_EQ(split.hits.size(), one.hits.size());
+  for (std::size_t i = 0; i < one.hits.size(); ++i) {
+    ASSERT_EQ(split.hits[i].range_m, one.hits[i].range_m) << i;
+    ASSERT_EQ(split.hits[i].nodes, one.hits[i].nodes) << i;
+  }
+  EXPECT_EQ(split.nodes, one.nodes);
+  const std::size_t per_launch = 1000 / per_particle * per_particle;
+  ASSERT_EQ(queries.size(), (one.record.query_count() + per_launch - 1) / per_launch);
+  for (std::size_t k = 0; k + 1 < queries.size(); ++k) EXPECT_EQ(queries[k], per_launch) << k;
+  ASSERT_EQ(nodes.size(), one.record.query_count());
+  for (std::size_t q = 0; q < nodes.size(); ++q) ASSERT_EQ(nodes[q], one.record.nodes(q)) << q;
+  EXPECT_EQ(exits, one.record.last_exits);
+}
+
 TEST(PoseEstimateTest, HeadingsAreAveragedOnTheCircle) {
   std::vector<Pose2> particles = {{1, 1, kPi - 0.01}, {1, 1, -kPi + 0.01}};
   std::vector<double> lw = {std::log(0.5), std::log(0.5)};

@@ -153,7 +153,28 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     for (long i = 0; i < n; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
     RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
     record_options.sample = work.record_sample;
-    CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
+    const std::size_t rays = batch.queries.size();
+    const std::size_t max_rays = work.max_rays_per_launch > 0 ? work.max_rays_per_launch : kMaxRaysPerLaunch;
+    if (!work.price_launch || rays <= max_rays) {
+      CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
+    } else {
+      // Launches of whole particles, each recorded and handed on but the
+      // last, so that only one launch's record is alive at a time.
+      const auto beams_each = static_cast<std::size_t>(std::max(1, beams_per_particle));
+      const std::size_t per_launch = std::max<std::size_t>(1, max_rays / beams_each) * beams_each;
+      work.hits.resize(rays);
+      RayBatch launch;
+      launch.max_range_m = batch.max_range_m;
+      std::vector<RayHit> launch_hits;
+      for (std::size_t first = 0; first < rays; first += per_launch) {
+        const std::size_t last = std::min(rays, first + per_launch);
+        launch.queries.assign(batch.queries.begin() + static_cast<long>(first),
+                              batch.queries.begin() + static_cast<long>(last));
+        CastRayBatchRecorded(*scene_, launch, launch_hits, work.record, record_options);
+        std::copy(launch_hits.begin(), launch_hits.end(), work.hits.begin() + static_cast<long>(first));
+        if (last < rays) work.price_launch(work.record);
+      }
+    }
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
     work.nodes = TotalNodes(work.hits);

@@ -64,7 +64,9 @@ struct DelibotSettings {
   LedgerOptions ledger;
   // With price_backends: called once per update that launched kernel work,
   // with its launches (the injection check's batches first, then the
-  // update's), after the ledger priced them and before they are dropped.
+  // update's), after the ledger priced them and before they are dropped. An
+  // update split into launches (kMaxRaysPerLaunch) passes each launch but
+  // its last in a call of its own, as it is priced.
   // For a caller that prices the same run under other parameters as it goes
   // (the calibration's sensitivity sweep); the records keep the ledger's
   // address sample (LedgerOptions::replay_sms).

@@ -3,6 +3,7 @@
 // nav2 AMCL's where it has one (REFERENCE.md section 4), otherwise stated.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "workloads/delibot/motion_model.h"
@@ -93,6 +94,9 @@ struct MclOptions {
   bool record_kernel = false;
   AddressSample record_sample;      // whose node addresses the record keeps (default: all)
   RayKernelChoices record_choices;  // how the recorded kernel stores the grid and which march program it prices
+  // Prices each launch of an update split by kMaxRaysPerLaunch but the last
+  // (SensorUpdateWork::price_launch); unset: updates are not split.
+  std::function<void(const KernelRecord&)> price_launch;
 
   bool IsValid(std::string* error) const;
 };

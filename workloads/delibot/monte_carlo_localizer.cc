@@ -24,6 +24,7 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_
   check_work_.record_kernel = options_.record_kernel;
   work_.record_sample = check_work_.record_sample = options_.record_sample;
   work_.record_choices = check_work_.record_choices = options_.record_choices;
+  work_.price_launch = options_.price_launch;
   if (free_cells_.empty()) throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }
 

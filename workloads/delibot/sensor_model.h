@@ -4,6 +4,7 @@
 // A sensor model turns one scan into a log-likelihood per particle. It never
 // multiplies raw beam probabilities: per-beam densities are summed as logs.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,7 +38,24 @@ struct SensorUpdateWork {
   AddressSample record_sample;      // whose addresses the record keeps
   RayKernelChoices record_choices;  // the device's cell size and march program (a preset's "kernel")
   KernelRecord record;
+  // With price_launch set, a recorded batch of more than max_rays_per_launch
+  // rays runs as several launches of whole particles, at most that many rays
+  // each (one particle's beams if they alone exceed it): each but the last is
+  // handed to price_launch as soon as it is recorded (and its record reused),
+  // the last stays in `record`. Unset: one launch, whatever its size.
+  std::function<void(const KernelRecord&)> price_launch;
+  std::size_t max_rays_per_launch = 0;  // 0: kMaxRaysPerLaunch (below)
 };
+
+// Rays per recorded kernel launch, at most (a rule that acts as a cost
+// parameter: a batch above it is priced as that many launches, each with
+// its own launch overhead and tail). Unit: rays; range: >= 1. Source:
+// assumption, that a GPU implementation bounds one launch's device buffers
+// (queries, hits: 32 bytes a ray) to tens of MB. DeliBot's working sets
+// (2000 particles x 30 to 180 beams) stay far below it; a map-sized first
+// set scored by the beam model (850,000 particles x 30 beams) is split,
+// which keeps pricing's memory bounded (docs/pricing.md).
+inline constexpr std::size_t kMaxRaysPerLaunch = std::size_t{1} << 20;
 
 class SensorModel {
  public:
