@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include <omp.h>
 
@@ -364,27 +364,24 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   std::vector<std::int32_t> narrow_keys;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
     const std::size_t first = std::size_t{warp} * lanes, end = std::min(n, first + lanes);
-    keys.clear();
-    std::uint64_t widest = 0;
-    for (std::size_t q = first; q < end; ++q) {
-      keys.push_back(std::uint64_t{record.nodes(q)} << 6 | (q - first));
-      widest = std::max(widest, keys.back());
-    }
-    out.resize(keys.size());
-    if (widest <= static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max())) {
-      narrow_keys.assign(keys.begin(), keys.end());
-      for (std::size_t i = 0; i < narrow_keys.size(); ++i) {
-        std::int32_t place = 0;
-        for (std::int32_t other : narrow_keys) place += other < narrow_keys[i];
+    std::uint32_t most = 0;
+    for (std::size_t q = first; q < end; ++q) most = std::max(most, record.nodes(q));
+    auto place_all = [&](auto& k) {
+      using Key = typename std::decay_t<decltype(k)>::value_type;
+      k.clear();
+      for (std::size_t q = first; q < end; ++q)
+        k.push_back(static_cast<Key>(std::uint64_t{record.nodes(q)} << 6 | (q - first)));
+      out.resize(k.size());
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        Key place = 0;  // in the keys' width, so that the count runs in their SIMD lanes
+        for (const Key other : k) place += other < k[i];
         out[static_cast<std::size_t>(place)] = first + i;
       }
-      return;
-    }
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      std::size_t place = 0;
-      for (std::uint64_t other : keys) place += other < keys[i];
-      out[place] = first + i;
-    }
+    };
+    if (most < (std::uint32_t{1} << 25))  // (node count, lane) fits a signed 32-bit key
+      place_all(narrow_keys);
+    else
+      place_all(keys);
   };
   // Each twin lends to a warp of every unsampled SM: its lanes' rates, in
   // order of node count, are found once, when first borrowed.
@@ -631,15 +628,13 @@ ExitProfile ProfileExits(const KernelRecord& record) {
     profile.variant.reserve(2 * n);
     profile.passes.reserve(2 * n);
     for (std::size_t q = 0; q < n; ++q) {
-      const std::uint32_t m = record.nodes(q);
-      const std::uint8_t last = record.last_exits[q];
-      const std::uint32_t quiet = last == kNoExit ? m : m - 1;
+      const std::uint32_t quiet = record.QuietPasses(q);
       if (quiet > 0) {
         profile.variant.push_back(0);
         profile.passes.push_back(quiet);
       }
-      if (m > 0 && last != kNoExit) {
-        profile.variant.push_back(static_cast<std::uint8_t>(1 + last));
+      if (record.LastPassExits(q)) {
+        profile.variant.push_back(static_cast<std::uint8_t>(1 + record.last_exits[q]));
         profile.passes.push_back(1);
       }
       profile.offsets[q + 1] = profile.variant.size();

@@ -88,21 +88,18 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
       for (std::size_t q = lo; q < hi; ++q) {
         std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
         if (exits_per_query) {
-          const std::uint32_t m = record.nodes(q);
-          const std::uint8_t last = record.last_exits[q];
-          const std::uint32_t quiet = last == kNoExit ? m : m - 1;  // a query without nodes has no exit
+          const std::uint32_t quiet = record.QuietPasses(q);
           cycles += quiet * pass_cycles[0];
           passes[0] += quiet;
-          if (m > 0 && last != kNoExit) {
-            cycles += pass_cycles[1 + last];
-            passes[1 + last] += 1;
+          if (record.LastPassExits(q)) {
+            cycles += pass_cycles[1 + record.last_exits[q]];
+            passes[1 + record.last_exits[q]] += 1;
           }
-          slowest = std::max(slowest, cycles);
-          continue;
-        }
-        for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
-          cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
-          passes[exits->variant[i]] += exits->passes[i];
+        } else {
+          for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
+            cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
+            passes[exits->variant[i]] += exits->passes[i];
+          }
         }
         slowest = std::max(slowest, cycles);
       }

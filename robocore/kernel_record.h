@@ -130,6 +130,13 @@ struct KernelRecord {
     if (exits_per_query()) return k + 1 == nodes(query) ? last_exits[query] : kNoExit;
     return node_exits[fetch_offsets[query] + k];
   }
+  // For a record with exits per query: how many of query q's loop passes
+  // ended at no RETURN_IF (all but the last when the last exits), and
+  // whether its last pass exited (a query without nodes has no pass).
+  std::uint32_t QuietPasses(std::size_t query) const {
+    return last_exits[query] == kNoExit ? nodes(query) : nodes(query) - 1;
+  }
+  bool LastPassExits(std::size_t query) const { return nodes(query) > 0 && last_exits[query] != kNoExit; }
   // Query i's addresses (nodes(i) of them); only for a kept query.
   const std::uint64_t* addresses(std::size_t query) const {
     return fetch_addresses.data() + (sampled() ? address_offsets[query] : fetch_offsets[query]);

@@ -336,23 +336,19 @@ RC_LANES_TARGET inline StepResult StepRayMarchingGroup(LaneState& s, int g, cons
 // Marks the sectors of a group's fetched cells (a recorded batch's touched
 // sectors): the sector of byte offset + index * element_bytes, in 64 bits,
 // one scatter for the group (lanes that share a sector write the same 1).
-// Only lanes that hold a query: a lane whose ray has ended steps on past
-// its end, to cells the ray never fetched.
-RC_LANES_TARGET inline void MarkTouched(const StepResult& step, int g, LaneMask live, const LaneRecording& rec) {
-  const auto fetch = static_cast<__mmask8>(step.fetch & static_cast<unsigned>(live >> (g * kRayLanes)));
+RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec) {
   const __m512i index = _mm512_cvtepu32_epi64(step.index);
   const __m512i byte = _mm512_add_epi64(_mm512_set1_epi64(static_cast<long long>(rec.offset)),
                                         _mm512_mullo_epi64(index, _mm512_set1_epi64(rec.element_bytes)));
   const __m512i sector = _mm512_srl_epi64(byte, _mm_cvtsi32_si128(rec.sector_shift));
-  _mm512_mask_i64scatter_epi32(rec.touched, fetch, sector, _mm256_set1_epi32(1), 4);
+  _mm512_mask_i64scatter_epi32(rec.touched, step.fetch, sector, _mm256_set1_epi32(1), 4);
 }
 
-// Appends the indices of a group's fetched cells to their lanes' logs
-// (only lanes that hold a query: the others step on a ray already cast).
-RC_LANES_TARGET inline void LogNodes(const StepResult& step, int g, LaneMask live, LaneNodeLog& log) {
+// Appends the indices of group g's fetched cells to their lanes' logs.
+RC_LANES_TARGET inline void LogNodes(const StepResult& step, int g, LaneNodeLog& log) {
   alignas(32) std::int32_t index[kRayLanes];
   _mm256_store_si256(reinterpret_cast<__m256i*>(index), step.index);
-  for (unsigned m = step.fetch & static_cast<unsigned>(live >> (g * kRayLanes)); m != 0; m &= m - 1) {
+  for (unsigned m = step.fetch; m != 0; m &= m - 1) {
     const int l = __builtin_ctz(m);
     log.lane[g * kRayLanes + l].push_back(static_cast<std::uint32_t>(index[l]));
   }
@@ -395,8 +391,12 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
       ended |= static_cast<LaneMask>(step.ended) << (g * kRayLanes);
       if constexpr (kRecord) {
         stopped |= static_cast<LaneMask>(step.stopped) << (g * kRayLanes);
-        if (rec->touched) MarkTouched(step, g, live, *rec);
-        if (log) LogNodes(step, g, live, *log);
+        // Only the fetches of lanes that hold a query are recorded: a lane
+        // whose ray has ended steps on past its end, to cells it never fetched.
+        StepResult holding = step;
+        holding.fetch &= static_cast<__mmask8>(live >> (g * kRayLanes));
+        if (rec->touched) MarkTouched(holding, *rec);
+        if (log) LogNodes(holding, g, *log);
       }
     }
     ended &= live;
