@@ -154,7 +154,7 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
     record_options.sample = work.record_sample;
     const std::size_t rays = batch.queries.size();
-    const std::size_t max_rays = work.max_rays_per_launch > 0 ? work.max_rays_per_launch : kMaxRaysPerLaunch;
+    const std::size_t max_rays = std::max<std::size_t>(1, work.max_rays_per_launch);
     if (!work.price_launch || rays <= max_rays) {
       CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
     } else {

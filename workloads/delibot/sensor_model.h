@@ -24,6 +24,16 @@ struct BeamSelection {
   int Count(int beam_count) const { return (beam_count + beam_step - 1) / beam_step; }
 };
 
+// Rays per recorded kernel launch, at most (a rule that acts as a cost
+// parameter: a batch above it is priced as that many launches, each with
+// its own launch overhead and tail). Unit: rays; range: >= 1. Source:
+// assumption, that a GPU implementation bounds one launch's device buffers
+// (queries, hits: 32 bytes a ray) to tens of MB. DeliBot's working sets
+// (2000 particles x 30 to 180 beams) stay far below it; a map-sized first
+// set scored by the beam model (850,000 particles x 30 beams) is split,
+// which keeps pricing's memory bounded (docs/pricing.md).
+inline constexpr std::size_t kMaxRaysPerLaunch = std::size_t{1} << 20;
+
 // What one update asked of the kernels, for timelines and backends.
 struct SensorUpdateWork {
   std::uint64_t rays = 0;   // queries issued (rays, or endpoint lookups)
@@ -44,18 +54,8 @@ struct SensorUpdateWork {
   // handed to price_launch as soon as it is recorded (and its record reused),
   // the last stays in `record`. Unset: one launch, whatever its size.
   std::function<void(const KernelRecord&)> price_launch;
-  std::size_t max_rays_per_launch = 0;  // 0: kMaxRaysPerLaunch (below)
+  std::size_t max_rays_per_launch = kMaxRaysPerLaunch;
 };
-
-// Rays per recorded kernel launch, at most (a rule that acts as a cost
-// parameter: a batch above it is priced as that many launches, each with
-// its own launch overhead and tail). Unit: rays; range: >= 1. Source:
-// assumption, that a GPU implementation bounds one launch's device buffers
-// (queries, hits: 32 bytes a ray) to tens of MB. DeliBot's working sets
-// (2000 particles x 30 to 180 beams) stay far below it; a map-sized first
-// set scored by the beam model (850,000 particles x 30 beams) is split,
-// which keeps pricing's memory bounded (docs/pricing.md).
-inline constexpr std::size_t kMaxRaysPerLaunch = std::size_t{1} << 20;
 
 class SensorModel {
  public:
