@@ -6,7 +6,7 @@ namespace rc {
 
 CacheLevel::CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::uint64_t capacity_lines, int ways)
     : per_line_shift_(per_line_shift), sector_mask_((1u << per_line_shift) - 1) {
-  if (footprint_lines <= capacity_lines) {
+  if (Fits(footprint_lines, capacity_lines)) {
     mode_ = Mode::kCold;
     valid_.assign(((footprint_lines << per_line_shift) + 63) / 64, 0);
   } else if (ways == 0) {

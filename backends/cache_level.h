@@ -30,6 +30,11 @@ class CacheLevel {
   CacheLevel(std::uint64_t footprint_lines, int per_line_shift, std::uint64_t capacity_lines, int ways);
 
   bool cold() const { return mode_ == Mode::kCold; }
+  // Whether a level of `capacity_lines` holds a footprint of
+  // `footprint_lines` (and is then cold: compulsory misses only).
+  static bool Fits(std::uint64_t footprint_lines, std::uint64_t capacity_lines) {
+    return footprint_lines <= capacity_lines;
+  }
 
   // Accesses n sectors in order; a miss fills its sector (allocating its
   // line, evicting the least recently used line if the level is full).

@@ -23,17 +23,23 @@ CacheHierarchy::CacheHierarchy(const GpuParams& gpu, std::uint64_t footprint_beg
   // is sized by the footprint, not by the address space.
   begin_ = footprint_begin >> line_shift_ << line_shift_;
   const std::uint64_t line_bytes = std::uint64_t{1} << line_shift_;
-  const std::uint64_t lines = (footprint_end - begin_ + line_bytes - 1) >> line_shift_;
-  const int per_line_shift = line_shift_ - sector_shift_;
-  for (int s = 0; s < gpu.sms; ++s)
-    l1_.emplace_back(lines, per_line_shift, static_cast<std::uint64_t>(gpu.l1_bytes) >> line_shift_, 0);
-  l2_.emplace_back(lines, per_line_shift, static_cast<std::uint64_t>(gpu.l2_bytes) >> line_shift_, gpu.l2_ways);
+  lines_ = (footprint_end - begin_ + line_bytes - 1) >> line_shift_;
+  per_line_shift_ = line_shift_ - sector_shift_;
+  l1_lines_ = static_cast<std::uint64_t>(gpu.l1_bytes) >> line_shift_;
+  l1_.resize(static_cast<std::size_t>(gpu.sms));
+  l2_.emplace_back(lines_, per_line_shift_, static_cast<std::uint64_t>(gpu.l2_bytes) >> line_shift_, gpu.l2_ways);
   const char* kFits = "cold (footprint fits: compulsory misses only)";
-  l1_model_ = l1_.front().cold() ? kFits : "lru (fully associative)";
+  l1_model_ = CacheLevel::Fits(lines_, l1_lines_) ? kFits : "lru (fully associative)";
   l2_model_ = l2_.front().cold() ? kFits : "lru (set associative)";
   latency_[0] = gpu.l1_latency_cycles;
   latency_[1] = latency_[0] + gpu.l2_latency_cycles;
   latency_[2] = latency_[1] + gpu.DramExtraCycles();
+}
+
+CacheLevel& CacheHierarchy::L1(int sm) {
+  std::unique_ptr<CacheLevel>& level = l1_[static_cast<std::size_t>(sm)];
+  if (!level) level = std::make_unique<CacheLevel>(lines_, per_line_shift_, l1_lines_, 0);
+  return *level;
 }
 
 MemoryLevel CacheHierarchy::Access(int sm, std::uint64_t address) {

@@ -50,13 +50,16 @@ class CacheHierarchy {
   // The levels themselves, for a replay that runs each SM's L1 on its own
   // (in parallel; each SM's L1 may be driven from its own thread) and then
   // the shared L2 on the L1 misses in a fixed order. Sectors are numbered
-  // from the footprint's first line.
+  // from the footprint's first line. An SM's L1 is made when first asked
+  // for, so a replay of a few sampled SMs sizes no state for the others;
+  // different SMs' L1s may be asked for from different threads at once,
+  // one SM's from one thread at a time.
   std::uint32_t SectorNumber(std::uint64_t address) const {
     return static_cast<std::uint32_t>((address - begin_) >> sector_shift_);
   }
   std::uint64_t begin() const { return begin_; }
   int sector_shift() const { return sector_shift_; }
-  CacheLevel& L1(int sm) { return l1_[static_cast<std::size_t>(sm)]; }
+  CacheLevel& L1(int sm);
   CacheLevel& L2() { return l2_.front(); }
 
   // Core cycles from request to data: L1 hit; L1 miss + L2 hit; + DRAM.
@@ -71,8 +74,11 @@ class CacheHierarchy {
   int sector_shift_;  // log2(sector_bytes): sizes are powers of two (GpuParams::IsValid)
   int line_shift_;
   int latency_[3];
-  std::vector<CacheLevel> l1_;  // one per SM
-  std::vector<CacheLevel> l2_;  // one
+  std::uint64_t lines_;  // in the footprint
+  int per_line_shift_;
+  std::uint64_t l1_lines_;                       // an L1's capacity
+  std::vector<std::unique_ptr<CacheLevel>> l1_;  // one per SM, made on first use
+  std::vector<CacheLevel> l2_;                   // one
   std::string l1_model_;
   std::string l2_model_;
 };
