@@ -371,12 +371,16 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       k.clear();
       for (std::size_t q = first; q < end; ++q)
         k.push_back(static_cast<Key>(std::uint64_t{record.nodes(q)} << 6 | (q - first)));
-      out.resize(k.size());
-      for (std::size_t i = 0; i < k.size(); ++i) {
-        Key place = 0;  // in the keys' width, so that the count runs in their SIMD lanes
-        for (const Key other : k) place += other < k[i];
-        out[static_cast<std::size_t>(place)] = first + i;
+      const std::size_t count = k.size();
+      // Every key's place at once, in the keys' width, so that the count
+      // runs in their SIMD lanes: one pass per other key, no reduction.
+      Key place[64] = {};
+      for (std::size_t j = 0; j < count; ++j) {
+        const Key other = k[j];
+        for (std::size_t i = 0; i < count; ++i) place[i] += other < k[i];
       }
+      out.resize(count);
+      for (std::size_t i = 0; i < count; ++i) out[static_cast<std::size_t>(place[i])] = first + i;
     };
     if (most < (std::uint32_t{1} << 25))  // (node count, lane) fits a signed 32-bit key
       place_all(narrow_keys);
