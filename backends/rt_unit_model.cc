@@ -5,6 +5,7 @@
 
 #include "backends/energy_model.h"
 #include "backends/modelled_backend.h"
+#include "backends/ray_query_cycles.h"
 #include "backends/warp_schedule.h"
 
 namespace rc {
@@ -73,62 +74,48 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
-  // A ray record keeps one exit per query (kernel_record.h: every pass but
-  // the last has none), which prices a query in O(1) without the exit
-  // profile: its quiet passes, then its last pass at its exit
-  // (`last_pass_cycles`, by the exit's value; a quiet pass for kNoExit).
-  // Other records go through the profile. Both sum the same integer
-  // products.
+  // A ray record keeps one exit per query, which prices a query in O(1)
+  // without the exit profile (ray_query_cycles.h); other records go through
+  // the profile. Both sum the same integer products.
   const bool exits_per_query = record.exits_per_query();
   const auto exits = exits_per_query ? nullptr : context.Exits();
-  std::array<std::uint64_t, 256> last_pass_cycles;
-  last_pass_cycles.fill(pass_cycles[0]);
-  for (int v = 1; v < variants; ++v) last_pass_cycles[v - 1] = pass_cycles[v];
-  const std::uint64_t* offsets = record.fetch_offsets.data();
-  const std::uint8_t* last_exits = record.last_exits.data();
-  const std::uint64_t* memory_cycles = memory->query_memory_cycles.data();
-  const std::uint64_t quiet_pass_cycles = pass_cycles[0];
+  RayQueryTerms terms;
+  if (exits_per_query) {
+    terms.fetch_offsets = record.fetch_offsets.data();
+    terms.last_exits = record.last_exits.data();
+    terms.memory_cycles = memory->query_memory_cycles.data();
+    terms.once_cycles = once_cycles;
+    terms.quiet_pass_cycles = pass_cycles[0];
+    terms.last_pass_cycles.fill(pass_cycles[0]);
+    terms.exits = variants - 1;
+    for (int v = 1; v < variants; ++v) terms.last_pass_cycles[v - 1] = pass_cycles[v];
+  }
 #pragma omp parallel for schedule(dynamic, 1)
   for (int sm = 0; sm < gpu.sms; ++sm) {
     std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
-    // Ray records: passes counted in registers and in four histograms of
-    // last exits taken in turn, so that neighbouring queries with the same
-    // exit do not wait on each other's count.
-    std::uint64_t quiet_passes = 0;
-    std::array<std::array<std::uint64_t, 256>, 4> last_exit_count{};
+    RayPassTally tally;
     for (std::uint32_t w : sm_warps[sm]) {
       const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
       const std::size_t hi = std::min(n, lo + gpu.warp_size);
       std::uint64_t slowest = 0;
-      for (std::size_t q = lo; q < hi; ++q) {
-        std::uint64_t cycles = once_cycles + memory_cycles[q];
-        if (exits_per_query) {
-          const std::uint64_t nodes = offsets[q + 1] - offsets[q];
-          if (nodes > 0) {
-            const std::uint8_t last = last_exits[q];
-            cycles += (nodes - 1) * quiet_pass_cycles + last_pass_cycles[last];
-            quiet_passes += nodes - 1;
-            ++last_exit_count[q & 3][last];
-          }
-        } else {
+      if (exits_per_query) {
+        slowest = SlowestRayQuery(terms, lo, hi, tally);
+      } else {
+        for (std::size_t q = lo; q < hi; ++q) {
+          std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
           for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
             cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
             passes[exits->variant[i]] += exits->passes[i];
           }
+          slowest = std::max(slowest, cycles);
         }
-        slowest = std::max(slowest, cycles);
       }
       sm_threads[sm] += hi - lo;
       sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
     }
     if (exits_per_query) {
-      auto counted = [&](std::uint8_t exit) {
-        std::uint64_t sum = 0;
-        for (const auto& count : last_exit_count) sum += count[exit];
-        return sum;
-      };
-      passes[0] += quiet_passes + counted(kNoExit);
-      for (int v = 1; v < variants; ++v) passes[v] += counted(static_cast<std::uint8_t>(v - 1));
+      passes[0] += tally.quiet;
+      for (int v = 1; v < variants; ++v) passes[v] += tally.exit[v - 1];
     }
   }
 

@@ -1,0 +1,106 @@
+#include "backends/ray_query_cycles.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
+namespace rc {
+
+std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& t, std::size_t lo, std::size_t hi, RayPassTally& tally) {
+  std::uint64_t slowest = 0;
+  for (std::size_t q = lo; q < hi; ++q) {
+    std::uint64_t cycles = t.once_cycles + t.memory_cycles[q];
+    const std::uint64_t nodes = t.fetch_offsets[q + 1] - t.fetch_offsets[q];
+    if (nodes > 0) {
+      const std::uint8_t last = t.last_exits[q];
+      cycles += (nodes - 1) * t.quiet_pass_cycles + t.last_pass_cycles[last];
+      tally.quiet += nodes - 1;
+      if (last < t.exits)
+        ++tally.exit[last];
+      else
+        ++tally.quiet;
+    }
+    slowest = std::max(slowest, cycles);
+  }
+  return slowest;
+}
+
+#if defined(__x86_64__)
+
+bool RayQueryLanesSupported() {
+  static const bool supported = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+  return supported;
+}
+
+// Eight queries a step, the last step masked. Passes are counted per step
+// from masks: the quiet ones as a vector sum, each exit's by population
+// count, so that no count waits on the previous query's.
+__attribute__((target("avx512f,avx512dq"))) std::uint64_t SlowestRayQueryLanes(const RayQueryTerms& t, std::size_t lo,
+                                                                               std::size_t hi, RayPassTally& tally) {
+  const __m512i once = _mm512_set1_epi64(static_cast<long long>(t.once_cycles));
+  const __m512i quiet_cycles = _mm512_set1_epi64(static_cast<long long>(t.quiet_pass_cycles));
+  const __m512i one = _mm512_set1_epi64(1);
+  __m512i slowest = _mm512_setzero_si512();
+  __m512i quiet = _mm512_setzero_si512();
+  std::uint64_t with_nodes = 0, exiting = 0;
+  for (std::size_t q = lo; q < hi; q += 8) {
+    const auto in = static_cast<__mmask8>(hi - q >= 8 ? 0xFF : (1u << (hi - q)) - 1);
+    const __m512i begin = _mm512_maskz_loadu_epi64(in, t.fetch_offsets + q);
+    const __m512i end = _mm512_maskz_loadu_epi64(in, t.fetch_offsets + q + 1);
+    const __m512i nodes = _mm512_sub_epi64(end, begin);
+    const __mmask8 has = _mm512_mask_cmpneq_epu64_mask(in, nodes, _mm512_setzero_si512());
+    std::uint64_t packed = 0;
+    if (in == 0xFF)
+      std::memcpy(&packed, t.last_exits + q, 8);
+    else
+      for (std::size_t i = 0; q + i < hi; ++i) packed |= std::uint64_t{t.last_exits[q + i]} << (8 * i);
+    const __m512i exit = _mm512_maskz_cvtepu8_epi64(0xFF, _mm_cvtsi64_si128(static_cast<long long>(packed)));
+    const __m512i last = _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), has, exit,
+                                                     reinterpret_cast<const long long*>(t.last_pass_cycles.data()), 8);
+    const __m512i before_last = _mm512_sub_epi64(nodes, one);
+    const __m512i passes = _mm512_add_epi64(_mm512_mullo_epi64(before_last, quiet_cycles), last);
+    __m512i cycles = _mm512_add_epi64(once, _mm512_maskz_loadu_epi64(in, t.memory_cycles + q));
+    cycles = _mm512_mask_add_epi64(cycles, has, cycles, passes);
+    slowest = _mm512_mask_max_epu64(slowest, in, slowest, cycles);
+    quiet = _mm512_mask_add_epi64(quiet, has, quiet, before_last);
+    with_nodes += static_cast<std::uint64_t>(__builtin_popcount(has));
+    for (int j = 0; j < t.exits; ++j) {
+      const auto n =
+          static_cast<std::uint64_t>(__builtin_popcount(_mm512_mask_cmpeq_epi64_mask(has, exit, _mm512_set1_epi64(j))));
+      tally.exit[j] += n;
+      exiting += n;
+    }
+  }
+  // Reduced through memory: GCC 12's reduce intrinsics warn of an
+  // uninitialized temporary.
+  alignas(64) std::uint64_t lane_quiet[8], lane_slowest[8];
+  _mm512_store_si512(lane_quiet, quiet);
+  _mm512_store_si512(lane_slowest, slowest);
+  tally.quiet += with_nodes - exiting;
+  std::uint64_t most = 0;
+  for (int i = 0; i < 8; ++i) {
+    tally.quiet += lane_quiet[i];
+    most = std::max(most, lane_slowest[i]);
+  }
+  return most;
+}
+
+#else
+
+bool RayQueryLanesSupported() { return false; }
+std::uint64_t SlowestRayQueryLanes(const RayQueryTerms&, std::size_t, std::size_t, RayPassTally&) {
+  throw std::logic_error("SlowestRayQueryLanes: AVX-512 exists only on x86-64");
+}
+
+#endif
+
+std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally) {
+  return RayQueryLanesSupported() ? SlowestRayQueryLanes(terms, lo, hi, tally)
+                                  : SlowestRayQueryScalar(terms, lo, hi, tally);
+}
+
+}  // namespace rc
