@@ -333,10 +333,41 @@ RC_LANES_TARGET inline StepResult StepRayMarchingGroup(LaneState& s, int g, cons
   return {static_cast<__mmask8>(~h.fetch | stops), static_cast<__mmask8>(h.fetch & stops), h.fetch, h.index};
 }
 
+// How a recording finds a fetched cell's sector: the sector of byte
+// offset + index * element_bytes. Where the fetched structure starts on a
+// sector and its cells are a power of two no wider than one, that is
+// first + (index >> index_shift), in 32 bits: a shift and an add, where the
+// general form takes 64-bit multiplies and a scatter with 64-bit indices
+// (several times the cost per step).
+struct SectorOfCell {
+  bool narrow = false;
+  std::int32_t first = 0;
+  int index_shift = 0;
+
+  // `cells`: one past the largest index fetched.
+  SectorOfCell(const LaneRecording& rec, std::size_t cells) {
+    const std::uint64_t sector_bytes = std::uint64_t{1} << rec.sector_shift;
+    const std::uint32_t bytes = rec.element_bytes;
+    if (rec.offset % sector_bytes != 0 || bytes == 0 || (bytes & (bytes - 1)) != 0 || bytes > sector_bytes) return;
+    while ((std::uint64_t{bytes} << index_shift) < sector_bytes) ++index_shift;
+    const std::uint64_t first_sector = rec.offset >> rec.sector_shift;
+    if (first_sector + (cells >> index_shift) > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()))
+      return;
+    narrow = true;
+    first = static_cast<std::int32_t>(first_sector);
+  }
+};
+
 // Marks the sectors of a group's fetched cells (a recorded batch's touched
-// sectors): the sector of byte offset + index * element_bytes, in 64 bits,
-// one scatter for the group (lanes that share a sector write the same 1).
-RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec) {
+// sectors), one scatter for the group (lanes that share a sector write the
+// same 1).
+RC_LANES_TARGET inline void MarkTouched(const StepResult& step, const LaneRecording& rec, const SectorOfCell& of) {
+  if (of.narrow) {
+    const __m256i sector =
+        _mm256_add_epi32(_mm256_set1_epi32(of.first), _mm256_srl_epi32(step.index, _mm_cvtsi32_si128(of.index_shift)));
+    _mm256_mask_i32scatter_epi32(rec.touched, step.fetch, sector, _mm256_set1_epi32(1), 4);
+    return;
+  }
   const __m512i index = _mm512_cvtepu32_epi64(step.index);
   const __m512i byte = _mm512_add_epi64(_mm512_set1_epi64(static_cast<long long>(rec.offset)),
                                         _mm512_mullo_epi64(index, _mm512_set1_epi64(rec.element_bytes)));
@@ -376,6 +407,9 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
   const double r = scene.grid().resolution_m();
   LaneMask live = StartAll(s, queries, count, next, r);
   LaneNodeLog* log = kRecord ? rec->nodes : nullptr;
+  // Fetches are masked to cells inside the map.
+  const SectorOfCell sector_of =
+      kRecord ? SectorOfCell(*rec, scene.grid().cell_count()) : SectorOfCell(LaneRecording{}, 0);
   if (log) {
     for (std::vector<std::uint32_t>& lane : log->lane) lane.clear();
     log->lane_of.assign(count, 0);
@@ -395,7 +429,7 @@ RC_LANES_TARGET void RunLanes(const RayCastScene& scene, const RayQuery* queries
         // whose ray has ended steps on past its end, to cells it never fetched.
         StepResult holding = step;
         holding.fetch &= static_cast<__mmask8>(live >> (g * kRayLanes));
-        if (rec->touched) MarkTouched(holding, *rec);
+        if (rec->touched) MarkTouched(holding, *rec, sector_of);
         if (log) LogNodes(holding, g, *log);
       }
     }

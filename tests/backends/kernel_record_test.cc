@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "robocore/ray_batch_lanes.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
@@ -128,6 +129,35 @@ TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
     ASSERT_EQ(record.last_exits[q], exit) << q;
   }
   EXPECT_EQ(record.touched_sectors, sectors.size());
+}
+
+// The lanes find a fetched cell's sector with a 32-bit shift where the
+// structure starts on a sector, and in 64 bits where it does not: both mark
+// exactly the sectors of the cells the scalar kernel visits.
+TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
+  const OccupancyGrid grid = test::RoomGrid(200, 150, 0.05, 0.01, 5);
+  const RayCastScene scene(grid, GetParam());
+  if (!RayLanesApply(scene)) GTEST_SKIP() << "this host has no AVX-512 lanes";
+  const RayBatch batch = test::FanBatch(grid, 40, 30, 6.0, 3);
+  const std::uint32_t element_bytes = GetParam() == RayCastMethod::kRayMarching ? 4 : 2;
+  for (std::uint64_t offset : {std::uint64_t{0}, std::uint64_t{4096}, std::uint64_t{8}, std::uint64_t{4100}}) {
+    std::set<std::uint64_t> expected;
+    for (std::size_t q = 0; q < batch.queries.size(); ++q)
+      for (std::uint32_t index : ScalarVisits(scene, batch, q))
+        expected.insert((offset + std::uint64_t{index} * element_bytes) / 32);
+    std::vector<std::uint32_t> touched((offset + grid.cell_count() * element_bytes) / 32 + 1, 0);
+    LaneRecording rec;
+    rec.touched = touched.data();
+    rec.offset = offset;
+    rec.element_bytes = element_bytes;
+    rec.sector_shift = 5;
+    std::vector<RayHit> hits(batch.queries.size());
+    CastRayLanes(scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, hits.data(), &rec);
+    std::set<std::uint64_t> marked;
+    for (std::size_t s = 0; s < touched.size(); ++s)
+      if (touched[s] != 0) marked.insert(s);
+    EXPECT_EQ(marked, expected) << "offset " << offset;
+  }
 }
 
 TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
