@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "backends/cache_model.h"
+#include "backends/key_ranks.h"
 
 namespace rc {
 namespace {
@@ -356,10 +357,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     cycles += whole + static_cast<std::uint64_t>(extra - static_cast<double>(whole) >= 0.5);
   };
   // A warp's queries in order of node count, ties in launch order: each
-  // lane's key (node count, lane) is distinct, so its place is the number
-  // of smaller keys (a warp has at most 64 lanes: counting is cheaper than
-  // a sort, has no branch to mispredict, and in 32 bits, where node counts
-  // allow, runs in SIMD).
+  // lane's key (node count, lane) is distinct, so its place is its rank
+  // (key_ranks.h; in 32 bits where node counts allow, which runs in more
+  // SIMD lanes).
   std::vector<std::uint64_t> keys;
   std::vector<std::int32_t> narrow_keys;
   auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
@@ -372,13 +372,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       for (std::size_t q = first; q < end; ++q)
         k.push_back(static_cast<Key>(std::uint64_t{record.nodes(q)} << 6 | (q - first)));
       const std::size_t count = k.size();
-      // Every key's place at once, in the keys' width, so that the count
-      // runs in their SIMD lanes: one pass per other key, no reduction.
-      Key place[64] = {};
-      for (std::size_t j = 0; j < count; ++j) {
-        const Key other = k[j];
-        for (std::size_t i = 0; i < count; ++i) place[i] += other < k[i];
-      }
+      Key place[kMaxRankedKeys];
+      RankDistinctKeys(k.data(), count, place);
       out.resize(count);
       for (std::size_t i = 0; i < count; ++i) out[static_cast<std::size_t>(place[i])] = first + i;
     };

@@ -8,6 +8,8 @@
 #include <immintrin.h>
 #endif
 
+#include "robocore/ray_batch_lanes.h"
+
 namespace rc {
 
 std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& t, std::size_t lo, std::size_t hi, RayPassTally& tally) {
@@ -30,11 +32,6 @@ std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& t, std::size_t lo, std:
 }
 
 #if defined(__x86_64__)
-
-bool RayQueryLanesSupported() {
-  static const bool supported = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-  return supported;
-}
 
 // Eight queries a step, the last step masked. Passes are counted per step
 // from masks: the quiet ones as a vector sum, each exit's by population
@@ -91,7 +88,6 @@ __attribute__((target("avx512f,avx512dq"))) std::uint64_t SlowestRayQueryLanes(c
 
 #else
 
-bool RayQueryLanesSupported() { return false; }
 std::uint64_t SlowestRayQueryLanes(const RayQueryTerms&, std::size_t, std::size_t, RayPassTally&) {
   throw std::logic_error("SlowestRayQueryLanes: AVX-512 exists only on x86-64");
 }
@@ -99,8 +95,7 @@ std::uint64_t SlowestRayQueryLanes(const RayQueryTerms&, std::size_t, std::size_
 #endif
 
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally) {
-  return RayQueryLanesSupported() ? SlowestRayQueryLanes(terms, lo, hi, tally)
-                                  : SlowestRayQueryScalar(terms, lo, hi, tally);
+  return RayLanesSupported() ? SlowestRayQueryLanes(terms, lo, hi, tally) : SlowestRayQueryScalar(terms, lo, hi, tally);
 }
 
 }  // namespace rc

@@ -37,10 +37,9 @@ struct RayPassTally {
 // The slowest of queries [lo, hi); adds their passes to `tally`.
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 
-// The same, one query at a time; the AVX-512 form when the host has it
-// (false: SlowestRayQueryLanes must not be called).
+// The same, one query at a time; and in AVX-512 lanes, only where the host
+// has them (RayLanesSupported()).
 std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
-bool RayQueryLanesSupported();
 std::uint64_t SlowestRayQueryLanes(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 
 }  // namespace rc
