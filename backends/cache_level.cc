@@ -83,50 +83,43 @@ std::size_t CacheLevel::AccessFullyAssociative(const std::uint32_t* sectors, std
   std::uint32_t* last = last_.data();
   std::uint32_t* history = history_.data();
   const auto history_capacity = static_cast<std::uint32_t>(history_.size());
-  std::uint32_t size = history_size_, tail = tail_, mru = mru_;
+  std::uint32_t size = history_size_, tail = tail_;
   std::uint64_t resident = resident_;
   const std::uint64_t capacity = capacity_;
   const int shift = per_line_shift_;
   const std::uint32_t sector_mask = sector_mask_;
   std::size_t m = 0;
-  std::uint32_t previous = ~std::uint32_t{0};
+  // Every access is appended to the history, a repeat of the most recently
+  // used line too (its older entry dies), and a miss is written
+  // unconditionally and counted by its flag: hits, misses and repeats
+  // interleave unpredictably, and a mispredicted branch per access cost
+  // more than the extra history entries.
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t sector = sectors[i];
-    // The sector just accessed: a hit on the most recently used line, which
-    // changes nothing. Neighbouring threads often fetch the same sector.
-    if (sector == previous) continue;
-    previous = sector;
     const std::uint32_t line = sector >> shift;
     const auto bit = static_cast<std::uint8_t>(1u << (sector & sector_mask));
-    if (line != mru) {
-      if (size == history_capacity) {
-        size = CompactHistory(history, size, tail, mask, last);
-        tail = 0;
-      }
-      last[line] = size;
-      history[size++] = line;
-      mru = line;
-      if (mask[line] == 0) {
-        if (resident == capacity) {  // evict the least recently used line
-          while (mask[history[tail]] == 0 || last[history[tail]] != tail) ++tail;
-          mask[history[tail]] = 0;
-          ++tail;
-          --resident;
-        }
-        mask[line] = bit;
+    if (size == history_capacity) {
+      size = CompactHistory(history, size, tail, mask, last);
+      tail = 0;
+    }
+    last[line] = size;
+    history[size++] = line;
+    const std::uint8_t resident_sectors = mask[line];
+    mask[line] = resident_sectors | bit;
+    misses[m] = static_cast<std::uint32_t>(i);
+    m += (resident_sectors & bit) == 0;
+    if (resident_sectors == 0) {   // the line comes in
+      if (resident == capacity) {  // evict the least recently used line (not this one: it is the newest)
+        while (mask[history[tail]] == 0 || last[history[tail]] != tail) ++tail;
+        mask[history[tail]] = 0;
+        ++tail;
+      } else {
         ++resident;
-        misses[m++] = static_cast<std::uint32_t>(i);
-        continue;
       }
     }
-    const std::uint8_t resident_sectors = mask[line];
-    if (resident_sectors & bit) continue;
-    mask[line] = resident_sectors | bit;
-    misses[m++] = static_cast<std::uint32_t>(i);
   }
   history_size_ = size;
   tail_ = tail;
-  mru_ = mru;
   resident_ = resident;
   return m;
 }

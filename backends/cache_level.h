@@ -10,12 +10,11 @@
 //   cold                 a valid bit per sector; the first access misses.
 //   fully associative    LRU by timestamps: a line is resident while its
 //                        sector mask is non-zero; the history holds the line
-//                        of every access that changed the LRU order, so the
-//                        least recently used resident line is the first
-//                        history entry that is still its line's last access.
-//                        A hit on the most recently used line changes no
-//                        order and is not recorded. O(1) amortized, two
-//                        per-line words touched, no list relinking.
+//                        of every access, so the least recently used
+//                        resident line is the first history entry that is
+//                        still its line's last access. O(1) amortized, two
+//                        per-line words touched, no list relinking, no
+//                        branch on hit or miss but the line's arrival.
 //   set associative      sets x ways of lines with a sector mask and a
 //                        timestamp; the oldest way is evicted.
 #include <cstddef>
@@ -63,10 +62,9 @@ class CacheLevel {
   std::uint64_t capacity_ = 0, resident_ = 0;
   std::uint32_t tail_ = 0;  // history entries before it are dead
   std::uint32_t history_size_ = 0;
-  std::uint32_t mru_ = ~std::uint32_t{0};  // the line of the last history entry
-  std::vector<std::uint8_t> mask_;         // per line: its resident sectors, 0 if absent
-  std::vector<std::uint32_t> last_;        // per line: index of its last history entry
-  std::vector<std::uint32_t> history_;     // fixed size: compacted when full
+  std::vector<std::uint8_t> mask_;      // per line: its resident sectors, 0 if absent
+  std::vector<std::uint32_t> last_;     // per line: index of its last history entry
+  std::vector<std::uint32_t> history_;  // fixed size: compacted when full
   // set associative
   std::uint64_t ways_ = 0, sets_ = 0, clock_ = 0;
   std::vector<std::int64_t> tags_;
