@@ -353,38 +353,39 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       cycles += static_cast<std::uint64_t>(std::llround(extra));
       return;
     }
-    const auto whole = static_cast<std::uint64_t>(extra);
-    cycles += whole + static_cast<std::uint64_t>(extra - static_cast<double>(whole) >= 0.5);
+    // Through the signed conversion, one instruction (the unsigned one is a
+    // branch and a subtraction without AVX-512); extra is below 2^63.
+    const auto whole = static_cast<std::int64_t>(extra);
+    cycles += static_cast<std::uint64_t>(whole) + static_cast<std::uint64_t>(extra - static_cast<double>(whole) >= 0.5);
   };
-  // A warp's queries in order of node count, ties in launch order: each
-  // lane's key (node count, lane) is distinct, so its place is its rank
-  // (key_ranks.h; in 32 bits where node counts allow, which runs in more
-  // SIMD lanes).
-  std::vector<std::uint64_t> keys;
-  std::vector<std::int32_t> narrow_keys;
-  auto ByNodes = [&](std::uint32_t warp, std::vector<std::size_t>& out) {
-    const std::size_t first = std::size_t{warp} * lanes, end = std::min(n, first + lanes);
+  // Each lane's rank in its warp by node count, ties in launch order: its
+  // key (node count, lane) is distinct, so its rank is the number of smaller
+  // keys (key_ranks.h; in 32 bits where node counts allow, which runs in
+  // more SIMD lanes).
+  std::uint32_t lane_nodes[kMaxRankedKeys];
+  auto RanksByNodes = [&](std::uint32_t warp, std::vector<std::uint32_t>& rank) {
+    const std::size_t first = std::size_t{warp} * lanes, count = std::min(n, first + lanes) - first;
     std::uint32_t most = 0;
-    for (std::size_t q = first; q < end; ++q) most = std::max(most, record.nodes(q));
-    auto place_all = [&](auto& k) {
-      using Key = typename std::decay_t<decltype(k)>::value_type;
-      k.clear();
-      for (std::size_t q = first; q < end; ++q)
-        k.push_back(static_cast<Key>(std::uint64_t{record.nodes(q)} << 6 | (q - first)));
-      const std::size_t count = k.size();
-      Key place[kMaxRankedKeys];
-      RankDistinctKeys(k.data(), count, place);
-      out.resize(count);
-      for (std::size_t i = 0; i < count; ++i) out[static_cast<std::size_t>(place[i])] = first + i;
+    for (std::size_t i = 0; i < count; ++i) {
+      lane_nodes[i] = record.nodes(first + i);
+      most = std::max(most, lane_nodes[i]);
+    }
+    rank.resize(count);
+    auto rank_keys = [&](auto key_type) {
+      using Key = decltype(key_type);
+      Key key[kMaxRankedKeys], place[kMaxRankedKeys];
+      for (std::size_t i = 0; i < count; ++i) key[i] = static_cast<Key>(std::uint64_t{lane_nodes[i]} << 6 | i);
+      RankDistinctKeys(key, count, place);
+      for (std::size_t i = 0; i < count; ++i) rank[i] = static_cast<std::uint32_t>(place[i]);
     };
     if (most < (std::uint32_t{1} << 25))  // (node count, lane) fits a signed 32-bit key
-      place_all(narrow_keys);
+      rank_keys(std::int32_t{});
     else
-      place_all(keys);
+      rank_keys(std::uint64_t{});
   };
-  // Each twin lends to a warp of every unsampled SM: its lanes' rates, in
-  // order of node count, are found once, when first borrowed.
-  std::vector<std::size_t> mine, twin_order;
+  // Each twin lends to a warp of every unsampled SM: its lanes' rates, by
+  // rank of node count, are found once, when first borrowed.
+  std::vector<std::uint32_t> mine, twin_rank;
   std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty until found
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (sampled_sm[sm]) continue;
@@ -400,19 +401,20 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // longest query with the twin's longest, ...), each borrowing its
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
-      ByNodes(w, mine);
       const std::size_t t = k % twins.size();
       std::vector<double>& theirs = twin_rates[t];
       if (theirs.empty()) {  // a warp has at least one query
-        ByNodes(twin, twin_order);
-        for (std::size_t partner : twin_order)
-          theirs.push_back(record.nodes(partner) > 0 ? rate(extra_of_query(partner), record.nodes(partner))
-                                                     : mean_extra);
+        RanksByNodes(twin, twin_rank);
+        theirs.resize(twin_rank.size());
+        for (std::size_t i = 0; i < twin_rank.size(); ++i) {
+          const std::size_t partner = std::size_t{twin} * lanes + i;
+          theirs[twin_rank[i]] = lane_nodes[i] > 0 ? rate(extra_of_query(partner), lane_nodes[i]) : mean_extra;
+        }
       }
-      for (std::size_t i = 0; i < mine.size(); ++i) {
-        const std::size_t q = mine[i];
-        add(owner_cycles[q], (i < theirs.size() ? theirs[i] : mean_extra) * record.nodes(q));
-      }
+      RanksByNodes(w, mine);
+      const std::size_t first = std::size_t{w} * lanes;
+      for (std::size_t i = 0; i < mine.size(); ++i)
+        add(owner_cycles[first + i], (mine[i] < theirs.size() ? theirs[mine[i]] : mean_extra) * lane_nodes[i]);
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(sampled_units);
