@@ -487,20 +487,26 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
   std::vector<std::uint32_t> steps(warps, 0);
   std::vector<std::uint64_t> units(warps, 0);
-  for (std::size_t w = 0; w < warps; ++w) {
-    sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
-    std::uint64_t fetches = 0;
-    for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q) {
-      steps[w] = std::max(steps[w], record.nodes(q));
-      fetches += record.nodes(q);
-    }
-    units[w] = pattern.coalesced ? steps[w] : fetches;
+  const std::uint64_t* offsets = record.fetch_offsets.data();
+  const auto warp_size = static_cast<std::size_t>(gpu.warp_size);
+  const auto warps_per_block = static_cast<std::size_t>(gpu.warps_per_block);
+  for (std::size_t w = 0, sm = 0; w < warps; ++w) {  // sm = SmOfWarp(w, gpu), stepped block by block
+    if (w > 0 && w % warps_per_block == 0) sm = sm + 1 == static_cast<std::size_t>(gpu.sms) ? 0 : sm + 1;
+    sm_warps[sm].push_back(static_cast<std::uint32_t>(w));
+    const std::size_t lo = w * warp_size, hi = std::min(n, lo + warp_size);
+    std::uint64_t most = 0;
+    for (std::size_t q = lo; q < hi; ++q) most = std::max(most, offsets[q + 1] - offsets[q]);
+    steps[w] = static_cast<std::uint32_t>(most);
+    units[w] = pattern.coalesced ? most : offsets[hi] - offsets[lo];
   }
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   owner_cycles.resize(pattern.coalesced ? warps : n);
-  for (std::size_t i = 0; i < owner_cycles.size(); ++i)
-    owner_cycles[i] = latency[0] * (pattern.coalesced ? steps[i] : record.nodes(i));
+  if (pattern.coalesced) {
+    for (std::size_t w = 0; w < warps; ++w) owner_cycles[w] = latency[0] * steps[w];
+  } else {
+    for (std::size_t q = 0; q < n; ++q) owner_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
+  }
 
   std::vector<int> replayed;
   for (int sm = 0; sm < gpu.sms; ++sm)
