@@ -69,22 +69,23 @@ std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) 
   return stops ? kRayHitReturn : kRayEndReturn;
 }
 
-// A thread's buffers for CastKeptBlocksInLanes, reused segment after segment.
-struct KeptBlocksWork {
+// A thread's buffers for CastBlocksInLanes, reused segment after segment.
+struct LaneBatchWork {
   LaneNodeLog log;
   std::vector<RayQuery> queries;
   std::vector<RayHit> hits;
   std::vector<std::uint8_t> exits;
 };
 
-// Casts a sample's kept blocks (of `block` queries; ascending, not
-// necessarily adjacent) in the lanes as one contiguous batch, then puts each
-// query's hit and last exit in place and appends its node addresses to its
-// block's buffer. `lane` says where to mark touched sectors.
-void CastKeptBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, const std::vector<long>& blocks,
-                           long block, const MemoryRegion& fetched, LaneRecording lane, KeptBlocksWork& work,
-                           RayHit* hits, std::uint8_t* last_exit,
-                           std::vector<std::vector<std::uint64_t>>& block_addresses) {
+// Casts blocks (of `block` queries; ascending, not necessarily adjacent)
+// in the lanes as one contiguous batch, then puts each query's hit and last
+// exit in place and, for kept blocks (`block_addresses` set), appends its
+// node addresses to its block's buffer. One batch rather than one per run
+// of adjacent blocks: the lanes drain at a batch's end, idling while its
+// last rays finish. `lane` says where to mark touched sectors.
+void CastBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, const std::vector<long>& blocks, long block,
+                       const MemoryRegion& fetched, LaneRecording lane, LaneBatchWork& work, RayHit* hits,
+                       std::uint8_t* last_exit, std::vector<std::vector<std::uint64_t>>* block_addresses) {
   const long n = static_cast<long>(batch.queries.size());
   auto end_of = [&](long b) { return std::min(n, (b + 1) * block); };
   work.queries.clear();
@@ -93,17 +94,24 @@ void CastKeptBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, con
   work.hits.resize(work.queries.size());
   work.exits.assign(work.queries.size(), kNoExit);
   lane.last_exits = work.exits.data();
-  lane.nodes = &work.log;
+  lane.nodes = block_addresses ? &work.log : nullptr;
   CastRayLanes(scene, work.queries.data(), work.queries.size(), batch.max_range_m, work.hits.data(), &lane);
   std::size_t g = 0;  // position in the gathered batch
   for (long b : blocks) {
-    std::vector<std::uint64_t>& out = block_addresses[static_cast<std::size_t>(b)];
+    const long lo = b * block, hi = end_of(b);
+    std::copy(work.hits.begin() + static_cast<long>(g), work.hits.begin() + static_cast<long>(g) + (hi - lo),
+              hits + lo);
+    std::copy(work.exits.begin() + static_cast<long>(g), work.exits.begin() + static_cast<long>(g) + (hi - lo),
+              last_exit + lo);
+    if (!block_addresses) {
+      g += static_cast<std::size_t>(hi - lo);
+      continue;
+    }
+    std::vector<std::uint64_t>& out = (*block_addresses)[static_cast<std::size_t>(b)];
     std::size_t fetches = 0;
-    for (std::size_t i = g; i < g + static_cast<std::size_t>(end_of(b) - b * block); ++i) fetches += work.hits[i].nodes;
+    for (std::size_t i = g; i < g + static_cast<std::size_t>(hi - lo); ++i) fetches += work.hits[i].nodes;
     out.reserve(fetches);
-    for (long i = b * block; i < end_of(b); ++i, ++g) {
-      hits[i] = work.hits[g];
-      last_exit[i] = work.exits[g];
+    for (long i = lo; i < hi; ++i, ++g) {
       const std::uint32_t* index = work.log.NodesOf(g);
       for (std::uint32_t k = 0; k < work.hits[g].nodes; ++k)
         out.push_back(fetched.base + std::uint64_t{index[k]} * fetched.element_bytes);
@@ -196,17 +204,19 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     prototype.element_bytes[k] = r.element_bytes;
   }
   prototype.sector_shift = sector_shift;
-  // Segments of the batch, each cast as a unit, at most kSegmentQueries
-  // queries so that two threads even out. With the AVX-512 lanes
+  // Segments of the batch, each cast as a unit. With the AVX-512 lanes
   // (ray_batch_lanes.h, which also give the exits, touched sectors and node
-  // indices): a run of unkept blocks, or kept blocks gathered into one
-  // contiguous batch (a sample's kept blocks lie apart, and a lone block
-  // leaves the lanes idle while its last rays finish). Without the lanes:
-  // a run of unkept blocks (scalar, with the marking visitor) or one kept
-  // block (scalar, with the recording visitor).
+  // indices): kept blocks, or unkept ones, gathered into one contiguous
+  // batch of at most kLaneSegmentQueries queries (a sample's kept blocks lie
+  // apart and cut the unkept ones into short runs, and the lanes idle while
+  // a batch's last rays finish); several segments, so that two threads even
+  // out. Without the lanes: a run of at most kSegmentQueries queries of
+  // unkept blocks (scalar, with the marking visitor) or one kept block
+  // (scalar, with the recording visitor).
   constexpr long kSegmentQueries = 2048;
+  constexpr long kLaneSegmentQueries = 8192;
   struct Segment {
-    std::vector<long> blocks;  // ascending; consecutive unless kept
+    std::vector<long> blocks;  // ascending; consecutive without the lanes
     long queries = 0;
     bool keep = false;
   };
@@ -217,8 +227,9 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     const long size = std::min(n, (b + 1) * block) - b * block;
     const bool keep = sample.KeepsQuery(static_cast<std::size_t>(b * block));
     long& last = open[keep];
-    const bool joins = last >= 0 && segments[last].queries + size <= kSegmentQueries &&
-                       (keep ? lanes : segments[last].blocks.back() + 1 == b);
+    const bool joins = last >= 0 && (lanes ? segments[last].queries + size <= kLaneSegmentQueries
+                                           : !keep && segments[last].queries + size <= kSegmentQueries &&
+                                                 segments[last].blocks.back() + 1 == b);
     if (!joins) {
       last = static_cast<long>(segments.size());
       segments.push_back({{}, 0, keep});
@@ -230,7 +241,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
 #pragma omp parallel
   {
     std::vector<std::uint32_t> mine(mark ? sectors : 0, 0);
-    KeptBlocksWork kept;
+    LaneBatchWork lane_work;
 #pragma omp for schedule(dynamic, 1)
     for (long j = 0; j < static_cast<long>(segments.size()); ++j) {
       const Segment& seg = segments[static_cast<std::size_t>(j)];
@@ -240,9 +251,9 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
       lane.offset = fetched.base - footprint_begin;
       lane.element_bytes = fetched.element_bytes;
       lane.sector_shift = sector_shift;
-      if (seg.keep && lanes) {
-        CastKeptBlocksInLanes(scene, batch, seg.blocks, block, fetched, lane, kept, hits.data(), last_exit.data(),
-                              block_addresses);
+      if (lanes) {
+        CastBlocksInLanes(scene, batch, seg.blocks, block, fetched, lane, lane_work, hits.data(), last_exit.data(),
+                          seg.keep ? &block_addresses : nullptr);
       } else if (seg.keep) {
         RecordingVisitor recording = prototype;
         recording.out = &block_addresses[static_cast<std::size_t>(seg.blocks.front())];
@@ -253,10 +264,6 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, recording);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
         }
-      } else if (lanes) {
-        lane.last_exits = last_exit.data() + lo;
-        CastRayLanes(scene, batch.queries.data() + lo, static_cast<std::size_t>(seg.queries), batch.max_range_m,
-                     hits.data() + lo, &lane);
       } else {
         MarkingVisitor marking;
         marking.touched = mine.data();
