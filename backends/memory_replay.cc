@@ -5,7 +5,6 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <type_traits>
 
 #include <omp.h>
 
@@ -362,7 +361,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // key (node count, lane) is distinct, so its rank is the number of smaller
   // keys (key_ranks.h; in 32 bits where node counts allow, which runs in
   // more SIMD lanes).
-  std::uint32_t lane_nodes[kMaxRankedKeys];
+  std::uint32_t lane_nodes[kMaxRankedKeys];  // of the warp ranked last
   auto RanksByNodes = [&](std::uint32_t warp, std::vector<std::uint32_t>& rank) {
     const std::size_t first = std::size_t{warp} * lanes, count = std::min(n, first + lanes) - first;
     std::uint32_t most = 0;
@@ -454,6 +453,12 @@ int SmOfWarp(std::size_t warp, const GpuParams& gpu) {
   return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) % static_cast<std::size_t>(gpu.sms));
 }
 
+std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuParams& gpu) {
+  std::vector<std::vector<std::uint32_t>> sm_warps(static_cast<std::size_t>(gpu.sms));
+  for (std::size_t w = 0; w < warps; ++w) sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
+  return sm_warps;
+}
+
 std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
   const std::size_t w = static_cast<std::size_t>(gpu.warp_size);
   return (record.query_count() + w - 1) / w;
@@ -484,15 +489,12 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   const std::size_t warps = WarpCount(record, gpu);
   // Per warp, its units of work: steps when coalesced, its lanes' node
   // fetches per thread (what the sampled estimate scales by).
-  std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
+  const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
   std::vector<std::uint32_t> steps(warps, 0);
   std::vector<std::uint64_t> units(warps, 0);
   const std::uint64_t* offsets = record.fetch_offsets.data();
   const auto warp_size = static_cast<std::size_t>(gpu.warp_size);
-  const auto warps_per_block = static_cast<std::size_t>(gpu.warps_per_block);
-  for (std::size_t w = 0, sm = 0; w < warps; ++w) {  // sm = SmOfWarp(w, gpu), stepped block by block
-    if (w > 0 && w % warps_per_block == 0) sm = sm + 1 == static_cast<std::size_t>(gpu.sms) ? 0 : sm + 1;
-    sm_warps[sm].push_back(static_cast<std::uint32_t>(w));
+  for (std::size_t w = 0; w < warps; ++w) {
     const std::size_t lo = w * warp_size, hi = std::min(n, lo + warp_size);
     std::uint64_t most = 0;
     for (std::size_t q = lo; q < hi; ++q) most = std::max(most, offsets[q + 1] - offsets[q]);

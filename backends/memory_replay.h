@@ -61,6 +61,8 @@ struct MemoryProfile {
 
 // The SM a warp runs on.
 int SmOfWarp(std::size_t warp, const GpuParams& gpu);
+// Each SM's warps, in launch order: warp w is on SmOfWarp(w).
+std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuParams& gpu);
 std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu);
 
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern);

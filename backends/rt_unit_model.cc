@@ -69,8 +69,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   const std::size_t warps = WarpCount(record, gpu);
   const std::uint64_t intake_per_cycle =
       static_cast<std::uint64_t>(unit.intersection_unit_sets) * unit.threads_accepted_per_cycle_per_set;
-  std::vector<std::vector<std::uint32_t>> sm_warps(gpu.sms);
-  for (std::size_t w = 0; w < warps; ++w) sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
+  const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
   std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
