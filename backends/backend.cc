@@ -1,6 +1,7 @@
 #include "backends/backend.h"
 
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <iomanip>
 #include <ostream>
@@ -89,6 +90,23 @@ BatchCost& BatchCost::operator+=(const BatchCost& more) {
   thread_instructions += more.thread_instructions;
   nodes_counted += more.nodes_counted;
   return *this;
+}
+
+BatchCost BatchCost::ScaledBy(double factor) const {
+  auto scaled = [factor](std::uint64_t count) {
+    return static_cast<std::uint64_t>(std::llround(static_cast<double>(count) * factor));
+  };
+  BatchCost out = *this;
+  out.host_seconds *= factor;
+  out.seconds *= factor;
+  out.energy_joules *= factor;
+  for (std::uint64_t* count :
+       {&out.queries, &out.nodes, &out.cycles, &out.launch_cycles, &out.memory.sector_requests, &out.memory.l1_hits,
+        &out.memory.l2_accesses, &out.memory.l2_hits, &out.memory.dram_accesses, &out.predicated_off_micro_ops,
+        &out.interconnect_hops, &out.ctrl_exits, &out.warp_instructions, &out.thread_instructions, &out.nodes_counted})
+    *count = scaled(*count);
+  for (std::uint64_t& ops : out.micro_ops) ops = scaled(ops);
+  return out;
 }
 
 std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, const KernelRecord& record) {

@@ -71,6 +71,11 @@ struct BatchCost {
   // the issued-instruction-weighted mean). The descriptive fields (backend,
   // bound, models, clock) stay this one's.
   BatchCost& operator+=(const BatchCost& more);
+  // This cost times `factor` (>= 0): every count and time, counts rounded
+  // to the nearest integer; SIMT efficiency and the descriptive fields
+  // unchanged. For launches priced as the mean of others
+  // (BackendLedger::AddLaunchesLike).
+  BatchCost ScaledBy(double factor) const;
 };
 
 void PrintBatchCost(std::ostream& out, const BatchCost& cost);

@@ -158,6 +158,27 @@ void BackendLedger::AddLaunch(const KernelRecord& record) {
     for (std::size_t b = 0; b < costs.size(); ++b) open_costs_[b] += costs[b];
   open_queries_ += record.query_count();
   open_nodes_ += record.total_nodes();
+  ++open_launches_;
+  ++launches_;
+}
+
+void BackendLedger::AddLaunchesLike(const EstimatedLaunches& estimated) {
+  if (estimated.count == 0) return;
+  if (estimated.like == 0 || estimated.like != open_launches_)
+    throw std::logic_error("BackendLedger::AddLaunchesLike: " + std::to_string(estimated.like) +
+                           " recorded launches named, " + std::to_string(open_launches_) + " in the iteration");
+  const double scale = static_cast<double>(estimated.count) / static_cast<double>(estimated.like);
+  for (BatchCost& cost : open_costs_) {
+    BatchCost more = cost.ScaledBy(scale);
+    more.queries = estimated.queries;
+    more.nodes = estimated.nodes;
+    cost += more;
+  }
+  open_queries_ += estimated.queries;
+  open_nodes_ += estimated.nodes;
+  open_launches_ += estimated.count;
+  launches_ += static_cast<long>(estimated.count);
+  estimated_launches_ += static_cast<long>(estimated.count);
 }
 
 const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
@@ -180,6 +201,7 @@ const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
   }
   open_costs_.clear();
   open_queries_ = open_nodes_ = 0;
+  open_launches_ = 0;
   if (it.switched) it.chosen_cycles += switch_cost_cycles_;
   if (options_.policy.kind == SchedulerKind::kThreshold) it.threshold = options_.policy.threshold_nodes_per_query;
   previous_backend_ = it.backend;
@@ -193,6 +215,8 @@ LedgerSummary BackendLedger::Finish() const {
   s.static_total_cycles.assign(names_.size(), 0.0);
   s.switch_cost_cycles = switch_cost_cycles_;
   s.replay_sms = any_sampled_ ? options_.replay_sms : 0;
+  s.launches = launches_;
+  s.estimated_launches = estimated_launches_;
   if (options_.policy.kind == SchedulerKind::kThreshold) s.threshold = options_.policy.threshold_nodes_per_query;
   s.threshold_has_crossing = threshold_has_crossing_;
   s.oracle_candidates = candidates_;

@@ -14,6 +14,7 @@
 #include "backends/scheduler/backend_scheduler.h"
 #include "backends/scheduler/crossover_threshold.h"
 #include "common/parameter_spec.h"
+#include "robocore/launch_sample.h"
 
 namespace rc {
 
@@ -35,6 +36,10 @@ struct LedgerOptions {
   // exact. Recording keeps only the replayed SMs' addresses
   // (RecordSample()).
   int replay_sms = 0;
+  // Full launches of a split batch that are recorded and priced, at most
+  // (robocore/launch_sample.h); the workload casts the others without a
+  // record and AddLaunchesLike prices them. 0: every launch.
+  int priced_launches = kPricedLaunchesPerBatch;
 };
 
 struct LedgerIteration {
@@ -81,6 +86,8 @@ struct LedgerSummary {
   std::vector<double> oracle_cumulative_cycles;  // per iteration
   std::vector<std::string> oracle_choice;        // per iteration
   int replay_sms = 0;                            // SMs replayed exactly when a priced record was sampled; 0 = every SM
+  long launches = 0;                             // launches priced (recorded or estimated)
+  long estimated_launches = 0;                   // of them, priced as the mean of recorded ones (AddLaunchesLike)
 };
 
 // The most queries a start probe (BackendLedger::Prepare) holds. A probe
@@ -125,8 +132,7 @@ class BackendLedger {
   //              max_nodes), every length from 1 to max_nodes equally
   //              often. Without this call it starts on the first candidate.
   void Prepare(const KernelRecord& template_record, std::size_t queries_per_batch,
-               std::uint32_t max_nodes = kDefaultMaxNodesPerQuery,
-               const KernelRecord* start_probe = nullptr);
+               std::uint32_t max_nodes = kDefaultMaxNodesPerQuery, const KernelRecord* start_probe = nullptr);
   // Whether Prepare chooses where to start from a probe (the adaptive
   // policy, and the oracle's online stand-in): a workload need not record
   // a start probe otherwise.
@@ -145,6 +151,12 @@ class BackendLedger {
   // expansion): prices one launch on every backend now and adds its cost to
   // the iteration in progress, which EndIteration closes with the sums.
   void AddLaunch(const KernelRecord& record);
+  // Launches a launch sample left unrecorded: adds `estimated.count`
+  // launches, each priced as the mean of the launches added so far to the
+  // iteration in progress, which must be `estimated.like` (the batch's
+  // recorded launches), with the exact queries and nodes given. Every other
+  // count and time is an estimate; the summary says how many launches were.
+  void AddLaunchesLike(const EstimatedLaunches& estimated);
   const std::vector<LedgerIteration>& iterations() const { return iterations_; }
   LedgerSummary Finish() const;
   const SchedulerOptions& policy() const { return options_.policy; }
@@ -168,6 +180,8 @@ class BackendLedger {
   std::vector<LedgerIteration> iterations_;
   std::vector<BatchCost> open_costs_;  // launches added to the iteration in progress
   std::uint64_t open_queries_ = 0, open_nodes_ = 0;
+  std::size_t open_launches_ = 0;  // launches added to the iteration in progress
+  long launches_ = 0, estimated_launches_ = 0;
   bool any_sampled_ = false;  // a priced record kept a sample of its addresses
 };
 

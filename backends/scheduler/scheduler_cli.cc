@@ -39,6 +39,11 @@ void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string
                   "SMs whose memory traffic is replayed exactly (count; the others are estimated from them; "
                   "0 = every SM, exact)")
       ->capture_default_str();
+  command
+      .add_option("--priced-launches", cli.priced_launches,
+                  "Of a batch split into launches (DeliBot: above 2^20 rays), the full launches recorded and priced, "
+                  "spread evenly; the others are priced as their mean (count; 0 = every launch, exact)")
+      ->capture_default_str();
   command.add_option(
       "--backend-params", cli.backend_params,
       "A named preset (artifact: the RoboGPU artifact's configuration, backends/presets/artifact.json) or a JSON "
@@ -63,6 +68,9 @@ LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
   if (!(cli.switch_cost >= 0.0 && std::isfinite(cli.switch_cost)))
     throw UsageError("--switch-cost must be a finite number of cycles >= 0");
   if (cli.replay_sms < 0) throw UsageError("--replay-sms must be >= 0");
+  if (!kPricedLaunchesPerBatchSpec.Contains(cli.priced_launches))
+    throw UsageError(fmt::format("--priced-launches must be in [{}, {}] ({})", kPricedLaunchesPerBatchSpec.min,
+                                 kPricedLaunchesPerBatchSpec.max, kPricedLaunchesPerBatchSpec.unit));
   options.policy.hysteresis_nodes_per_query = cli.hysteresis;
   if (cli.threshold >= 0.0) {
     options.policy.threshold_nodes_per_query = cli.threshold;
@@ -70,6 +78,7 @@ LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
   }
   options.switch_cost_cycles = cli.switch_cost;
   options.replay_sms = cli.replay_sms;
+  options.priced_launches = cli.priced_launches;
   return options;
 }
 
@@ -98,6 +107,9 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
   emit("modelled time (every {} priced on every backend; {} policy; {}):", what.c_str(), policy.c_str(),
        l.replay_sms > 0 ? ("memory replayed on " + std::to_string(l.replay_sms) + " SM(s), the rest estimated").c_str()
                         : "memory replayed on every SM");
+  if (l.estimated_launches > 0)
+    emit("  {} of {} launches priced as the mean of the recorded launches of their batch (--priced-launches {})",
+         l.estimated_launches, l.launches, options.priced_launches);
   for (std::size_t b = 0; b < l.backends.size(); ++b)
     emit("  static {:<12} {:14.0f} cycles  {:9.4f} s{}", l.backends[b].c_str(), l.static_total_cycles[b],
          l.static_total_cycles[b] / clock_hz, l.backends[b] == l.best_static ? "  (best static)" : "");
@@ -145,7 +157,9 @@ nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& op
           {"oracle_equivalent_percent", number_or_null(l.oracle_equivalent_percent)},
           {"oracle_lasting_changes", l.oracle_lasting_changes},
           {"oracle_lasting_changes_followed", l.oracle_lasting_changes_followed},
-          {"replay_sms", l.replay_sms}};
+          {"replay_sms", l.replay_sms},
+          {"launches", l.launches},
+          {"estimated_launches", l.estimated_launches}};
 }
 
 }  // namespace rc

@@ -20,14 +20,15 @@ struct SchedulerCli {
   std::string candidates;   // comma-separated; empty: every modelled backend
   double threshold = -1.0;  // threshold policy; < 0: derived
   double hysteresis = 0.0;
-  double switch_cost = 0.0;    // core cycles
-  int replay_sms = 1;          // SMs replayed exactly; 0 = all
-  std::string backend_params;  // JSON override file
+  double switch_cost = 0.0;                       // core cycles
+  int replay_sms = 1;                             // SMs replayed exactly; 0 = all
+  int priced_launches = kPricedLaunchesPerBatch;  // full launches of a split batch priced; 0 = all
+  std::string backend_params;                     // JSON override file
   bool no_pricing = false;
 };
 
 // Adds --backend, --candidates, --threshold, --hysteresis, --switch-cost,
-// --replay-sms, --backend-params and --no-pricing. `counter` names the
+// --replay-sms, --priced-launches, --backend-params and --no-pricing. `counter` names the
 // workload's traversal counter in the help text ("nodes per ray").
 void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string& counter);
 

@@ -134,6 +134,16 @@ void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection&
   }
 }
 
+void BeamSensorModel::CastUnrecorded(const RayBatch& batch, std::size_t first, std::size_t last,
+                                     std::vector<RayHit>& hits) const {
+  const long units = static_cast<long>((last - first + kMaxRaysPerUnit - 1) / kMaxRaysPerUnit);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (long u = 0; u < units; ++u) {
+    const std::size_t begin = first + static_cast<std::size_t>(u) * kMaxRaysPerUnit;
+    CastRaySlice(*scene_, batch, begin, std::min(last, begin + kMaxRaysPerUnit), hits);
+  }
+}
+
 void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
                             const BeamSelection& beams, BeamCombination combination,
                             std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
@@ -159,21 +169,36 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
       CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
     } else {
       // Launches of whole particles, each recorded and handed on but the
-      // last, so that only one launch's record is alive at a time.
+      // last, so that only one launch's record is alive at a time. With
+      // estimate_launches, the full launches the launch sample leaves out
+      // are cast without a record (launch_sample.h).
       const auto beams_each = static_cast<std::size_t>(std::max(1, beams_per_particle));
       const std::size_t per_launch = std::max<std::size_t>(1, max_rays / beams_each) * beams_each;
+      const std::size_t full_launches = (rays - 1) / per_launch;  // every launch but the last
       work.hits.resize(rays);
       RayBatch launch;
       launch.max_range_m = batch.max_range_m;
       std::vector<RayHit> launch_hits;
-      for (std::size_t first = 0; first < rays; first += per_launch) {
+      EstimatedLaunches estimated;
+      for (std::size_t first = 0, index = 0; first < rays; first += per_launch, ++index) {
         const std::size_t last = std::min(rays, first + per_launch);
+        if (index < full_launches && work.estimate_launches && !work.launch_sample.Prices(index, full_launches)) {
+          CastUnrecorded(batch, first, last, work.hits);
+          ++estimated.count;
+          estimated.queries += last - first;
+          for (std::size_t i = first; i < last; ++i) estimated.nodes += work.hits[i].nodes;
+          continue;
+        }
         launch.queries.assign(batch.queries.begin() + static_cast<long>(first),
                               batch.queries.begin() + static_cast<long>(last));
         CastRayBatchRecorded(*scene_, launch, launch_hits, work.record, record_options);
         std::copy(launch_hits.begin(), launch_hits.end(), work.hits.begin() + static_cast<long>(first));
-        if (last < rays) work.price_launch(work.record);
+        if (last < rays) {
+          work.price_launch(work.record);
+          ++estimated.like;
+        }
       }
+      if (estimated.count > 0) work.estimate_launches(estimated);
     }
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);

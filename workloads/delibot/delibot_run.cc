@@ -97,6 +97,11 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
       if (settings.on_priced_launches) settings.on_priced_launches({&launch});
       split_pricing_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
+    // A caller that prices every launch itself needs every launch recorded.
+    if (!settings.on_priced_launches) {
+      mcl_options.launch_sample.priced = settings.ledger.priced_launches;
+      mcl_options.estimate_launches = [&](const EstimatedLaunches& estimated) { ledger->AddLaunchesLike(estimated); };
+    }
   }
   MonteCarloLocalizer mcl(grid, MakeSensorModel(grid, settings), mcl_options);
   if (settings.initial_pose)

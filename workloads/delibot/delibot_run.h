@@ -69,7 +69,9 @@ struct DelibotSettings {
   // its last in a call of its own, as it is priced.
   // For a caller that prices the same run under other parameters as it goes
   // (the calibration's sensitivity sweep); the records keep the ledger's
-  // address sample (LedgerOptions::replay_sms).
+  // address sample (LedgerOptions::replay_sms). With it set, every launch
+  // of a split update is recorded (LedgerOptions::priced_launches does not
+  // apply).
   std::function<void(const std::vector<const KernelRecord*>& launches)> on_priced_launches;
 };
 

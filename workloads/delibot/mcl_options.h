@@ -97,6 +97,10 @@ struct MclOptions {
   // Prices each launch of an update split by kMaxRaysPerLaunch but the last
   // (SensorUpdateWork::price_launch); unset: updates are not split.
   std::function<void(const KernelRecord&)> price_launch;
+  // Which of those launches are recorded, and where the others go
+  // (SensorUpdateWork::launch_sample, estimate_launches).
+  LaunchSample launch_sample;
+  std::function<void(const EstimatedLaunches&)> estimate_launches;
 
   bool IsValid(std::string* error) const;
 };

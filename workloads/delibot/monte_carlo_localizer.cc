@@ -25,6 +25,8 @@ MonteCarloLocalizer::MonteCarloLocalizer(const OccupancyGrid& grid, std::unique_
   work_.record_sample = check_work_.record_sample = options_.record_sample;
   work_.record_choices = check_work_.record_choices = options_.record_choices;
   work_.price_launch = options_.price_launch;
+  work_.launch_sample = options_.launch_sample;
+  work_.estimate_launches = options_.estimate_launches;
   if (free_cells_.empty()) throw std::invalid_argument("the map has no free cell: there is nowhere to localize");
 }
 

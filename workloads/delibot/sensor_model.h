@@ -11,6 +11,7 @@
 
 #include "common/angles.h"
 #include "robocore/kernel_record.h"
+#include "robocore/launch_sample.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_recorded.h"
 #include "traces/sensor_trace.h"
@@ -55,6 +56,12 @@ struct SensorUpdateWork {
   // the last stays in `record`. Unset: one launch, whatever its size.
   std::function<void(const KernelRecord&)> price_launch;
   std::size_t max_rays_per_launch = kMaxRaysPerLaunch;
+  // With estimate_launches also set, only the full launches launch_sample
+  // prices are recorded and handed to price_launch; the others are cast
+  // without a record and, after the batch's last full launch, handed to
+  // estimate_launches (robocore/launch_sample.h).
+  LaunchSample launch_sample;
+  std::function<void(const EstimatedLaunches&)> estimate_launches;
 };
 
 class SensorModel {
