@@ -313,24 +313,45 @@ TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
 // particles, each handed to the pricing as it is recorded: the same
 // likelihoods and hits as one launch, and launches that together are the
 // one launch's queries, node by node and exit by exit.
-TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
+// The test room's beam model (march), its fifth scan and every sixth beam,
+// for the tests of batches split into launches.
+class RoomBeamUpdate {
+ public:
   const OccupancyGrid g = test::AsymmetricRoom();
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.0, 3);
-  BeamModelParams p;
-  p.max_range_m = run.trace.geometry.max_range_m;
-  BeamSensorModel model(std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), p);
+  BeamSensorModel model{std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), ParamsOf(run)};
+  const BeamSelection beams{6};
+  const int per_particle = beams.Count(run.trace.geometry.beam_count);
+
+  // Scores `particles` as one recorded launch (one SM of eight sampled).
+  SensorUpdateWork OneLaunch(const std::vector<Pose2>& particles, std::vector<double>& ll) {
+    SensorUpdateWork one;
+    one.record_kernel = true;
+    one.record_sample.sampled_sms = 1;
+    Score(particles, ll, one);
+    return one;
+  }
+  void Score(const std::vector<Pose2>& particles, std::vector<double>& ll, SensorUpdateWork& work) {
+    model.LogLikelihoods(particles, run.trace.scans[5], run.trace.geometry, beams, ll, work);
+  }
+
+ private:
+  static BeamModelParams ParamsOf(const test::SyntheticRun& run) {
+    BeamModelParams p;
+    p.max_range_m = run.trace.geometry.max_range_m;
+    return p;
+  }
+};
+
+TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
+  RoomBeamUpdate room;
+  const test::SyntheticRun& run = room.run;
   std::vector<Pose2> particles;
   for (int i = 0; i < 300; ++i)
     particles.push_back({run.truth[5].x + 0.01 * (i % 17), run.truth[5].y - 0.01 * (i % 13), 0.02 * i});
-  const BeamSelection beams{6};
-  const int per_particle = beams.Count(run.trace.geometry.beam_count);
-  const LaserScan& scan = run.trace.scans[5];
-
-  SensorUpdateWork one;
-  one.record_kernel = true;
-  one.record_sample.sampled_sms = 1;
+  const int per_particle = room.per_particle;
   std::vector<double> one_ll;
-  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, one_ll, one);
+  const SensorUpdateWork one = room.OneLaunch(particles, one_ll);
 
   SensorUpdateWork split = one;
   split.max_rays_per_launch = 1000;
@@ -345,7 +366,7 @@ TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
   };
   split.price_launch = keep;
   std::vector<double> split_ll;
-  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, split_ll, split);
+  room.Score(particles, split_ll, split);
   keep(split.record);  // the last launch
 
   EXPECT_EQ(split_ll, one_ll);
@@ -382,21 +403,11 @@ std::vector<Pose2> UniformFreePoses(const OccupancyGrid& g, std::size_t n) {
 // evenly, and hands the others on as estimated launches with their exact
 // queries and nodes; every hit and likelihood is the one launch's.
 TEST(BeamModelTest, ALaunchSampleRecordsOnlyThePickedLaunches) {
-  const OccupancyGrid g = test::AsymmetricRoom();
-  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.0, 3);
-  BeamModelParams p;
-  p.max_range_m = run.trace.geometry.max_range_m;
-  BeamSensorModel model(std::make_shared<RayCastScene>(g, RayCastMethod::kRayMarching), p);
-  const std::vector<Pose2> particles = UniformFreePoses(g, 700);
-  const BeamSelection beams{6};
-  const int per_particle = beams.Count(run.trace.geometry.beam_count);
-  const LaserScan& scan = run.trace.scans[5];
-
-  SensorUpdateWork one;
-  one.record_kernel = true;
-  one.record_sample.sampled_sms = 1;
+  RoomBeamUpdate room;
+  const std::vector<Pose2> particles = UniformFreePoses(room.g, 700);
+  const int per_particle = room.per_particle;
   std::vector<double> one_ll;
-  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, one_ll, one);
+  const SensorUpdateWork one = room.OneLaunch(particles, one_ll);
 
   SensorUpdateWork split = one;
   split.max_rays_per_launch = 1000;
@@ -421,7 +432,7 @@ TEST(BeamModelTest, ALaunchSampleRecordsOnlyThePickedLaunches) {
   split.price_launch = keep;
   split.estimate_launches = [&](const EstimatedLaunches& e) { estimates.push_back(e); };
   std::vector<double> split_ll;
-  model.LogLikelihoods(particles, scan, run.trace.geometry, beams, split_ll, split);
+  room.Score(particles, split_ll, split);
 
   EXPECT_EQ(split_ll, one_ll);
   for (std::size_t i = 0; i < one.hits.size(); ++i) {
