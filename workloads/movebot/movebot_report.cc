@@ -96,7 +96,9 @@ void WriteAnytimeCurve(const std::string& path, const MoveBotResult& result) {
 void WriteArmPath(const std::string& path, const MoveBotResult& result) {
   std::vector<std::string> columns;
   for (int j = 1; j <= kArmJoints; ++j) columns.push_back("q" + std::to_string(j) + "_rad");
-  CsvTable table(path, columns, CsvTableOptions{17});
+  CsvTableOptions options;
+  options.significant_digits = 17;  // joint angles round-trip exactly
+  CsvTable table(path, columns, options);
   for (const ArmConfiguration& q : result.path) table.AddRow(std::vector<CsvCell>(q.begin(), q.end()));
   table.Commit();
 }
