@@ -27,14 +27,19 @@ void CastRange(const RayCastScene& scene, const RayBatch& batch, bool lanes, lon
 }  // namespace
 
 void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits) {
-  const long n = static_cast<long>(batch.queries.size());
   hits.resize(batch.queries.size());
-  const long units = (n + kQueriesPerUnit - 1) / kQueriesPerUnit;
+  CastRayBatchRange(scene, batch, 0, batch.queries.size(), hits);
+}
+
+void CastRayBatchRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                       std::vector<RayHit>& hits) {
+  const long first = static_cast<long>(begin), last = static_cast<long>(end);
+  const long units = (last - first + kQueriesPerUnit - 1) / kQueriesPerUnit;
   const bool lanes = RayLanesApply(scene);
 #pragma omp parallel for schedule(dynamic, 1) if (units > 1)
   for (long u = 0; u < units; ++u) {
-    const long begin = u * kQueriesPerUnit;
-    CastRange(scene, batch, lanes, begin, std::min(n, begin + kQueriesPerUnit), hits.data());
+    const long lo = first + u * kQueriesPerUnit;
+    CastRange(scene, batch, lanes, lo, std::min(last, lo + kQueriesPerUnit), hits.data());
   }
 }
 

@@ -28,6 +28,11 @@ struct RayBatch {
 // path.
 void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits);
 
+// CastRayBatch for queries [begin, end) of `batch`, into hits [begin, end)
+// (hits must already hold batch.queries.size() entries).
+void CastRayBatchRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                       std::vector<RayHit>& hits);
+
 // Casts queries [begin, end) of `batch` into hits [begin, end) on the
 // calling thread (hits must already hold batch.queries.size() entries): the
 // same hits as CastRayBatch, for a caller that runs its own parallel loop.

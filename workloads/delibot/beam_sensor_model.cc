@@ -134,16 +134,6 @@ void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection&
   }
 }
 
-void BeamSensorModel::CastUnrecorded(const RayBatch& batch, std::size_t first, std::size_t last,
-                                     std::vector<RayHit>& hits) const {
-  const long units = static_cast<long>((last - first + kMaxRaysPerUnit - 1) / kMaxRaysPerUnit);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long u = 0; u < units; ++u) {
-    const std::size_t begin = first + static_cast<std::size_t>(u) * kMaxRaysPerUnit;
-    CastRaySlice(*scene_, batch, begin, std::min(last, begin + kMaxRaysPerUnit), hits);
-  }
-}
-
 void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
                             const BeamSelection& beams, BeamCombination combination,
                             std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
@@ -183,7 +173,7 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
       for (std::size_t first = 0, index = 0; first < rays; first += per_launch, ++index) {
         const std::size_t last = std::min(rays, first + per_launch);
         if (index < full_launches && work.estimate_launches && !work.launch_sample.Prices(index, full_launches)) {
-          CastUnrecorded(batch, first, last, work.hits);
+          CastRayBatchRange(*scene_, batch, first, last, work.hits);
           ++estimated.count;
           estimated.queries += last - first;
           for (std::size_t i = first; i < last; ++i) estimated.nodes += work.hits[i].nodes;

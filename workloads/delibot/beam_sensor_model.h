@@ -76,9 +76,6 @@ class BeamSensorModel final : public SensorModel {
   // Particles [begin, end): their queries (particle-major, beam-minor).
   void FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry, const BeamSelection& beams,
                    long begin, long end, RayBatch& batch) const;
-  // Queries [first, last) of `batch` into the same hits, without a record,
-  // in parallel units.
-  void CastUnrecorded(const RayBatch& batch, std::size_t first, std::size_t last, std::vector<RayHit>& hits) const;
   // Particles [begin, end): their scan log-likelihoods from the cast hits.
   void ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination, long begin,
                       long end, const std::vector<RayHit>& hits, std::vector<double>& log_likelihoods) const;
