@@ -40,6 +40,7 @@ code 2 "delibot --backend" -- delibot --map map.yaml --trace good.log --backend 
 code 2 "carribot --backend" -- carribot --map wall.map --start 0,0 --goal 1,0 --backend fastest
 code 2 "movebot --backend" -- movebot --iterations 10 --backend fastest
 code 2 "collide --backend" -- collide --scene shelf --backend fastest
+code 2 "delibot --priced-launches" -- delibot --map map.yaml --trace good.log --priced-launches -1
 
 # A file that cannot be read is bad input.
 code 1 "delibot missing map" -- delibot --map absent.yaml --trace good.log
