@@ -281,65 +281,72 @@ class SmReplay {
   std::array<std::uint64_t, std::size_t{1} << kRecentBits> recent_;  // WalkCoalesced: (group, sector) per slot
 };
 
-// The memory of the SMs a sampled record did not keep, estimated from the
-// sampled ones. Each unsampled warp borrows from a "twin", a warp of a
-// sampled SM at the same position in its SM's warp list (the sampled SMs
-// taken in turn): its memory cycles beyond the L1 latency per unit of work
-// (a warp step when coalesced; per thread, lane by lane, a node fetch),
-// applied to its own unit count. Borrowing whole warps, rather than a
-// mean, keeps the spread of memory latency over lanes and warps that a
-// warp's slowest lane and an SM's busiest slot depend on. Sector requests
-// per SM take the sampled SMs' mean per unit (a sum, which a mean
-// estimates without bias). The totals scale by the ratio of all units to
-// the sampled units, except DRAM accesses when the L2 holds the footprint:
-// those are exactly the sectors the whole batch touched, which the record
-// counts. Exact in what needs no addresses (node counts, steps, exits),
+// The memory of the warps a sampled record did not keep, estimated from the
+// kept ones. Each unkept warp borrows from a "twin", a kept warp at the
+// same position in its SM's list of kept warps (the sampled SMs taken in
+// turn by SM number): the warp at position k of its SM's list is paired
+// with kept position k when every block is kept, and with the same warp of
+// the nearest kept block before it otherwise. It borrows the twin's memory
+// cycles beyond the L1 latency per unit of work (a warp step when
+// coalesced; per thread, lane by lane, a node fetch), applied to its own
+// unit count. Borrowing whole warps, rather than a mean, keeps the spread
+// of memory latency over lanes and warps that a warp's slowest lane and an
+// SM's busiest slot depend on. Sector requests per SM add the kept warps'
+// mean per unit for the unkept units (a sum, which a mean estimates
+// without bias). The totals scale by the ratio of all units to the kept
+// units, except DRAM accesses when the L2 holds the footprint: those are
+// exactly the sectors the whole batch touched, which the record counts.
+// Exact in what needs no addresses (node counts, steps, exits),
 // approximate in what the addresses decide; the error against exact
 // replay is measured in tests/backends/sampled_pricing_test.cc.
 void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
                        const std::vector<std::vector<std::uint32_t>>& sm_warps, const std::vector<std::uint32_t>& steps,
                        const std::vector<std::uint64_t>& units, const std::vector<int>& replayed,
                        std::uint64_t l1_latency, bool l2_holds_footprint, MemoryProfile& profile) {
+  const AddressSample& sample = record.address_sample;
   const std::size_t n = record.query_count();
   const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
-  std::vector<bool> sampled_sm(gpu.sms, false);
-  for (int sm : replayed) sampled_sm[sm] = true;
+  const std::size_t per_block = static_cast<std::size_t>(gpu.warps_per_block);
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   auto extra_of_query = [&](std::size_t q) { return owner_cycles[q] - l1_latency * record.nodes(q); };
 
-  std::vector<std::uint64_t> sm_units(gpu.sms, 0);
-  std::uint64_t all_units = 0, sampled_units = 0, sampled_extra = 0, sampled_requests = 0;
-  std::vector<std::uint32_t> twins;  // the sampled SMs' warps, interleaved SM by SM
+  std::vector<std::uint64_t> unkept_units(gpu.sms, 0);
+  std::uint64_t all_units = 0, kept_units = 0, kept_extra = 0, kept_requests = 0;
+  std::vector<std::uint32_t> twins;  // the kept warps, interleaved SM by SM
   for (std::size_t j = 0;; ++j) {
     bool any = false;
-    for (int sm : replayed)
-      if (j < sm_warps[sm].size()) {
-        twins.push_back(sm_warps[sm][j]);
+    for (int sm : replayed) {
+      // Position j of this SM's kept warps: block round j / per_block * stride.
+      const std::size_t k = sample.RoundOfKept(j / per_block) * per_block + j % per_block;
+      if (k < sm_warps[sm].size()) {
+        twins.push_back(sm_warps[sm][k]);
         any = true;
       }
+    }
     if (!any) break;
   }
-  for (int sm = 0; sm < gpu.sms; ++sm) {
-    for (std::uint32_t w : sm_warps[sm]) sm_units[sm] += units[w];
-    all_units += sm_units[sm];
-    if (!sampled_sm[sm]) continue;
-    sampled_units += sm_units[sm];
-    sampled_requests += profile.sm_sector_requests[sm];
+  for (int sm : replayed) kept_requests += profile.sm_sector_requests[sm];
+  for (int sm = 0; sm < gpu.sms; ++sm)
     for (std::uint32_t w : sm_warps[sm]) {
+      all_units += units[w];
+      if (!sample.KeepsWarp(w)) {
+        unkept_units[sm] += units[w];
+        continue;
+      }
+      kept_units += units[w];
       if (pattern.coalesced) {
-        sampled_extra += owner_cycles[w] - l1_latency * steps[w];
+        kept_extra += owner_cycles[w] - l1_latency * steps[w];
         continue;
       }
       for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
-        sampled_extra += extra_of_query(q);
+        kept_extra += extra_of_query(q);
     }
-  }
-  if (sampled_units == 0 || all_units == sampled_units || twins.empty()) return;
-  const double mean_extra = static_cast<double>(sampled_extra) / static_cast<double>(sampled_units);
-  const double requests_per_unit = static_cast<double>(sampled_requests) / static_cast<double>(sampled_units);
+  if (kept_units == 0 || all_units == kept_units || twins.empty()) return;
+  const double mean_extra = static_cast<double>(kept_extra) / static_cast<double>(kept_units);
+  const double requests_per_unit = static_cast<double>(kept_requests) / static_cast<double>(kept_units);
   // Cycles beyond the L1 per unit of `twin` (a warp, or a query), or the
-  // sampled mean when the twin did no work.
+  // kept mean when the twin did no work.
   auto rate = [&](std::uint64_t extra, std::uint64_t units) {
     return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
   };
@@ -387,11 +394,17 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   std::vector<std::uint32_t> mine, twin_rank;
   std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty until found
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    if (sampled_sm[sm]) continue;
-    profile.sm_sector_requests[sm] =
-        static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(sm_units[sm])));
+    profile.sm_sector_requests[sm] +=
+        static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
     for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
-      const std::uint32_t w = sm_warps[sm][k], twin = twins[k % twins.size()];
+      const std::uint32_t w = sm_warps[sm][k];
+      if (sample.KeepsWarp(w)) continue;
+      // The same warp of the nearest kept block round at or before this
+      // one, on a sampled SM chosen by this SM's number.
+      const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
+      const std::size_t t =
+          (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
+      const std::uint32_t twin = twins[t];
       if (pattern.coalesced) {
         add(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
         continue;
@@ -400,7 +413,6 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // longest query with the twin's longest, ...), each borrowing its
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
-      const std::size_t t = k % twins.size();
       std::vector<double>& theirs = twin_rates[t];
       if (theirs.empty()) {  // a warp has at least one query
         RanksByNodes(twin, twin_rank);
@@ -416,7 +428,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
         add(owner_cycles[first + i], (mine[i] < theirs.size() ? theirs[mine[i]] : mean_extra) * lane_nodes[i]);
     }
   }
-  const double scale = static_cast<double>(all_units) / static_cast<double>(sampled_units);
+  const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
   MemoryCounters& c = profile.totals;
   auto scaled = [&](std::uint64_t v) {
     return static_cast<std::uint64_t>(std::llround(static_cast<double>(v) * scale));
@@ -510,16 +522,25 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     for (std::size_t q = 0; q < n; ++q) owner_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
   }
 
+  // The SMs replayed, each with the warps whose addresses the record kept
+  // (all of its warps unless the sample skips blocks).
   std::vector<int> replayed;
-  for (int sm = 0; sm < gpu.sms; ++sm)
-    if (!record.sampled() || sample.KeepsSm(sm)) replayed.push_back(sm);
+  std::vector<std::vector<std::uint32_t>> kept_warps(gpu.sms);
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    if (record.sampled() && !sample.KeepsSm(sm)) continue;
+    replayed.push_back(sm);
+    if (!record.sampled() || sample.block_stride <= 1) continue;
+    for (std::uint32_t w : sm_warps[sm])
+      if (sample.KeepsWarp(w)) kept_warps[sm].push_back(w);
+  }
   std::vector<SmMisses> sms(gpu.sms);
   const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
     const int sm = replayed[i];
     SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
-    const std::vector<std::uint32_t>& list = sm_warps[sm];
+    const std::vector<std::uint32_t>& list =
+        record.sampled() && sample.block_stride > 1 ? kept_warps[sm] : sm_warps[sm];
     for (std::size_t lo = 0; lo < list.size(); lo += wave)
       replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
   }
@@ -561,7 +582,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     std::uint64_t sampled_units = 0, all_units = 0, sampled_dram = 0;
     for (std::size_t w = 0; w < warps; ++w) {
       all_units += units[w];
-      if (sample.KeepsSm(SmOfWarp(w, gpu))) sampled_units += units[w];
+      if (sample.KeepsWarp(w)) sampled_units += units[w];
     }
     for (int sm : replayed) sampled_dram += sms[sm].dram;
     const double expected = static_cast<double>(record.touched_sectors) * static_cast<double>(sampled_units) /

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
 namespace rc {
 namespace {
 
@@ -106,6 +108,7 @@ AddressSample BackendLedger::RecordSample() const {
   sample.sms = params_.gpu.sms;
   sample.sector_bytes = params_.gpu.sector_bytes;
   sample.sampled_sms = options_.replay_sms;
+  sample.block_stride = options_.replay_block_stride;
   return sample;
 }
 
@@ -209,12 +212,19 @@ const LedgerIteration& BackendLedger::EndIteration(const KernelRecord* record) {
   return iterations_.back();
 }
 
+std::string DescribeMemoryReplay(int replay_sms, int replay_block_stride) {
+  if (replay_sms <= 0) return "memory replayed on every SM";
+  return fmt::format("memory replayed on {} SM(s){}, the rest estimated", replay_sms,
+                     replay_block_stride > 1 ? fmt::format(", 1 block in {}", replay_block_stride) : "");
+}
+
 LedgerSummary BackendLedger::Finish() const {
   LedgerSummary s;
   s.backends = names_;
   s.static_total_cycles.assign(names_.size(), 0.0);
   s.switch_cost_cycles = switch_cost_cycles_;
   s.replay_sms = any_sampled_ ? options_.replay_sms : 0;
+  s.replay_block_stride = any_sampled_ ? options_.replay_block_stride : 1;
   s.launches = launches_;
   s.estimated_launches = estimated_launches_;
   if (options_.policy.kind == SchedulerKind::kThreshold) s.threshold = options_.policy.threshold_nodes_per_query;

@@ -14,6 +14,7 @@
 #include "backends/scheduler/backend_scheduler.h"
 #include "backends/scheduler/crossover_threshold.h"
 #include "common/parameter_spec.h"
+#include "robocore/address_sample.h"
 #include "robocore/launch_sample.h"
 
 namespace rc {
@@ -36,6 +37,10 @@ struct LedgerOptions {
   // exact. Recording keeps only the replayed SMs' addresses
   // (RecordSample()).
   int replay_sms = 0;
+  // Of each replayed SM's blocks, every replay_block_stride-th is replayed
+  // (AddressSample::block_stride; the others are estimated from them).
+  // Applies only when SMs are sampled (0 < replay_sms < the GPU's SMs).
+  int replay_block_stride = 1;
   // Full launches of a split batch that are recorded and priced, at most
   // (robocore/launch_sample.h); the workload casts the others without a
   // record and AddLaunchesLike prices them. 0: every launch.
@@ -53,6 +58,11 @@ struct LedgerIteration {
   double chosen_cycles = 0.0;    // incl. a switch cost if switched
   double chosen_energy_j = 0.0;
 };
+
+// How a priced run's memory was replayed, for its summary: "memory replayed
+// on every SM" (replay_sms 0), or on the sampled SMs (and blocks), "the rest
+// estimated".
+std::string DescribeMemoryReplay(int replay_sms, int replay_block_stride);
 
 struct LedgerSummary {
   std::vector<std::string> backends;
@@ -86,6 +96,7 @@ struct LedgerSummary {
   std::vector<double> oracle_cumulative_cycles;  // per iteration
   std::vector<std::string> oracle_choice;        // per iteration
   int replay_sms = 0;                            // SMs replayed exactly when a priced record was sampled; 0 = every SM
+  int replay_block_stride = 1;                   // of a replayed SM's blocks, every this-many-th replayed
   long launches = 0;                             // launches priced (recorded or estimated)
   long estimated_launches = 0;                   // of them, priced as the mean of recorded ones (AddLaunchesLike)
 };

@@ -16,19 +16,29 @@
 
 #include "backends/backend.h"
 #include "common/random_stream.h"
+#include "robocore/address_sample.h"
 #include "robocore/ray_batch_recorded.h"
 #include "test_scenes.h"
 
 namespace rc {
 namespace {
 
-// Relative error bounds of sampled against exact pricing (one SM of eight
-// replayed): modelled cycles per backend, and energy. Measured on these
-// batches: SIMT (issue-bound) exact; the RT units -3.1% to +0.6% (low when
-// the busiest SM's locality is worse than the sampled SM's, which borrowed
-// memory latencies cannot see); energy within 0.5%.
-constexpr double kCycleBound = 0.035;
-constexpr double kEnergyBound = 0.01;
+// Relative error bounds of sampled against exact pricing: modelled cycles
+// per backend, and energy.
+struct Bounds {
+  double cycles;
+  double energy;
+};
+// One SM of eight replayed, every block of it. Measured on these batches:
+// SIMT (issue-bound) exact or within 0.8%; the RT units -3.1% to +0.6% (low
+// when the busiest SM's locality is worse than the sampled SM's, which
+// borrowed memory latencies cannot see); energy within 0.7%.
+constexpr Bounds kEveryBlock{0.035, 0.01};
+// Every second block of it (kReplayBlockStride). Measured: the RT units
+// -5.4% to +4.4% (high where the skipped blocks would have warmed the L1
+// for the kept ones, which then miss more: particles converged on one
+// pose), SIMT within 0.7%; energy within 1.3%.
+constexpr Bounds kEverySecondBlock{0.06, 0.015};
 
 // Rays of `particles` particles within about `spread_m` of a free cell near
 // the middle of the map, beam-minor.
@@ -53,6 +63,7 @@ struct Case {
   std::string name;
   RayCastMethod method;
   bool converged;
+  int block_stride;  // AddressSample::block_stride
 };
 
 void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
@@ -69,6 +80,7 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
   CastRayBatchRecorded(scene, batch, hits, exact);
   RecordOptions options;
   options.sample.sampled_sms = 1;
+  options.sample.block_stride = GetParam().block_stride;
   CastRayBatchRecorded(scene, batch, hits, sampled, options);
   const BackendParameters params;
   std::vector<std::unique_ptr<Backend>> owned;
@@ -78,6 +90,7 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
     backends.push_back(owned.back().get());
   }
   const std::vector<BatchCost> a = PriceAll(backends, exact), b = PriceAll(backends, sampled);
+  const Bounds bounds = GetParam().block_stride == 1 ? kEveryBlock : kEverySecondBlock;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const double cycles_error = std::abs(double(b[i].cycles) - double(a[i].cycles)) / double(a[i].cycles);
     const double energy_error = std::abs(b[i].energy_joules - a[i].energy_joules) / a[i].energy_joules;
@@ -87,8 +100,8 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
                   (unsigned long long)a[i].cycles, 100 * cycles_error, b[i].energy_joules, a[i].energy_joules,
                   100 * energy_error, (unsigned long long)b[i].memory.dram_accesses,
                   (unsigned long long)a[i].memory.dram_accesses);
-    EXPECT_LE(cycles_error, kCycleBound) << a[i].backend;
-    EXPECT_LE(energy_error, kEnergyBound) << a[i].backend;
+    EXPECT_LE(cycles_error, bounds.cycles) << a[i].backend;
+    EXPECT_LE(energy_error, bounds.energy) << a[i].backend;
     EXPECT_EQ(b[i].queries, a[i].queries);
     EXPECT_EQ(b[i].nodes, a[i].nodes);
     EXPECT_EQ(b[i].micro_ops, a[i].micro_ops) << "micro-ops need no addresses: exact";
@@ -96,14 +109,21 @@ TEST_P(SampledPricingTest, IsWithinTheStatedErrorOfTheExactReplay) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(DelibotBatches, SampledPricingTest,
-                         ::testing::Values(Case{"march_spread", RayCastMethod::kMarch, false},
-                                           Case{"dda_spread", RayCastMethod::kDda, false},
-                                           Case{"rm_spread", RayCastMethod::kRayMarching, false},
-                                           Case{"march_converged", RayCastMethod::kMarch, true},
-                                           Case{"dda_converged", RayCastMethod::kDda, true},
-                                           Case{"rm_converged", RayCastMethod::kRayMarching, true}),
-                         [](const auto& info) { return info.param.name; });
+INSTANTIATE_TEST_SUITE_P(
+    DelibotBatches, SampledPricingTest,
+    ::testing::Values(Case{"march_spread", RayCastMethod::kMarch, false, 1},
+                      Case{"dda_spread", RayCastMethod::kDda, false, 1},
+                      Case{"rm_spread", RayCastMethod::kRayMarching, false, 1},
+                      Case{"march_converged", RayCastMethod::kMarch, true, 1},
+                      Case{"dda_converged", RayCastMethod::kDda, true, 1},
+                      Case{"rm_converged", RayCastMethod::kRayMarching, true, 1},
+                      Case{"march_spread_half", RayCastMethod::kMarch, false, kReplayBlockStride},
+                      Case{"dda_spread_half", RayCastMethod::kDda, false, kReplayBlockStride},
+                      Case{"rm_spread_half", RayCastMethod::kRayMarching, false, kReplayBlockStride},
+                      Case{"march_converged_half", RayCastMethod::kMarch, true, kReplayBlockStride},
+                      Case{"dda_converged_half", RayCastMethod::kDda, true, kReplayBlockStride},
+                      Case{"rm_converged_half", RayCastMethod::kRayMarching, true, kReplayBlockStride}),
+    [](const auto& info) { return info.param.name; });
 
 TEST(SampledPricing, RefusesASampleTakenForAnotherPlacement) {
   const OccupancyGrid grid = test::RoomGrid(100, 80, 0.05, 0.02, 3);
