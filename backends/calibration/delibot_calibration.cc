@@ -54,7 +54,8 @@ DelibotSettings RunSettings(const CalibrationOptions& o, const RayKernelChoices&
   s.max_records = o.run_max_records;
   s.price_backends = true;
   s.backend_params = params;
-  s.ledger.replay_sms = 1;  // as rcbench delibot: SM 0 replayed exactly, the rest estimated
+  s.ledger.replay_sms = kReplaySms;  // as rcbench delibot: a sample of the memory replayed, the rest estimated
+  s.ledger.replay_block_stride = kReplayBlockStride;
   return s;
 }
 
@@ -191,8 +192,8 @@ std::vector<CalibrationRow> DelibotRows(const CalibrationWorkloads& w, const Bac
         notes->push_back("DeliBot " + run.name + ": " + std::to_string(run.trace.scans.size()) +
                          " laser records, march ray caster, " + std::to_string(w.options.run_particles) +
                          " particles, every " + std::to_string(w.options.run_beam_step) +
-                         "th beam, global localization; every update priced on every backend (memory replayed on "
-                         "SM 0, the rest estimated).");
+                         "th beam, global localization; every update priced on every backend (" +
+                         DescribeMemoryReplay(kReplaySms, kReplayBlockStride) + ").");
     }
   }
   for (RayCastMethod method : {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching}) {

@@ -40,6 +40,11 @@ void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string
                   "0 = every SM, exact)")
       ->capture_default_str();
   command
+      .add_option("--replay-block-stride", cli.replay_block_stride,
+                  "Of each replayed SM's blocks, every Nth is replayed, the others estimated from them (count, >= 1; "
+                  "1 = all of them; applies while --replay-sms samples)")
+      ->capture_default_str();
+  command
       .add_option("--priced-launches", cli.priced_launches,
                   "Of a batch split into launches (DeliBot: above 2^20 rays), the full launches recorded and priced, "
                   "spread evenly; the others are priced as their mean (count; 0 = every launch, exact)")
@@ -67,10 +72,13 @@ LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
   if (!(cli.hysteresis >= 0.0)) throw UsageError("--hysteresis must be >= 0");
   if (!(cli.switch_cost >= 0.0 && std::isfinite(cli.switch_cost)))
     throw UsageError("--switch-cost must be a finite number of cycles >= 0");
-  if (cli.replay_sms < 0) throw UsageError("--replay-sms must be >= 0");
-  if (!kPricedLaunchesPerBatchSpec.Contains(cli.priced_launches))
-    throw UsageError(fmt::format("--priced-launches must be in [{}, {}] ({})", kPricedLaunchesPerBatchSpec.min,
-                                 kPricedLaunchesPerBatchSpec.max, kPricedLaunchesPerBatchSpec.unit));
+  auto check_range = [](const char* option, int value, const ParameterSpec& spec) {
+    if (!spec.Contains(value))
+      throw UsageError(fmt::format("{} must be in [{}, {}] ({})", option, spec.min, spec.max, spec.unit));
+  };
+  check_range("--replay-sms", cli.replay_sms, kReplaySmsSpec);
+  check_range("--replay-block-stride", cli.replay_block_stride, kReplayBlockStrideSpec);
+  check_range("--priced-launches", cli.priced_launches, kPricedLaunchesPerBatchSpec);
   options.policy.hysteresis_nodes_per_query = cli.hysteresis;
   if (cli.threshold >= 0.0) {
     options.policy.threshold_nodes_per_query = cli.threshold;
@@ -78,6 +86,7 @@ LedgerOptions ToLedgerOptions(const SchedulerCli& cli) {
   }
   options.switch_cost_cycles = cli.switch_cost;
   options.replay_sms = cli.replay_sms;
+  options.replay_block_stride = cli.replay_block_stride;
   options.priced_launches = cli.priced_launches;
   return options;
 }
@@ -105,8 +114,7 @@ void PrintLedgerSummary(std::ostream& out, const LedgerSummary& l, const LedgerO
   };
   const std::string policy = ToString(options.policy);
   emit("modelled time (every {} priced on every backend; {} policy; {}):", what.c_str(), policy.c_str(),
-       l.replay_sms > 0 ? ("memory replayed on " + std::to_string(l.replay_sms) + " SM(s), the rest estimated").c_str()
-                        : "memory replayed on every SM");
+       DescribeMemoryReplay(l.replay_sms, l.replay_block_stride).c_str());
   if (l.estimated_launches > 0)
     emit("  {} of {} launches priced as the mean of the recorded launches of their batch (--priced-launches {})",
          l.estimated_launches, l.launches, options.priced_launches);
@@ -158,6 +166,7 @@ nlohmann::json LedgerSummaryJson(const LedgerSummary& l, const LedgerOptions& op
           {"oracle_lasting_changes", l.oracle_lasting_changes},
           {"oracle_lasting_changes_followed", l.oracle_lasting_changes_followed},
           {"replay_sms", l.replay_sms},
+          {"replay_block_stride", l.replay_block_stride},
           {"launches", l.launches},
           {"estimated_launches", l.estimated_launches}};
 }

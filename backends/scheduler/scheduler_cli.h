@@ -21,7 +21,8 @@ struct SchedulerCli {
   double threshold = -1.0;  // threshold policy; < 0: derived
   double hysteresis = 0.0;
   double switch_cost = 0.0;                       // core cycles
-  int replay_sms = 1;                             // SMs replayed exactly; 0 = all
+  int replay_sms = kReplaySms;                    // SMs replayed exactly; 0 = all
+  int replay_block_stride = kReplayBlockStride;   // of a replayed SM's blocks, every this-many-th replayed
   int priced_launches = kPricedLaunchesPerBatch;  // full launches of a split batch priced; 0 = all
   std::string backend_params;                     // JSON override file
   bool no_pricing = false;
