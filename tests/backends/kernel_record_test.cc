@@ -6,6 +6,9 @@
 #include <omp.h>
 
 #include <set>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -77,9 +80,10 @@ TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
   const OccupancyGrid grid = test::RoomGrid(80, 64, 0.1, 0.05, 3);
   const RayCastScene scene(grid, GetParam());
   const RayBatch batch = test::FanBatch(grid, 90, 41, 5.5, 4);  // 3690 queries: blocks of 256 on 8 SMs
-  for (int sampled_sms : {0, 1, 3}) {
+  for (const auto [sampled_sms, block_stride] : {std::pair{0, 1}, std::pair{1, 1}, std::pair{3, 1}, std::pair{1, 2}}) {
     RecordOptions options;
     if (sampled_sms > 0) options.sample.sampled_sms = sampled_sms;
+    options.sample.block_stride = block_stride;
     std::vector<RayHit> hits;
     KernelRecord record;
     CastRayBatchRecorded(scene, batch, hits, record, options);
@@ -179,16 +183,21 @@ TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
 }
 
 // A sampled record keeps exactly the addresses of the queries on the
-// sampled SMs, equal to the full record's, and everything else in full.
-TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
+// sampled SMs (of their blocks, every block_stride-th), equal to the full
+// record's, and everything else in full.
+class SampleTest : public ::testing::TestWithParam<std::tuple<RayCastMethod, int>> {};
+
+TEST_P(SampleTest, KeepsTheSampledBlocksAddressesOnly) {
+  const auto [method, block_stride] = GetParam();
   const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
-  const RayCastScene scene(grid, GetParam());
+  const RayCastScene scene(grid, method);
   const RayBatch batch = test::FanBatch(grid, 120, 37, 5.0, 9);  // 4440 queries: 17+ blocks of 256
   std::vector<RayHit> hits_full, hits_sampled;
   KernelRecord full, sampled;
   CastRayBatchRecorded(scene, batch, hits_full, full);
   RecordOptions options;
   options.sample.sampled_sms = 2;  // SMs 0 and 4 of 8
+  options.sample.block_stride = block_stride;
   CastRayBatchRecorded(scene, batch, hits_sampled, sampled, options);
   ASSERT_NO_THROW(sampled.Validate());
   ASSERT_TRUE(sampled.sampled());
@@ -197,8 +206,8 @@ TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
   std::size_t kept = 0;
   for (std::size_t q = 0; q < full.query_count(); ++q) {
     ASSERT_EQ(hits_sampled[q].range_m, hits_full[q].range_m) << q;
-    const int sm = static_cast<int>((q / 32 / 8) % 8);
-    const bool keeps = sm == 0 || sm == 4;
+    const std::size_t block = q / 32 / 8;
+    const bool keeps = (block % 8 == 0 || block % 8 == 4) && (block / 8) % block_stride == 0;
     ASSERT_EQ(sampled.address_offsets[q + 1] - sampled.address_offsets[q], keeps ? full.nodes(q) : 0u) << q;
     if (!keeps) continue;
     ++kept;
@@ -216,6 +225,14 @@ TEST_P(RecordTest, ASampleKeepsTheSampledSmsAddressesOnly) {
 INSTANTIATE_TEST_SUITE_P(AllRayCasters, RecordTest,
                          ::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching),
                          [](const auto& info) { return ToString(info.param); });
+INSTANTIATE_TEST_SUITE_P(EveryBlockAndEverySecond, SampleTest,
+                         ::testing::Combine(::testing::Values(RayCastMethod::kMarch, RayCastMethod::kDda,
+                                                              RayCastMethod::kRayMarching),
+                                            ::testing::Values(1, 2)),
+                         [](const auto& info) {
+                           return ToString(std::get<0>(info.param)) + "_stride" +
+                                  std::to_string(std::get<1>(info.param));
+                         });
 
 TEST(KernelRecord, AddressIsBasePlusIndexTimesElementSize) {
   OccupancyGrid grid(20, 10, 0.5);  // all free: the ray runs to the border

@@ -109,8 +109,8 @@ TEST(TreeTraversal, FarFromTheOrigin) {
 
 // CollideBatchRecorded (the traversal and the record in one parallel pass)
 // returns the outcomes CollideBatch returns and the record SactKernelRecord
-// builds from that batch, array for array, with every address kept and with
-// one SM of 8 sampled, at 1 and 2 threads.
+// builds from that batch, array for array, with every address kept, with
+// one SM of 8 sampled and with every second block of it, at 1 and 2 threads.
 TEST(TreeTraversal, RecordedBatchEqualsTheBatchsRecordAtAnyThreadCount) {
   const std::vector<Aabbd> scene = test::RandomScene(80, 21);
   const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
@@ -120,8 +120,10 @@ TEST(TreeTraversal, RecordedBatchEqualsTheBatchsRecordAtAnyThreadCount) {
   const CollisionBatch batch = CollideBatch(flat, obbs, options, 0x2000);
   AddressSample sampled;
   sampled.sampled_sms = 1;
+  AddressSample every_second_block = sampled;
+  every_second_block.block_stride = 2;  // of SM 0's blocks 0 and 8, block 0
   const int threads = omp_get_max_threads();
-  for (const AddressSample& sample : {AddressSample{}, sampled}) {
+  for (const AddressSample& sample : {AddressSample{}, sampled, every_second_block}) {
     const KernelRecord expected = SactKernelRecord(batch, nullptr, sample);
     for (const int t : {1, 2}) {
       omp_set_num_threads(t);
