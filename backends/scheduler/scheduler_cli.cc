@@ -36,7 +36,7 @@ void AddSchedulerOptions(CLI::App& command, SchedulerCli& cli, const std::string
       ->capture_default_str();
   command
       .add_option("--replay-sms", cli.replay_sms,
-                  "SMs whose memory traffic is replayed exactly (count; the others are estimated from them; "
+                  "SMs whose memory traffic is replayed (count; the others are estimated from them; "
                   "0 = every SM, exact)")
       ->capture_default_str();
   command
