@@ -524,12 +524,13 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
 
   // The SMs replayed, each with the warps whose addresses the record kept
   // (all of its warps unless the sample skips blocks).
+  const bool skips_blocks = record.sampled() && sample.Stride() > 1;
   std::vector<int> replayed;
   std::vector<std::vector<std::uint32_t>> kept_warps(gpu.sms);
   for (int sm = 0; sm < gpu.sms; ++sm) {
     if (record.sampled() && !sample.KeepsSm(sm)) continue;
     replayed.push_back(sm);
-    if (!record.sampled() || sample.block_stride <= 1) continue;
+    if (!skips_blocks) continue;
     for (std::uint32_t w : sm_warps[sm])
       if (sample.KeepsWarp(w)) kept_warps[sm].push_back(w);
   }
@@ -539,8 +540,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
     const int sm = replayed[i];
     SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
-    const std::vector<std::uint32_t>& list =
-        record.sampled() && sample.block_stride > 1 ? kept_warps[sm] : sm_warps[sm];
+    const std::vector<std::uint32_t>& list = skips_blocks ? kept_warps[sm] : sm_warps[sm];
     for (std::size_t lo = 0; lo < list.size(); lo += wave)
       replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
   }

@@ -23,12 +23,12 @@
 namespace rc {
 
 // What the priced runs of rcbench keep (SchedulerCli's defaults): one SM of
-// the GPU's, and every second block of it. Each halving of what is replayed
-// halves the replay, which is most of pricing's cost once recording is
-// cheap; the error it adds is measured against exact replay on DeliBot
-// batches (tests/backends/sampled_pricing_test.cc, docs/pricing.md): one SM
-// of eight, every RT unit's cycles within 3.5%; every second block of it,
-// within 6%, and the demo's modelled total 1.0% above exact.
+// the GPU's, and every second block of it. Halving what is replayed halves
+// the sampled SM's replay; the error it adds is measured against exact
+// replay on DeliBot batches (tests/backends/sampled_pricing_test.cc,
+// docs/pricing.md): one SM of eight, every RT unit's cycles within 3.5%;
+// every second block of it, within 6%, and the demo's modelled total 1.0%
+// above exact.
 inline constexpr int kReplaySms = 1;
 inline constexpr ParameterSpec kReplaySmsSpec{
     "SMs", 0, 1 << 16,
