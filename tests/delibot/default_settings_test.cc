@@ -73,6 +73,29 @@ TEST(StagedSensorModelTest, TheGlobalModelScoresUntilTrackingBegins) {
   EXPECT_THROW(StagedSensorModel(nullptr, std::make_unique<TaggedModel>(-1.0)), std::invalid_argument);
 }
 
+TEST(StagedSensorModelTest, TrackingFirstSetScoringSelectsWithTheTrackingModelOnly) {
+  auto global = std::make_unique<TaggedModel>(-1.0);
+  auto tracking = std::make_unique<TaggedModel>(-2.0);
+  TaggedModel* g = global.get();
+  TaggedModel* t = tracking.get();
+  StagedSensorModel staged(std::move(global), std::move(tracking), FirstSetScoring::kTracking);
+  const std::vector<Pose2> particles(3);
+  std::vector<double> ll;
+  SensorUpdateWork work;
+  staged.SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
+  EXPECT_EQ(ll[0], -20.0);
+  // The later updates still weigh with the global model until tracking begins.
+  staged.LogLikelihoods(particles, {}, {}, {}, ll, work);
+  EXPECT_EQ(ll[0], -1.0);
+  EXPECT_EQ(g->selection_calls, 0);
+  EXPECT_EQ(t->selection_calls, 1);
+  EXPECT_EQ(g->calls, 1);
+  EXPECT_EQ(t->calls, 0);
+  EXPECT_EQ(ParseFirstSetScoring("global"), FirstSetScoring::kGlobal);
+  EXPECT_EQ(ParseFirstSetScoring(ToString(FirstSetScoring::kTracking)), FirstSetScoring::kTracking);
+  EXPECT_THROW(ParseFirstSetScoring("beam"), std::invalid_argument);
+}
+
 // Scores 0 near a live place and -1000 nats elsewhere (far outside any
 // window), so the places alive are exactly the scripted ones.
 class PlacesModel final : public SensorModel {

@@ -166,6 +166,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"beam_step", s.mcl.beams.beam_step},
       {"ray_caster", ToString(s.ray_caster)},
       {"sensor_model", ToString(s.sensor_model)},
+      {"first_set_scoring", ToString(s.first_set_scoring)},
       {"max_range_m", s.beam.max_range_m},
       {"beam_model",
        {{"z_hit", s.beam.z_hit},
@@ -362,8 +363,7 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
   // The cost models' own time; the filter's time includes what recording
   // adds to its casts (docs/pricing.md measures both end to end).
   emit("pricing host time       {:.3f} s in the cost models ({:.2f}x the filter's own, recording included there)",
-       result.pricing_wall_s,
-       m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
+       result.pricing_wall_s, m.wall_s > 0 ? result.pricing_wall_s / m.wall_s : 0.0);
 }
 
 }  // namespace rc

@@ -25,7 +25,7 @@ std::unique_ptr<SensorModel> MakeSensorModel(const OccupancyGrid& grid, const De
   };
   if (s.sensor_model == SensorModelKind::kBeam) return beam();
   if (s.sensor_model == SensorModelKind::kLikelihoodField) return field();
-  return std::make_unique<StagedSensorModel>(field(), beam());
+  return std::make_unique<StagedSensorModel>(field(), beam(), s.first_set_scoring);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "workloads/delibot/beam_sensor_model.h"
 #include "workloads/delibot/likelihood_field_model.h"
 #include "workloads/delibot/mcl_options.h"
+#include "workloads/delibot/staged_sensor_model.h"
 
 namespace rc {
 
@@ -32,6 +33,8 @@ std::string ToString(SensorModelKind k);
 struct DelibotSettings {
   MclOptions mcl;
   SensorModelKind sensor_model = SensorModelKind::kBeam;
+  // likelihood-then-beam only: which stage scores the dense first set's cut.
+  FirstSetScoring first_set_scoring = FirstSetScoring::kGlobal;
   RayCastMethod ray_caster = RayCastMethod::kRayMarching;  // exact (= dda) and the fewest fetches
   BeamModelParams beam;                                    // max_range_m is shared by both models
   LikelihoodFieldParams likelihood;

@@ -23,16 +23,29 @@
 
 namespace rc {
 
+// Which stage's model scores the dense first update's cut
+// (SelectionLogLikelihoods). kGlobal is the design above; kTracking scores
+// it with the tracking model, which sees unexpected obstacles (the beam
+// model's short readings) but is the overconfident model the cut must not
+// use on real maps (docs/defaults.md, "Scoring the first set with the beam
+// model": it rescues a simulated seed and claims wrong places on two real
+// logs).
+enum class FirstSetScoring { kGlobal, kTracking };
+FirstSetScoring ParseFirstSetScoring(const std::string& name);  // "global" | "tracking"; throws std::invalid_argument
+std::string ToString(FirstSetScoring scoring);
+
 class StagedSensorModel final : public SensorModel {
  public:
   // Throws std::invalid_argument if either model is null.
-  StagedSensorModel(std::unique_ptr<SensorModel> global, std::unique_ptr<SensorModel> tracking);
+  StagedSensorModel(std::unique_ptr<SensorModel> global, std::unique_ptr<SensorModel> tracking,
+                    FirstSetScoring first_set = FirstSetScoring::kGlobal);
   // "<global>-then-<tracking>", e.g. "likelihood-then-beam".
   std::string name() const override;
   void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
                       const BeamSelection& beams, std::vector<double>& log_likelihoods,
                       SensorUpdateWork& work) override;
-  // The dense first set is a global choice: the global model selects it.
+  // The dense first set is a global choice: the global model selects it
+  // (or the tracking model, with FirstSetScoring::kTracking).
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                const LaserGeometry& geometry, const BeamSelection& beams,
                                std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
@@ -45,6 +58,7 @@ class StagedSensorModel final : public SensorModel {
 
   std::unique_ptr<SensorModel> global_model_;
   std::unique_ptr<SensorModel> tracking_model_;
+  FirstSetScoring first_set_;
   bool tracking_ = false;
 };
 
