@@ -43,6 +43,7 @@ code 2 "collide --backend" -- collide --scene shelf --backend fastest
 code 2 "delibot --priced-launches" -- delibot --map map.yaml --trace good.log --priced-launches -1
 code 2 "delibot --replay-sms" -- delibot --map map.yaml --trace good.log --replay-sms -1
 code 2 "delibot --replay-block-stride" -- delibot --map map.yaml --trace good.log --replay-block-stride 0
+code 2 "delibot --first-set-model tracking, one-stage model" -- delibot --map map.yaml --trace good.log --sensor-model beam --first-set-model tracking
 
 # A file that cannot be read is bad input.
 code 1 "delibot missing map" -- delibot --map absent.yaml --trace good.log
