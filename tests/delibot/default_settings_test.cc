@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -43,54 +44,64 @@ class TaggedModel final : public SensorModel {
   double tag_;
 };
 
+// A staged model over a global model tagged -1 and a tracking model tagged
+// -2, with what each was asked: Select() and Weigh() give the first
+// particle's score from the first set's cut and from an ordinary update.
+struct TaggedStages {
+  TaggedModel* global;
+  TaggedModel* tracking;
+  std::unique_ptr<StagedSensorModel> staged;
+
+  explicit TaggedStages(FirstSetScoring first_set) {
+    auto g = std::make_unique<TaggedModel>(-1.0);
+    auto t = std::make_unique<TaggedModel>(-2.0);
+    global = g.get();
+    tracking = t.get();
+    staged = std::make_unique<StagedSensorModel>(std::move(g), std::move(t), first_set);
+  }
+  double Select() { return Score(true); }
+  double Weigh() { return Score(false); }
+  // Each model's {update, selection} calls so far.
+  void ExpectCalls(std::pair<int, int> of_global, std::pair<int, int> of_tracking) const {
+    EXPECT_EQ(std::make_pair(global->calls, global->selection_calls), of_global);
+    EXPECT_EQ(std::make_pair(tracking->calls, tracking->selection_calls), of_tracking);
+  }
+
+ private:
+  double Score(bool selection) {
+    const std::vector<Pose2> particles(3);
+    std::vector<double> ll;
+    SensorUpdateWork work;
+    if (selection)
+      staged->SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
+    else
+      staged->LogLikelihoods(particles, {}, {}, {}, ll, work);
+    return ll[0];
+  }
+};
+
 TEST(StagedSensorModelTest, TheGlobalModelScoresUntilTrackingBegins) {
-  auto global = std::make_unique<TaggedModel>(-1.0);
-  auto tracking = std::make_unique<TaggedModel>(-2.0);
-  TaggedModel* g = global.get();
-  TaggedModel* t = tracking.get();
-  StagedSensorModel staged(std::move(global), std::move(tracking));
-  EXPECT_EQ(staged.name(), "tag1-then-tag2");
-  EXPECT_TRUE(staged.HasTrackingStage());
-  const std::vector<Pose2> particles(3);
-  std::vector<double> ll;
-  SensorUpdateWork work;
-  staged.SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -10.0);
-  staged.LogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -1.0);
-  EXPECT_FALSE(staged.Tracking());
-  staged.BeginTracking();
-  EXPECT_TRUE(staged.Tracking());
-  staged.LogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -2.0);
-  // The dense first set is always a global choice.
-  staged.SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -10.0);
-  EXPECT_EQ(g->calls, 1);
-  EXPECT_EQ(g->selection_calls, 2);
-  EXPECT_EQ(t->calls, 1);
-  EXPECT_EQ(t->selection_calls, 0);
+  TaggedStages m(FirstSetScoring::kGlobal);
+  EXPECT_EQ(m.staged->name(), "tag1-then-tag2");
+  EXPECT_TRUE(m.staged->HasTrackingStage());
+  EXPECT_EQ(m.Select(), -10.0);
+  EXPECT_EQ(m.Weigh(), -1.0);
+  EXPECT_FALSE(m.staged->Tracking());
+  m.staged->BeginTracking();
+  EXPECT_TRUE(m.staged->Tracking());
+  EXPECT_EQ(m.Weigh(), -2.0);
+  // The dense first set is a global choice, before tracking or after.
+  EXPECT_EQ(m.Select(), -10.0);
+  m.ExpectCalls({1, 2}, {1, 0});
   EXPECT_THROW(StagedSensorModel(nullptr, std::make_unique<TaggedModel>(-1.0)), std::invalid_argument);
 }
 
 TEST(StagedSensorModelTest, TrackingFirstSetScoringSelectsWithTheTrackingModelOnly) {
-  auto global = std::make_unique<TaggedModel>(-1.0);
-  auto tracking = std::make_unique<TaggedModel>(-2.0);
-  TaggedModel* g = global.get();
-  TaggedModel* t = tracking.get();
-  StagedSensorModel staged(std::move(global), std::move(tracking), FirstSetScoring::kTracking);
-  const std::vector<Pose2> particles(3);
-  std::vector<double> ll;
-  SensorUpdateWork work;
-  staged.SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -20.0);
+  TaggedStages m(FirstSetScoring::kTracking);
+  EXPECT_EQ(m.Select(), -20.0);
   // The later updates still weigh with the global model until tracking begins.
-  staged.LogLikelihoods(particles, {}, {}, {}, ll, work);
-  EXPECT_EQ(ll[0], -1.0);
-  EXPECT_EQ(g->selection_calls, 0);
-  EXPECT_EQ(t->selection_calls, 1);
-  EXPECT_EQ(g->calls, 1);
-  EXPECT_EQ(t->calls, 0);
+  EXPECT_EQ(m.Weigh(), -1.0);
+  m.ExpectCalls({1, 0}, {0, 1});
   EXPECT_EQ(ParseFirstSetScoring("global"), FirstSetScoring::kGlobal);
   EXPECT_EQ(ParseFirstSetScoring(ToString(FirstSetScoring::kTracking)), FirstSetScoring::kTracking);
   EXPECT_THROW(ParseFirstSetScoring("beam"), std::invalid_argument);
