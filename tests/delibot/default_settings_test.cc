@@ -4,6 +4,7 @@
 // set is sized by the map, the defaults fit the options a user gives, and
 // the built-in demo converges early and claims only what holds.
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -105,6 +106,56 @@ TEST(StagedSensorModelTest, TrackingFirstSetScoringSelectsWithTheTrackingModelOn
   EXPECT_EQ(ParseFirstSetScoring("global"), FirstSetScoring::kGlobal);
   EXPECT_EQ(ParseFirstSetScoring(ToString(FirstSetScoring::kTracking)), FirstSetScoring::kTracking);
   EXPECT_THROW(ParseFirstSetScoring("beam"), std::invalid_argument);
+}
+
+// Gives the first set's particles the listed selection scores.
+class ListedModel final : public SensorModel {
+ public:
+  explicit ListedModel(std::vector<double> scores) : scores_(std::move(scores)) {}
+  std::string name() const override { return "listed"; }
+  void LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                      std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+    log_likelihoods.assign(particles.size(), 0.0);
+  }
+  void SelectionLogLikelihoods(const std::vector<Pose2>&, const LaserScan&, const LaserGeometry&, const BeamSelection&,
+                               std::vector<double>& log_likelihoods, SensorUpdateWork&) override {
+    log_likelihoods = scores_;
+  }
+
+ private:
+  std::vector<double> scores_;
+};
+
+// The mixture cut's selection weights, normalized: the mean of the two
+// models' normalized posteriors.
+std::vector<double> MixtureWeights(std::vector<double> global, std::vector<double> tracking) {
+  StagedSensorModel staged(std::make_unique<ListedModel>(std::move(global)),
+                           std::make_unique<ListedModel>(std::move(tracking)), FirstSetScoring::kMixture);
+  const std::vector<Pose2> particles(2);
+  std::vector<double> ll;
+  SensorUpdateWork work;
+  staged.SelectionLogLikelihoods(particles, {}, {}, {}, ll, work);
+  double sum = 0.0;
+  for (double x : ll) sum += std::exp(x);
+  for (double& x : ll) x = std::exp(x) / sum;
+  return ll;
+}
+
+TEST(StagedSensorModelTest, MixtureFirstSetScoringDrawsHalfByEachModelsPosterior) {
+  // Posteriors (1/4, 3/4) and (1/2, 1/2), whatever each model's scale.
+  const std::vector<double> mixed = MixtureWeights({-700.0, -700.0 + std::log(3.0)}, {5.0, 5.0});
+  EXPECT_NEAR(mixed[0], 0.375, 1e-12);
+  EXPECT_NEAR(mixed[1], 0.625, 1e-12);
+  // A place only one model favours keeps half of the draws.
+  const std::vector<double> split = MixtureWeights({0.0, -1000.0}, {-1000.0, 0.0});
+  EXPECT_NEAR(split[0], 0.5, 1e-12);
+  EXPECT_NEAR(split[1], 0.5, 1e-12);
+  // A model that rules every particle out leaves the other's posterior.
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> one = MixtureWeights({-inf, -inf}, {0.0, std::log(3.0)});
+  EXPECT_NEAR(one[0], 0.25, 1e-12);
+  EXPECT_NEAR(one[1], 0.75, 1e-12);
+  EXPECT_EQ(ToString(ParseFirstSetScoring("mixture")), "mixture");
 }
 
 // Scores 0 near a live place and -1000 nats elsewhere (far outside any

@@ -18,20 +18,25 @@
 // Both are ordinary SensorModels; this one only forwards to the stage's.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "workloads/delibot/sensor_model.h"
 
 namespace rc {
 
-// Which stage's model scores the dense first update's cut
-// (SelectionLogLikelihoods). kGlobal is the design above; kTracking scores
+// Which model scores the dense first update's cut
+// (SelectionLogLikelihoods). kGlobal is the design above. kTracking scores
 // it with the tracking model, which sees unexpected obstacles (the beam
-// model's short readings) but is the overconfident model the cut must not
-// use on real maps (docs/defaults.md, "Scoring the first set with the beam
-// model": it rescues a simulated seed and claims wrong places on two real
-// logs).
-enum class FirstSetScoring { kGlobal, kTracking };
-FirstSetScoring ParseFirstSetScoring(const std::string& name);  // "global" | "tracking"; throws std::invalid_argument
+// model's short readings) but alone claims look-alikes on real maps.
+// kMixture draws the cut from the equal mixture of the two models'
+// single-scan posteriors (a defensive mixture: each particle's selection
+// weight is (p_global / sum p_global + p_tracking / sum p_tracking) / 2),
+// so the set keeps the places either model favours and the global stage
+// weighs them afterwards. docs/defaults.md, "The first set's cut: a mixture
+// of both models".
+enum class FirstSetScoring { kGlobal, kTracking, kMixture };
+// "global" | "tracking" | "mixture"; throws std::invalid_argument.
+FirstSetScoring ParseFirstSetScoring(const std::string& name);
 std::string ToString(FirstSetScoring scoring);
 
 class StagedSensorModel final : public SensorModel {
@@ -45,7 +50,7 @@ class StagedSensorModel final : public SensorModel {
                       const BeamSelection& beams, std::vector<double>& log_likelihoods,
                       SensorUpdateWork& work) override;
   // The dense first set is a global choice: the global model selects it
-  // (or the tracking model, with FirstSetScoring::kTracking).
+  // (or another FirstSetScoring).
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                const LaserGeometry& geometry, const BeamSelection& beams,
                                std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
@@ -60,6 +65,7 @@ class StagedSensorModel final : public SensorModel {
   std::unique_ptr<SensorModel> tracking_model_;
   FirstSetScoring first_set_;
   bool tracking_ = false;
+  std::vector<double> tracking_scores_;  // kMixture: the tracking model's selection scores
 };
 
 }  // namespace rc

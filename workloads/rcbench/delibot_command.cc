@@ -259,12 +259,11 @@ void AddDelibotCommand(CLI::App& app) {
       ->each([cli](const std::string&) { cli->given.sensor_model = true; })
       ->capture_default_str();
   cmd->add_option("--first-set-model", cli->first_set_model,
-                  "With likelihood-then-beam: which stage's model scores the dense first update's cut: global "
-                  "(the likelihood field) | tracking (the beam model: one ray per particle and beam, about 26-49 "
-                  "million rays on the demo's and Wean's maps; it sees people as short readings, but claims wrong "
-                  "places on real Wean "
-                  "logs; docs/defaults.md)")
-      ->check(CLI::IsMember({"global", "tracking"}))
+                  "With likelihood-then-beam, what scores the dense first update's cut: global (the likelihood "
+                  "field) | tracking (the beam model: one ray per particle and beam, 26-49 million on the demo's and "
+                  "Wean's maps; it sees people as short readings but alone claims look-alikes on real Wean logs) | "
+                  "mixture (both, the cut drawn half by each model's posterior; docs/defaults.md)")
+      ->check(CLI::IsMember({"global", "tracking", "mixture"}))
       ->capture_default_str();
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
   cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")
