@@ -1,22 +1,13 @@
 #include "workloads/delibot/staged_sensor_model.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
+#include "common/log_domain.h"
+
 namespace rc {
 namespace {
-
-// log sum_i exp(v_i), -inf for no finite term.
-double LogSumExp(const std::vector<double>& v) {
-  double most = -std::numeric_limits<double>::infinity();
-  for (double x : v) most = std::max(most, x);
-  if (!std::isfinite(most)) return most;
-  double sum = 0.0;
-  for (double x : v) sum += std::exp(x - most);
-  return most + std::log(sum);
-}
 
 // In place: global[i] = log((exp(global[i] - G) + exp(tracking[i] - T)) / 2)
 // with G, T each model's log normalizer; a model whose scores are all -inf
@@ -24,30 +15,28 @@ double LogSumExp(const std::vector<double>& v) {
 void MixPosteriors(std::vector<double>& global, const std::vector<double>& tracking) {
   const double g = LogSumExp(global), t = LogSumExp(tracking);
   const double inf = std::numeric_limits<double>::infinity();
+  const double log_half = std::log(0.5);
   for (std::size_t i = 0; i < global.size(); ++i) {
     const double x = std::isfinite(g) ? global[i] - g : -inf;
     const double y = std::isfinite(t) ? tracking[i] - t : -inf;
-    const double most = std::max(x, y);
-    global[i] = most == -inf ? -inf : most + std::log(0.5 * std::exp(x - most) + 0.5 * std::exp(y - most));
+    global[i] = LogAddExp(x, y) + log_half;
   }
 }
+
+constexpr FirstSetScoring kFirstSetScorings[] = {FirstSetScoring::kGlobal, FirstSetScoring::kTracking,
+                                                 FirstSetScoring::kMixture};
 
 }  // namespace
 
 FirstSetScoring ParseFirstSetScoring(const std::string& name) {
-  if (name == "global") return FirstSetScoring::kGlobal;
-  if (name == "tracking") return FirstSetScoring::kTracking;
-  if (name == "mixture") return FirstSetScoring::kMixture;
+  for (FirstSetScoring scoring : kFirstSetScorings)
+    if (name == ToString(scoring)) return scoring;
   throw std::invalid_argument("unknown first-set scoring '" + name + "' (expected global, tracking or mixture)");
 }
 
 std::string ToString(FirstSetScoring scoring) {
-  switch (scoring) {
-    case FirstSetScoring::kGlobal: return "global";
-    case FirstSetScoring::kTracking: return "tracking";
-    case FirstSetScoring::kMixture: return "mixture";
-  }
-  return "?";
+  constexpr const char* kNames[] = {"global", "tracking", "mixture"};  // in kFirstSetScorings' order
+  return kNames[static_cast<int>(scoring)];
 }
 
 StagedSensorModel::StagedSensorModel(std::unique_ptr<SensorModel> global, std::unique_ptr<SensorModel> tracking,
