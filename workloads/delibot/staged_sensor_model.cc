@@ -56,14 +56,20 @@ void StagedSensorModel::LogLikelihoods(const std::vector<Pose2>& particles, cons
 void StagedSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                                 const LaserGeometry& geometry, const BeamSelection& beams,
                                                 std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
-  if (first_set_ != FirstSetScoring::kTracking)
-    global_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
-  if (first_set_ == FirstSetScoring::kGlobal) return;
-  std::vector<double>& tracking = first_set_ == FirstSetScoring::kTracking ? log_likelihoods : tracking_scores_;
-  tracking_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, tracking, work);
-  if (first_set_ == FirstSetScoring::kMixture) {
-    MixPosteriors(log_likelihoods, tracking_scores_);
-    tracking_scores_ = std::vector<double>();  // the dense set's scores, freed once used
+  switch (first_set_) {
+    case FirstSetScoring::kGlobal:
+      global_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+      return;
+    case FirstSetScoring::kTracking:
+      tracking_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+      return;
+    case FirstSetScoring::kMixture: {
+      global_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+      std::vector<double> tracking;
+      tracking_model_->SelectionLogLikelihoods(particles, scan, geometry, beams, tracking, work);
+      MixPosteriors(log_likelihoods, tracking);
+      return;
+    }
   }
 }
 

@@ -18,7 +18,6 @@
 // Both are ordinary SensorModels; this one only forwards to the stage's.
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "workloads/delibot/sensor_model.h"
 
@@ -65,7 +64,6 @@ class StagedSensorModel final : public SensorModel {
   std::unique_ptr<SensorModel> tracking_model_;
   FirstSetScoring first_set_;
   bool tracking_ = false;
-  std::vector<double> tracking_scores_;  // kMixture: the tracking model's selection scores
 };
 
 }  // namespace rc
