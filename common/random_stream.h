@@ -25,6 +25,7 @@ enum class StreamPurpose : std::uint64_t {
   kMapGeneration = 6,
   kTest = 7,
   kStartProbe = 8,  // the adaptive scheduler's start probe (workloads/delibot/start_probe.h)
+  kClaimAudit = 9,  // the poses a claim audit samples (workloads/delibot/claim_audit.h)
 };
 
 class RandomStream {

@@ -51,7 +51,9 @@ void DelibotTimeline::Open(const DelibotRow& first) {
                                       "particles",
                                       "spread_m",
                                       "mode_weight",
-                                      "consistency"};
+                                      "consistency",
+                                      "claim_audit",
+                                      "claim_audit_margin_nats"};
   if (ground_truth_) {
     columns.push_back("err_xy_m");
     columns.push_back("err_theta_rad");
@@ -97,7 +99,9 @@ void DelibotTimeline::Add(const DelibotRow& r) {
                                 r.particles,
                                 r.spread_m,
                                 r.mode_weight,
-                                r.consistency};
+                                r.consistency,
+                                ToString(r.claim_audit),
+                                MaybeNumber(r.claim_audit != ClaimAuditOutcome::kNotRun, r.claim_audit_margin_nats)};
   if (ground_truth_) {
     cells.emplace_back(r.err_xy_m);
     cells.emplace_back(r.err_theta_rad);
@@ -167,6 +171,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"ray_caster", ToString(s.ray_caster)},
       {"sensor_model", ToString(s.sensor_model)},
       {"first_set_scoring", ToString(s.first_set_scoring)},
+      {"audit_claims", s.audit_claims},
       {"max_range_m", s.beam.max_range_m},
       {"beam_model",
        {{"z_hit", s.beam.z_hit},
@@ -223,6 +228,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
                    {"convergence_iteration_without_ground_truth", m.self_convergence_iteration},
                    {"standing_claim_iteration", m.standing_claim_iteration},
                    {"claims_withdrawn", m.claims_withdrawn},
+                   {"claims_refused_by_audit", m.claims_refused},
                    {"converged_at_end", m.converged},
                    {"end_median_mode_weight", m.end_mode_weight},
                    {"end_median_consistency", m.end_consistency},
@@ -342,6 +348,20 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
         "claims withdrawn        {} (the estimate jumped > {:.1f} m or random particles were injected after a "
         "claim); {}",
         m.claims_withdrawn, s.jump_threshold_m, standing.c_str());
+  }
+  if (s.audit_claims) {
+    // The last refused audit's margin: how far the claimed place was from
+    // standing out.
+    const DelibotRow* last_refused = nullptr;
+    for (const auto& r : result.rows)
+      if (r.claim_audit == ClaimAuditOutcome::kRefused) last_refused = &r;
+    if (last_refused)
+      emit("claims refused by audit {} (the claim's scans fit a place elsewhere within {:.1f} nats of the claimed one; "
+           "last at record {}, margin {:.1f} nats)",
+           m.claims_refused, s.mcl.hypothesis_floor.window_nats, last_refused->iteration,
+           last_refused->claim_audit_margin_nats);
+    else
+      emit("claims refused by audit 0");
   }
   if (m.convergence_iteration >= 0) {
     emit("scan consistency        {:.3f} median after convergence (beams within {:.1f} sigma of the map)",

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "robocore/ray_batch_recorded.h"
+#include "workloads/delibot/claim_replay.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
 #include "workloads/delibot/scan_consistency.h"
 #include "workloads/delibot/staged_sensor_model.h"
@@ -83,6 +84,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
   const bool price = settings.price_backends && CastsRays(settings.sensor_model);
   MclOptions mcl_options = settings.mcl;
   mcl_options.record_kernel = price;
+  if (settings.audit_claims) mcl_options.claim_audit_scans = kSustainRecords;
   std::unique_ptr<BackendLedger> ledger;
   // Pricing's host time of the launches an update was split into, which
   // runs inside the filter's update: moved from the filter's time to
@@ -159,6 +161,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
   DelibotResult result;
   result.rows.reserve(count);
   LaserScan scan;  // one record at a time: memory does not grow with the trace
+  ClaimReplay claims(settings.jump_threshold_m);
   for (std::size_t k = 0; k < count; ++k) {
     if (!scans.Next(scan)) throw std::logic_error("the trace ended before its " + std::to_string(count) + " records");
     if (ledger) ledger->BeginIteration();
@@ -211,6 +214,14 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
     row.mode_weight = estimate.mode_weight;
     if (!JudgeDelibotRow(exact_scene, scan, geometry, settings, ground_truth ? &(*ground_truth)[k] : nullptr, row))
       result.summary.any_non_finite_weight = true;
+    if (settings.audit_claims && claims.Step(row, SelfLocalized(row, settings))) {
+      const auto audit_start = std::chrono::steady_clock::now();
+      const ClaimAudit audit = mcl.AuditClaim(row.estimate, k);
+      row.wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - audit_start).count();
+      row.claim_audit = audit.outcome;
+      row.claim_audit_margin_nats = audit.margin_nats;
+      claims.Settle(audit.outcome == ClaimAuditOutcome::kPassed);
+    }
     result.rows.push_back(row);
     if (on_row) on_row(row);
     if (progress) progress(k + 1, count);

@@ -15,6 +15,7 @@
 #include "traces/scan_source.h"
 #include "traces/sensor_trace.h"
 #include "workloads/delibot/beam_sensor_model.h"
+#include "workloads/delibot/claim_audit.h"
 #include "workloads/delibot/likelihood_field_model.h"
 #include "workloads/delibot/mcl_options.h"
 #include "workloads/delibot/staged_sensor_model.h"
@@ -58,6 +59,11 @@ struct DelibotSettings {
   // An estimate moving farther than this between two records is a jump:
   // the filter switched hypotheses (a robot does not teleport).
   double jump_threshold_m = 1.0;
+  // Audit every claim as it falls due (claim_audit.h) and make it only if
+  // the audit passes: the localizer keeps the claim's kSustainRecords scans
+  // (MclOptions::claim_audit_scans) and RunDelibot audits on them. Off by
+  // default (docs/defaults.md, "The claim audit").
+  bool audit_claims = false;
   // Shadow costing: every modelled backend prices every update's ray batch
   // (beam model only; the likelihood field casts no rays), and the policy
   // picks the backend that "ran". Off by default in the library (pricing
@@ -107,6 +113,10 @@ struct DelibotRow {
   // A staged sensor model's tracking model scored this record
   // (staged_sensor_model.h); false for one-stage models.
   bool tracking_stage = false;
+  // A claim fell due at this record and was audited (audit_claims): the
+  // outcome and its margin (ClaimAudit::margin_nats; NaN when not run).
+  ClaimAuditOutcome claim_audit = ClaimAuditOutcome::kNotRun;
+  double claim_audit_margin_nats = std::numeric_limits<double>::quiet_NaN();
   double spread_m = 0.0;
   double mode_weight = 0.0;  // normalized weight within 1 m of the estimate
   double consistency = 0.0;  // fraction of beams within k sigma at the estimate
@@ -146,6 +156,8 @@ struct DelibotSummary {
   // many claims were withdrawn before it.
   long standing_claim_iteration = -1;
   long claims_withdrawn = 0;
+  // Due claims that their audit refused (audit_claims; 0 without).
+  long claims_refused = 0;
   bool converged =
       false;  // also true at the end of the run (without ground truth: in most of the last 10 sensor updates)
   // Medians over the last 10 sensor updates, which the ground-truth-free

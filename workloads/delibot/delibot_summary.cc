@@ -4,12 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "workloads/delibot/claim_replay.h"
 #include "workloads/delibot/delibot_run.h"
 
 namespace rc {
 namespace {
-
-constexpr int kSustainRecords = 10;
 
 double Median(std::vector<double> v) {
   if (v.empty()) return -1.0;
@@ -59,48 +58,6 @@ long FirstSustained(const std::vector<DelibotRow>& rows, const Localized& locali
   return -1;
 }
 
-// The estimate moved more than the jump threshold since the previous record.
-bool Jumped(const DelibotRow* previous, const DelibotRow& r, double jump_threshold_m) {
-  return previous &&
-         std::hypot(r.estimate.x - previous->estimate.x, r.estimate.y - previous->estimate.y) > jump_threshold_m;
-}
-
-struct ClaimHistory {
-  long standing_from = -1;
-  long withdrawn = 0;
-};
-
-// Replays the ground-truth-free claims record by record (see
-// DelibotSummary::standing_claim_iteration): a claim is made after
-// kSustainRecords consecutive localized sensor updates and withdrawn at the
-// first jump or injection after it. A localized update that merely dips
-// below a threshold breaks a run being built but withdraws no claim: one
-// scan's consistency is noisy (a person, a poorly mapped door).
-template <typename Localized>
-ClaimHistory ReplayClaims(const std::vector<DelibotRow>& rows, const Localized& localized, double jump_threshold_m) {
-  ClaimHistory h;
-  int run = 0;
-  long run_start = -1;
-  const DelibotRow* previous = nullptr;
-  for (const auto& r : rows) {
-    const bool doubted = Jumped(previous, r, jump_threshold_m) || r.injected > 0;
-    previous = &r;
-    if (doubted) {
-      if (h.standing_from >= 0) ++h.withdrawn;
-      h.standing_from = -1;
-      run = 0;
-    }
-    if (h.standing_from >= 0 || !r.sensor_updated) continue;
-    if (!localized(r)) {
-      run = 0;
-      continue;
-    }
-    if (run++ == 0) run_start = r.iteration;
-    if (run == kSustainRecords) h.standing_from = run_start;
-  }
-  return h;
-}
-
 DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSettings& s) {
   DelibotSummary sum;
   sum.records = static_cast<long>(rows.size());
@@ -118,11 +75,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   // With the hypothesis floor the filter also knows its rivals: while it
   // keeps a second hypothesis alive (within the window of the heaviest) it
   // does not claim to be localized, however much weight the first holds.
-  // (hypotheses_alive is 0 when the floor is off.)
-  auto self_localized = [&](const DelibotRow& r) {
-    return r.mode_weight >= s.converged_mode_weight && r.consistency >= s.converged_consistency &&
-           r.hypotheses_alive <= 1;
-  };
+  auto self_localized = [&](const DelibotRow& r) { return SelfLocalized(r, s); };
   auto localized = [&](const DelibotRow& r) {
     return gt ? (r.err_xy_m < s.converged_xy_m && r.err_theta_rad < s.converged_theta_rad) : self_localized(r);
   };
@@ -131,9 +84,14 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   // 20 records of a log (robotdata1 does) would otherwise "converge" on the
   // weights of its very first scan.
   sum.self_convergence_iteration = FirstSustained(rows, self_localized, true);
-  const ClaimHistory claims = ReplayClaims(rows, self_localized, s.jump_threshold_m);
-  sum.standing_claim_iteration = claims.standing_from;
-  sum.claims_withdrawn = claims.withdrawn;
+  // The claims as the run made them: a due claim its audit refused was not
+  // made (claim_audit.h; a row without an audit refuses nothing).
+  ClaimReplay claims(s.jump_threshold_m);
+  for (const auto& r : rows)
+    if (claims.Step(r, self_localized(r))) claims.Settle(r.claim_audit != ClaimAuditOutcome::kRefused);
+  sum.standing_claim_iteration = claims.standing_from();
+  sum.claims_withdrawn = claims.withdrawn();
+  sum.claims_refused = claims.refused();
   sum.convergence_iteration = gt ? FirstSustained(rows, localized, false) : sum.self_convergence_iteration;
   if (sum.convergence_iteration >= 0) {
     std::vector<double> exy, eth, cons;
@@ -141,7 +99,7 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
     const DelibotRow* previous = nullptr;
     for (const auto& r : rows) {
       if (r.iteration < sum.convergence_iteration) continue;
-      if (Jumped(previous, r, s.jump_threshold_m)) ++sum.jumps_after_convergence;
+      if (previous && Jumped(previous->estimate, r.estimate, s.jump_threshold_m)) ++sum.jumps_after_convergence;
       previous = &r;
       if (gt) {
         exy.push_back(r.err_xy_m);

@@ -25,6 +25,8 @@ bool MclOptions::IsValid(std::string* error) const {
     return fail("alpha_fast must exceed alpha_slow for recovery to mean anything");
   if (injection_check_updates < 0 || injection_check_updates > 1000)
     return fail("injection check window must be in [0, 1000] sensor updates");
+  if (claim_audit_scans < 0 || claim_audit_scans > 1000)
+    return fail("claim audit scans must be in [0, 1000] sensor updates");
   if (hypothesis_floor.min_particles < 0 || hypothesis_floor.min_particles > particle_count / 2)
     return fail("hypothesis floor must be in [0, particles / 2] particles");
   if (max_particle_count != 0 && (max_particle_count < particle_count || max_particle_count > 10000000))

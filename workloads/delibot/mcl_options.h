@@ -74,6 +74,12 @@ struct MclOptions {
   // because it also slows the escape from a wrong global convergence
   // (docs/delibot.md, "Checked injection"). [0, 1000] sensor updates.
   int injection_check_updates = 0;
+  // Claim audit (claim_audit.h): the localizer remembers this many recent
+  // sensor updates' scans so that a claim can be audited on them
+  // (AuditClaim); 0 = off (the default). The run audits every claim as it
+  // falls due when this is the claim's kSustainRecords updates
+  // (delibot_run.h). [0, 1000] sensor updates.
+  int claim_audit_scans = 0;
   // A sensor update runs only after the odometry has moved this far since
   // the previous one (AMCL's update_min_d / update_min_a); 0 = every scan.
   // Repeated updates with the same scan while standing still make the filter

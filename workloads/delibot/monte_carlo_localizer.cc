@@ -146,9 +146,10 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
     }
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }
-  if (options_.injection_check_updates > 0) {
+  const auto remembered = static_cast<std::size_t>(std::max(options_.injection_check_updates, options_.claim_audit_scans));
+  if (remembered > 0) {
     recent_scans_.push_back({scan, geometry});
-    while (recent_scans_.size() > static_cast<std::size_t>(options_.injection_check_updates)) recent_scans_.pop_front();
+    while (recent_scans_.size() > remembered) recent_scans_.pop_front();
   }
   result.ess = EffectiveSampleSize(log_weights_);
   // The dense first set is not clustered: spread uniformly over the map it
@@ -294,7 +295,10 @@ std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vec
   const Pose2& odometry_now = recent_scans_.back().scan.odometry;
   std::vector<Pose2> poses_then(poses_now.size());
   std::vector<double> log_likelihoods;
-  for (const RememberedScan& remembered : recent_scans_) {
+  const std::size_t checked =
+      std::min(recent_scans_.size(), static_cast<std::size_t>(options_.injection_check_updates));
+  for (auto it = recent_scans_.end() - static_cast<std::ptrdiff_t>(checked); it != recent_scans_.end(); ++it) {
+    const RememberedScan& remembered = *it;
     // Where each pose was at that scan if the odometry since then is right.
     const Pose2 back = Between(odometry_now, remembered.scan.odometry);
     for (std::size_t i = 0; i < poses_now.size(); ++i) poses_then[i] = Compose(poses_now[i], back);
@@ -311,6 +315,29 @@ std::vector<double> MonteCarloLocalizer::RecentScansLogLikelihood(const std::vec
     }
   }
   return total;
+}
+
+ClaimAudit MonteCarloLocalizer::AuditClaim(const Pose2& claimed, std::uint64_t iteration) {
+  if (options_.claim_audit_scans <= 0) throw std::logic_error("AuditClaim with claim audits off");
+  if (recent_scans_.empty()) throw std::logic_error("AuditClaim before the first sensor update");
+  std::deque<RememberedScan> audited(
+      recent_scans_.end() -
+          static_cast<std::ptrdiff_t>(std::min(recent_scans_.size(), static_cast<std::size_t>(options_.claim_audit_scans))),
+      recent_scans_.end());
+  MclOptions sizing = options_;
+  sizing.initial_particle_count = kAutoInitialParticles;
+  const double cell_area_m2 = grid_.resolution_m() * grid_.resolution_m();
+  const std::size_t n = InitialParticleCount(sizing, static_cast<double>(free_cells_.size()) * cell_area_m2);
+  std::vector<Pose2> poses(n);
+  const long count = static_cast<long>(n);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < count; ++i) {
+    RandomStream stream(options_.seed, StreamPurpose::kClaimAudit, iteration, static_cast<std::uint64_t>(i));
+    poses[i] = RandomFreePose(stream);
+  }
+  const ClaimedPlace place{claimed, options_.estimate_kernel_radius_m, 2.0 * kPi / options_.hypothesis_heading_bins};
+  return rc::AuditClaim(sensor_model_->PlaceModel(), audited, options_.beams, poses, place,
+                        options_.hypothesis_floor.window_nats);
 }
 
 PoseEstimate MonteCarloLocalizer::Estimate() const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "maps/occupancy_grid.h"
+#include "workloads/delibot/claim_audit.h"
 #include "workloads/delibot/hypothesis_clusters.h"
 #include "workloads/delibot/mcl_options.h"
 #include "workloads/delibot/pose_estimate.h"
@@ -64,6 +65,14 @@ class MonteCarloLocalizer {
   MclStepResult Update(const LaserScan& scan, const LaserGeometry& geometry, std::uint64_t iteration);
 
   PoseEstimate Estimate() const;
+  // Audits a claim that the robot is at `claimed` (claim_audit.h) on the
+  // last claim_audit_scans sensor updates' scans (fewer if fewer ran),
+  // sampling free space with the auto-sized dense first set's count of
+  // uniform poses (streams keyed by `iteration`); the claimed place is the
+  // hypothesis clusters' bin (estimate_kernel_radius_m, one heading bin)
+  // and the margin the hypothesis floor's window. Throws std::logic_error
+  // when claim audits are off or before the first sensor update.
+  ClaimAudit AuditClaim(const Pose2& claimed, std::uint64_t iteration);
   const std::vector<Pose2>& particles() const { return particles_; }
   const std::vector<double>& log_weights() const { return log_weights_; }
   const MclOptions& options() const { return options_; }
@@ -112,11 +121,8 @@ class MonteCarloLocalizer {
   bool have_recovery_averages_ = false;
   int single_hypothesis_updates_ = 0;  // consecutive sensor updates with one hypothesis alive
   double log_w_slow_ = 0.0, log_w_fast_ = 0.0;
-  // The last injection_check_updates sensor updates, oldest first.
-  struct RememberedScan {
-    LaserScan scan;
-    LaserGeometry geometry;
-  };
+  // The last max(injection_check_updates, claim_audit_scans) sensor
+  // updates' scans, oldest first.
   std::deque<RememberedScan> recent_scans_;
   SensorUpdateWork check_work_;              // scratch for the injection check's casts
   std::vector<KernelRecord> check_records_;  // this record's, when record_kernel

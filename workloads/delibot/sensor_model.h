@@ -85,6 +85,10 @@ class SensorModel {
   // (staged_sensor_model.h) switches when the localizer calls BeginTracking,
   // once one hypothesis is left. A one-stage model ignores the call.
   virtual bool HasTrackingStage() const { return false; }
+  // The model that compares places far apart, as global localization does
+  // (a staged model's global stage): what a claim audit scores with
+  // (claim_audit.h).
+  virtual SensorModel& PlaceModel() { return *this; }
   virtual bool Tracking() const { return false; }
   virtual void BeginTracking() {}
 };

@@ -58,6 +58,7 @@ class StagedSensorModel final : public SensorModel {
   void BeginTracking() override { tracking_ = true; }
 
  private:
+  SensorModel& PlaceModel() override { return *global_model_; }
   SensorModel& Current() { return tracking_ ? *tracking_model_ : *global_model_; }
 
   std::unique_ptr<SensorModel> global_model_;
