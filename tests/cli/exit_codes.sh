@@ -44,6 +44,7 @@ code 2 "delibot --priced-launches" -- delibot --map map.yaml --trace good.log --
 code 2 "delibot --replay-sms" -- delibot --map map.yaml --trace good.log --replay-sms -1
 code 2 "delibot --replay-block-stride" -- delibot --map map.yaml --trace good.log --replay-block-stride 0
 code 2 "delibot --first-set-model tracking, one-stage model" -- delibot --map map.yaml --trace good.log --sensor-model beam --first-set-model tracking
+code 2 "delibot --claim-audit with the MRPT engine" -- delibot --map map.yaml --trace good.log --engine mrpt --claim-audit
 
 # A file that cannot be read is bad input.
 code 1 "delibot missing map" -- delibot --map absent.yaml --trace good.log

@@ -110,6 +110,30 @@ TEST(DelibotSummaryTest, AJumpOrAnInjectionAfterAClaimWithdrawsIt) {
   EXPECT_EQ(dipped.standing_claim_iteration, 0);
 }
 
+TEST(DelibotSummaryTest, AClaimItsAuditRefusedIsNotMadeAndANewOneNeedsTenMoreUpdates) {
+  const DelibotSettings s;
+  std::vector<DelibotRow> rows = GoodThen(std::vector<std::pair<double, double>>(20, {0.95, 0.9}));
+  // The claim falls due at record 9 (the 10th localized update); its audit
+  // refused it, so the next is due at record 19, from record 10 on.
+  rows[9].claim_audit = ClaimAuditOutcome::kRefused;
+  const DelibotSummary once = SummarizeDelibot(rows, s);
+  EXPECT_EQ(once.claims_refused, 1);
+  EXPECT_EQ(once.claims_withdrawn, 0);
+  EXPECT_EQ(once.standing_claim_iteration, 10);
+  // A passed audit makes the claim; an audit outcome at a record where no
+  // claim is due changes nothing.
+  rows[19].claim_audit = ClaimAuditOutcome::kPassed;
+  rows[25].claim_audit = ClaimAuditOutcome::kRefused;
+  EXPECT_EQ(SummarizeDelibot(rows, s).standing_claim_iteration, 10);
+  // Refused at every due record (9, 19, 29 and 39 of the 40): no claim
+  // stands.
+  rows[19].claim_audit = rows[29].claim_audit = rows[39].claim_audit = ClaimAuditOutcome::kRefused;
+  const DelibotSummary never = SummarizeDelibot(rows, s);
+  EXPECT_EQ(never.claims_refused, 4);
+  EXPECT_EQ(never.standing_claim_iteration, -1);
+  EXPECT_FALSE(never.converged);
+}
+
 TEST(DelibotSummaryTest, RecordsWithoutASensorUpdateAreNotEvidence) {
   const DelibotSettings s;
   // A robot standing still: 30 records, one sensor update. It has not

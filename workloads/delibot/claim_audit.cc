@@ -30,6 +30,82 @@ std::vector<std::size_t> BestIndices(const std::vector<double>& scores, std::siz
   return order;
 }
 
+// Each pose's log-likelihood summed over the audited scans, the pose
+// replayed back to each scan through the odometry since.
+std::vector<double> ScoreOnScans(SensorModel& model, const std::deque<RememberedScan>& scans,
+                                 const BeamSelection& beams, const std::vector<Pose2>& poses_now,
+                                 SensorUpdateWork& work, ClaimAudit& audit) {
+  std::vector<double> total(poses_now.size(), 0.0), scores;
+  std::vector<Pose2> replayed(poses_now.size());
+  const Pose2& odometry_now = scans.back().scan.odometry;
+  for (const RememberedScan& remembered : scans) {
+    const Pose2 back = Between(odometry_now, remembered.scan.odometry);
+    for (std::size_t j = 0; j < poses_now.size(); ++j) replayed[j] = Compose(poses_now[j], back);
+    model.SelectionLogLikelihoods(replayed, remembered.scan, remembered.geometry, beams, scores, work);
+    audit.queries += work.rays;
+    for (std::size_t j = 0; j < poses_now.size(); ++j) total[j] += scores[j];
+  }
+  return total;
+}
+
+struct Refined {
+  std::vector<Pose2> poses;
+  std::vector<double> totals;
+};
+
+// Pattern search on the audited scans' summed log-likelihood from each
+// start: at each step size, move to the best of the six neighbours
+// (+-x, +-y, +-theta) while it improves and stays in free space, then halve
+// the steps. All starts advance together, one batch per scan.
+Refined Refine(SensorModel& model, const std::deque<RememberedScan>& scans, const BeamSelection& beams,
+               const OccupancyGrid& grid, std::vector<Pose2> starts, SensorUpdateWork& work, ClaimAudit& audit) {
+  Refined r;
+  r.totals = ScoreOnScans(model, scans, beams, starts, work, audit);
+  r.poses = std::move(starts);
+  const std::size_t n = r.poses.size();
+  double step_xy = kClaimAuditRefineStartXyM, step_theta = kClaimAuditRefineStartThetaRad;
+  for (int level = 0; level < kClaimAuditRefineLevels; ++level, step_xy /= 2, step_theta /= 2) {
+    std::vector<bool> settled(n, false);
+    for (int move = 0; move < kClaimAuditRefineMoves; ++move) {
+      std::vector<Pose2> trial;
+      std::vector<std::size_t> owner;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (settled[i]) continue;
+        const Pose2& p = r.poses[i];
+        for (const Pose2& d : {Pose2{step_xy, 0, 0}, Pose2{-step_xy, 0, 0}, Pose2{0, step_xy, 0},
+                               Pose2{0, -step_xy, 0}, Pose2{0, 0, step_theta}, Pose2{0, 0, -step_theta}}) {
+          const Pose2 q{p.x + d.x, p.y + d.y, WrapAngle(p.theta + d.theta)};
+          if (!grid.IsFreePoint(q.x, q.y)) continue;
+          trial.push_back(q);
+          owner.push_back(i);
+        }
+      }
+      if (trial.empty()) break;
+      const std::vector<double> scores = ScoreOnScans(model, scans, beams, trial, work, audit);
+      std::vector<double> best = r.totals;
+      std::vector<Pose2> best_pose = r.poses;
+      for (std::size_t t = 0; t < trial.size(); ++t)
+        if (scores[t] > best[owner[t]]) {
+          best[owner[t]] = scores[t];
+          best_pose[owner[t]] = trial[t];
+        }
+      bool moved = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (settled[i]) continue;
+        if (best[i] > r.totals[i]) {
+          r.totals[i] = best[i];
+          r.poses[i] = best_pose[i];
+          moved = true;
+        } else {
+          settled[i] = true;
+        }
+      }
+      if (!moved) break;
+    }
+  }
+  return r;
+}
+
 }  // namespace
 
 std::string ToString(ClaimAuditOutcome outcome) {
@@ -44,8 +120,9 @@ std::string ToString(ClaimAuditOutcome outcome) {
   return "";
 }
 
-ClaimAudit AuditClaim(SensorModel& model, const std::deque<RememberedScan>& scans, const BeamSelection& beams,
-                      const std::vector<Pose2>& poses_now, const ClaimedPlace& place, double window_nats) {
+ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
+                      const BeamSelection& beams, const std::vector<Pose2>& poses_now, const ClaimedPlace& place,
+                      double window_nats) {
   if (scans.empty()) throw std::invalid_argument("a claim audit needs at least one scan");
   ClaimAudit audit;
   audit.poses = poses_now.size();
@@ -54,44 +131,63 @@ ClaimAudit AuditClaim(SensorModel& model, const std::deque<RememberedScan>& scan
   model.SelectionLogLikelihoods(poses_now, scans.back().scan, scans.back().geometry, beams, latest, work);
   audit.queries += work.rays;
 
-  const std::vector<std::size_t> kept = BestIndices(latest, kClaimAuditCandidates);
+  // The best on the latest scan, and every pose within the claimed place
+  // (which is compared whether or not it ranks among them).
+  std::vector<std::size_t> kept = BestIndices(latest, kClaimAuditCandidates);
+  std::vector<bool> is_kept(poses_now.size(), false);
+  for (std::size_t i : kept) is_kept[i] = true;
+  for (std::size_t i = 0; i < poses_now.size(); ++i)
+    if (!is_kept[i] && InPlace(poses_now[i], place)) kept.push_back(i);
   audit.candidates = kept.size();
-  std::vector<Pose2> candidates(kept.size()), replayed(kept.size());
-  std::vector<double> total(kept.size());
-  for (std::size_t j = 0; j < kept.size(); ++j) {
-    candidates[j] = poses_now[kept[j]];
-    total[j] = latest[kept[j]];
+  std::vector<Pose2> candidates(kept.size());
+  for (std::size_t j = 0; j < kept.size(); ++j) candidates[j] = poses_now[kept[j]];
+  const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit);
+
+  // Places to refine: the claimed one from the filter's estimate and from
+  // its best candidate; each rival place from its best candidate, places
+  // taken best first (a candidate within the bin of a place already taken
+  // belongs to it).
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return total[a] > total[b]; });
+  std::vector<Pose2> starts = {place.pose};
+  for (std::size_t j : order)
+    if (InPlace(candidates[j], place)) {
+      starts.push_back(candidates[j]);
+      break;
+    }
+  const std::size_t claimed_starts = starts.size();
+  for (std::size_t j : order) {
+    if (starts.size() - claimed_starts >= kClaimAuditRivals) break;
+    if (InPlace(candidates[j], place)) continue;
+    bool taken = false;
+    for (std::size_t r = claimed_starts; r < starts.size() && !taken; ++r)
+      taken = InPlace(candidates[j], {starts[r], place.radius_m, place.heading_rad});
+    if (!taken) starts.push_back(candidates[j]);
   }
-  const Pose2& odometry_now = scans.back().scan.odometry;
-  std::vector<double> scores;
-  for (std::size_t s = 0; s + 1 < scans.size(); ++s) {
-    // Where each candidate was at that scan if the odometry since is right.
-    const Pose2 back = Between(odometry_now, scans[s].scan.odometry);
-    for (std::size_t j = 0; j < candidates.size(); ++j) replayed[j] = Compose(candidates[j], back);
-    model.SelectionLogLikelihoods(replayed, scans[s].scan, scans[s].geometry, beams, scores, work);
-    audit.queries += work.rays;
-    for (std::size_t j = 0; j < candidates.size(); ++j) total[j] += scores[j];
-  }
+  const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
 
   const double inf = std::numeric_limits<double>::infinity();
   double best_in = -inf, best_out = -inf;
-  for (std::size_t j = 0; j < candidates.size(); ++j) {
-    const double t = std::isnan(total[j]) ? -inf : total[j];
-    if (InPlace(candidates[j], place)) {
+  bool any_out = false;
+  for (std::size_t r = 0; r < refined.poses.size(); ++r) {
+    const double t = std::isnan(refined.totals[r]) ? -inf : refined.totals[r];
+    // A rival refined into the claimed place is the claimed place.
+    if (r < claimed_starts || InPlace(refined.poses[r], place)) {
       best_in = std::max(best_in, t);
-    } else if (t > best_out || (best_out == -inf && t == -inf)) {
-      best_out = t;
-      audit.rival = candidates[j];
+      continue;
     }
+    if (!any_out || t > best_out) {
+      best_out = t;
+      audit.rival = refined.poses[r];
+    }
+    any_out = true;
   }
-  const bool any_out = std::any_of(candidates.begin(), candidates.end(),
-                                   [&](const Pose2& p) { return !InPlace(p, place); });
-  if (!any_out)
+  audit.places = refined.poses.size() - claimed_starts;
+  if (!any_out || best_out == -inf)
     audit.margin_nats = inf;
-  else if (best_in == -inf)
-    audit.margin_nats = -inf;
   else
-    audit.margin_nats = best_in - best_out;  // +inf when every pose outside is ruled out
+    audit.margin_nats = best_in - best_out;
   audit.outcome = audit.margin_nats >= window_nats ? ClaimAuditOutcome::kPassed : ClaimAuditOutcome::kRefused;
   return audit;
 }

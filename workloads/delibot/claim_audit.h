@@ -10,14 +10,20 @@
 //
 // The audit draws poses uniformly over free space, as many as the auto-sized
 // dense first set (so every place is sampled as finely as the first update
-// sampled it), scores each on the latest scan, keeps the best
-// kClaimAuditCandidates, and scores those on every audited scan, each replayed
-// back through the odometry. It then compares the best candidate within the
-// claimed place with the best outside it. Both are random poses at the same
-// density, so neither has the advantage of the filter's refined estimate
-// (which a random pose would never match). The claim passes when the claimed
-// place leads by the filter's own rival window (hypothesis floor's
-// window_nats): a place within that window would be a live rival.
+// sampled it), scores each on the latest scan with the place model's sharp
+// selection scoring (the likelihood field's product), keeps the best
+// kClaimAuditCandidates and every pose within the claimed place, and scores
+// those on every audited scan, each replayed back through the odometry. The
+// best of them are only samples: the best of millions of poses over many
+// places lands nearer its place's optimum than the best of the few hundred
+// within one place, so comparing samples favours rivals (and comparing the
+// filter's refined estimate with samples would favour the claim). So the
+// claimed place (from the estimate and from its best sample) and the
+// kClaimAuditRivals best other places (from their best samples) are each
+// refined by a pattern search on the same scans, and their optima compared.
+// The claim passes when the claimed place leads the best rival by the
+// filter's own rival window (the hypothesis floor's window_nats): a place
+// within it would be a live rival.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -26,6 +32,7 @@
 #include <vector>
 
 #include "common/angles.h"
+#include "maps/occupancy_grid.h"
 #include "traces/sensor_trace.h"
 #include "workloads/delibot/sensor_model.h"
 
@@ -41,6 +48,21 @@ std::string ToString(ClaimAuditOutcome outcome);  // "", "passed", "refused"
 // the filter itself can carry.
 inline constexpr std::size_t kClaimAuditCandidates = 20000;
 
+// Rival places refined and compared (a rule that acts as a model parameter:
+// a place ranked below them by its best sample is not compared). Unit:
+// places; range: >= 1. Source: assumption; each costs about 400 poses
+// scored on every audited scan, small beside the uniform poses.
+inline constexpr std::size_t kClaimAuditRivals = 32;
+// The refinement's first steps and how often they halve. Unit: m, rad,
+// count. Source: the first steps are about the spacing of the auto first
+// set's poses (4 within 0.15 m and 3 deg, mcl_options.h); four halvings end
+// at 12.5 mm and 6 mrad, below a map cell (>= 25 mm on the shipped maps) and
+// a beam's angular step. Moves per step: at most kClaimAuditRefineMoves.
+inline constexpr double kClaimAuditRefineStartXyM = 0.1;        // (0, 1] m
+inline constexpr double kClaimAuditRefineStartThetaRad = 0.05;  // (0, 0.5] rad
+inline constexpr int kClaimAuditRefineLevels = 4;               // [1, 10]
+inline constexpr int kClaimAuditRefineMoves = 10;               // [1, 100]
+
 struct RememberedScan {
   LaserScan scan;
   LaserGeometry geometry;
@@ -55,21 +77,22 @@ struct ClaimedPlace {
 
 struct ClaimAudit {
   ClaimAuditOutcome outcome = ClaimAuditOutcome::kNotRun;
-  // Best candidate's log-likelihood over the audited scans within the
-  // claimed place minus the best outside it (nats): -inf when no candidate
-  // lies within the place, +inf when none lies outside.
+  // The claimed place's refined log-likelihood over the audited scans minus
+  // the best rival place's (nats); +inf when no rival place was found.
   double margin_nats = std::numeric_limits<double>::quiet_NaN();
-  Pose2 rival;                 // the best candidate outside the place (valid for a finite margin)
+  Pose2 rival;                 // the best rival place's refined pose (valid for a finite margin)
   std::size_t poses = 0;       // uniform poses drawn
   std::size_t candidates = 0;  // of them, scored on every audited scan
+  std::size_t places = 0;      // rival places refined
   std::uint64_t queries = 0;   // the model's queries (rays or end-point look-ups)
 };
 
 // scans: the audited scans, oldest first, the newest being where
 // poses_now are (the odometry of each replays a pose back to it); at least
-// one. poses_now: the uniform sample of free space. Passes when margin_nats
-// >= window_nats.
-ClaimAudit AuditClaim(SensorModel& model, const std::deque<RememberedScan>& scans, const BeamSelection& beams,
-                      const std::vector<Pose2>& poses_now, const ClaimedPlace& place, double window_nats);
+// one. poses_now: the uniform sample of free space. grid: refinement moves
+// stay in its free space. Passes when margin_nats >= window_nats.
+ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
+                      const BeamSelection& beams, const std::vector<Pose2>& poses_now, const ClaimedPlace& place,
+                      double window_nats);
 
 }  // namespace rc

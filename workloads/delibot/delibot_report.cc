@@ -101,7 +101,7 @@ void DelibotTimeline::Add(const DelibotRow& r) {
                                 r.mode_weight,
                                 r.consistency,
                                 ToString(r.claim_audit),
-                                MaybeNumber(r.claim_audit != ClaimAuditOutcome::kNotRun, r.claim_audit_margin_nats)};
+                                MaybeNumber(std::isfinite(r.claim_audit_margin_nats), r.claim_audit_margin_nats)};
   if (ground_truth_) {
     cells.emplace_back(r.err_xy_m);
     cells.emplace_back(r.err_theta_rad);

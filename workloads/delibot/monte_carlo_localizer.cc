@@ -336,7 +336,7 @@ ClaimAudit MonteCarloLocalizer::AuditClaim(const Pose2& claimed, std::uint64_t i
     poses[i] = RandomFreePose(stream);
   }
   const ClaimedPlace place{claimed, options_.estimate_kernel_radius_m, 2.0 * kPi / options_.hypothesis_heading_bins};
-  return rc::AuditClaim(sensor_model_->PlaceModel(), audited, options_.beams, poses, place,
+  return rc::AuditClaim(sensor_model_->PlaceModel(), grid_, audited, options_.beams, poses, place,
                         options_.hypothesis_floor.window_nats);
 }
 

@@ -157,7 +157,8 @@ DelibotResult RunMrptDelibot(const OccupancyGrid& grid, ScanSource& scans, const
   for (const auto& [given, option] : {std::pair{o.initial_particle_count != 0, "--initial-particles"},
                                       std::pair{o.hypothesis_floor.min_particles != 0, "--hypothesis-floor"},
                                       std::pair{o.max_particle_count != 0, "--max-particles"},
-                                      std::pair{o.injection_check_updates != 0, "--injection-check"}})
+                                      std::pair{o.injection_check_updates != 0, "--injection-check"},
+                                      std::pair{settings.audit_claims, "--claim-audit"}})
     if (given) throw UsageError(std::string("the MRPT engine has no counterpart of ") + option);
   if (ground_truth && ground_truth->size() != scans.size())
     throw std::invalid_argument("ground truth has " + std::to_string(ground_truth->size()) + " poses for " +

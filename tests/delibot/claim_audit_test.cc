@@ -1,0 +1,133 @@
+// The claim audit (workloads/delibot/claim_audit.h): a claim is made only if
+// the claim's scans single out the claimed place among poses sampled over
+// the whole map at equal density. On a map with a twin place it is refused,
+// in an asymmetric room the true place passes and a wrong one is refused,
+// and a run with audits on still claims where nothing looks alike.
+#include <cmath>
+#include <deque>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/random_stream.h"
+#include "synthetic_world.h"
+#include "workloads/delibot/claim_audit.h"
+#include "workloads/delibot/delibot_run.h"
+#include "workloads/delibot/likelihood_field_model.h"
+
+namespace rc {
+namespace {
+
+constexpr double kWindowNats = 6.0;  // the defaults' rival window
+
+// Two identical rooms side by side, 10 m x 7.5 m each at 0.125 m (exact in
+// binary, so a pose shifted by one room maps onto the same cells): each has
+// its own walls, a pillar and a box, placed so that nothing inside a room
+// looks alike.
+OccupancyGrid TwinRooms() {
+  OccupancyGrid g(160, 60, 0.125);
+  for (int room = 0; room < 2; ++room) {
+    const int x0 = 80 * room;
+    auto wall = [&](int xa, int ya, int xb, int yb) {
+      for (int x = x0 + xa; x <= x0 + xb; ++x)
+        for (int y = ya; y <= yb; ++y) g.Set(x, y, CellState::kOccupied);
+    };
+    wall(0, 0, 79, 1);
+    wall(0, 58, 79, 59);
+    wall(0, 0, 1, 59);
+    wall(78, 0, 79, 59);
+    wall(20, 38, 23, 41);  // pillar
+    wall(50, 8, 60, 14);   // box
+  }
+  return g;
+}
+
+std::vector<Pose2> UniformFreePoses(const OccupancyGrid& g, std::size_t n, double max_x_m, std::uint64_t seed) {
+  std::vector<Pose2> poses;
+  RandomStream stream(seed, StreamPurpose::kTest, 0, 0);
+  while (poses.size() < n) {
+    const Pose2 p{stream.Uniform(0.0, max_x_m), stream.Uniform(0.0, g.size_y() * g.resolution_m()),
+                  stream.Uniform(-kPi, kPi)};
+    if (g.IsFreePoint(p.x, p.y)) poses.push_back(p);
+  }
+  return poses;
+}
+
+// The last `count` scans of a run, as the localizer remembers them.
+std::deque<RememberedScan> LastScans(const test::SyntheticRun& run, std::size_t count) {
+  std::deque<RememberedScan> scans;
+  for (std::size_t k = run.trace.scans.size() - count; k < run.trace.scans.size(); ++k)
+    scans.push_back({run.trace.scans[k], run.trace.geometry});
+  return scans;
+}
+
+TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
+  const OccupancyGrid g = TwinRooms();
+  const test::SyntheticRun run = test::DriveThrough(g, {{1.5, 2.0, 0}, {4.0, 3.5, 0}}, 0.05, 0.0, 1);
+  LikelihoodFieldModel model(g, LikelihoodFieldParams{});
+  // Poses in the first room and each one's twin in the second: every pose
+  // in the claimed place has a twin that fits the scans as well.
+  std::vector<Pose2> poses = UniformFreePoses(g, 100000, 10.0, 2);
+  const std::size_t first_room = poses.size();
+  for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + 10.0, poses[i].y, poses[i].theta});
+  const ClaimedPlace place{run.truth.back(), 1.0, 2.0 * kPi / 12};
+  const ClaimAudit audit = AuditClaim(model, g, LastScans(run, 10), BeamSelection{6}, poses, place, kWindowNats);
+  EXPECT_EQ(audit.outcome, ClaimAuditOutcome::kRefused) << audit.margin_nats;
+  EXPECT_LT(std::abs(audit.margin_nats), kWindowNats);
+  EXPECT_NEAR(audit.rival.x, run.truth.back().x + 10.0, 0.5);  // the twin place
+  EXPECT_NEAR(audit.rival.y, run.truth.back().y, 0.5);
+  EXPECT_EQ(audit.poses, poses.size());
+  EXPECT_GE(audit.candidates, kClaimAuditCandidates);  // and the claimed place's own poses
+  EXPECT_GE(audit.places, 1u);
+}
+
+TEST(ClaimAuditTest, TheTruePlaceOfAnAsymmetricRoomPassesAndAWrongOneIsRefused) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  // The last 10 scans face the pillar and the box (by the tour's end, in
+  // the corner by the inner wall, a corner seen from its other side fits
+  // within a few nats: the audit rightly refuses there).
+  const test::SyntheticRun run = test::DriveThrough(g, {{5.5, 3.0, 0}, {7.5, 3.0, 0}}, 0.05, 0.03, 3);
+  LikelihoodFieldModel model(g, LikelihoodFieldParams{});
+  // The auto first set's density: 3395 poses per m^2 of free space.
+  const std::vector<Pose2> poses = UniformFreePoses(g, 300000, 12.0, 4);
+  const std::deque<RememberedScan> scans = LastScans(run, 10);
+  const Pose2 truth = run.truth.back();
+  const ClaimAudit right = AuditClaim(model, g, scans, BeamSelection{6}, poses, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats);
+  EXPECT_EQ(right.outcome, ClaimAuditOutcome::kPassed) << right.margin_nats << " rival " << right.rival.x << " " << right.rival.y << " " << right.rival.theta << " truth " << truth.x << " " << truth.y << " " << truth.theta;
+  EXPECT_GE(right.margin_nats, kWindowNats);
+  const Pose2 wrong{truth.x, truth.y + 4.0, truth.theta};
+  const ClaimAudit refused = AuditClaim(model, g, scans, BeamSelection{6}, poses, {wrong, 1.0, 2.0 * kPi / 12}, kWindowNats);
+  EXPECT_EQ(refused.outcome, ClaimAuditOutcome::kRefused);
+  EXPECT_LT(refused.margin_nats, 0.0);
+  EXPECT_LT(std::hypot(refused.rival.x - truth.x, refused.rival.y - truth.y), 1.0);  // the true place
+}
+
+TEST(ClaimAuditTest, ARunWithAuditsClaimsWhereNothingLooksAlike) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.15, 0.03, 11);
+  DelibotSettings s;
+  s.mcl.particle_count = 2000;
+  s.mcl.beams.beam_step = 6;
+  s.beam.max_range_m = 12.0;
+  s.sensor_model = SensorModelKind::kLikelihoodField;
+  s.audit_claims = true;
+  const DelibotResult r = RunDelibot(g, run.trace, &run.truth, s);
+  long passed = 0, refused = 0;
+  for (const DelibotRow& row : r.rows) {
+    passed += row.claim_audit == ClaimAuditOutcome::kPassed;
+    refused += row.claim_audit == ClaimAuditOutcome::kRefused;
+  }
+  EXPECT_GE(passed, 1);
+  EXPECT_EQ(r.summary.claims_refused, refused);
+  EXPECT_GE(r.summary.standing_claim_iteration, 0);
+  EXPECT_LT(r.summary.final_err_xy_m, 0.2);
+}
+
+TEST(ClaimAuditTest, NeedsAScan) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  LikelihoodFieldModel model(g, LikelihoodFieldParams{});
+  EXPECT_THROW(AuditClaim(model, g, {}, BeamSelection{6}, {}, ClaimedPlace{}, kWindowNats), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rc
