@@ -2,14 +2,17 @@
 // the claim's scans single out the claimed place among poses sampled over
 // the whole map at equal density. On a map with a twin place it is refused,
 // in an asymmetric room the true place passes and a wrong one is refused,
-// and a run with audits on still claims where nothing looks alike.
+// and a run with audits on still claims where nothing looks alike, with
+// the same audits at any thread count.
 #include <cmath>
 #include <deque>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include "common/random_stream.h"
+#include "same_rows.h"
 #include "synthetic_world.h"
 #include "workloads/delibot/claim_audit.h"
 #include "workloads/delibot/delibot_run.h"
@@ -92,11 +95,14 @@ TEST(ClaimAuditTest, TheTruePlaceOfAnAsymmetricRoomPassesAndAWrongOneIsRefused) 
   const std::vector<Pose2> poses = UniformFreePoses(g, 300000, 12.0, 4);
   const std::deque<RememberedScan> scans = LastScans(run, 10);
   const Pose2 truth = run.truth.back();
-  const ClaimAudit right = AuditClaim(model, g, scans, BeamSelection{6}, poses, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats);
-  EXPECT_EQ(right.outcome, ClaimAuditOutcome::kPassed) << right.margin_nats << " rival " << right.rival.x << " " << right.rival.y << " " << right.rival.theta << " truth " << truth.x << " " << truth.y << " " << truth.theta;
+  const ClaimAudit right =
+      AuditClaim(model, g, scans, BeamSelection{6}, poses, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats);
+  EXPECT_EQ(right.outcome, ClaimAuditOutcome::kPassed)
+      << right.margin_nats << " nats; rival at " << right.rival.x << ", " << right.rival.y;
   EXPECT_GE(right.margin_nats, kWindowNats);
   const Pose2 wrong{truth.x, truth.y + 4.0, truth.theta};
-  const ClaimAudit refused = AuditClaim(model, g, scans, BeamSelection{6}, poses, {wrong, 1.0, 2.0 * kPi / 12}, kWindowNats);
+  const ClaimAudit refused =
+      AuditClaim(model, g, scans, BeamSelection{6}, poses, {wrong, 1.0, 2.0 * kPi / 12}, kWindowNats);
   EXPECT_EQ(refused.outcome, ClaimAuditOutcome::kRefused);
   EXPECT_LT(refused.margin_nats, 0.0);
   EXPECT_LT(std::hypot(refused.rival.x - truth.x, refused.rival.y - truth.y), 1.0);  // the true place
@@ -111,7 +117,10 @@ TEST(ClaimAuditTest, ARunWithAuditsClaimsWhereNothingLooksAlike) {
   s.beam.max_range_m = 12.0;
   s.sensor_model = SensorModelKind::kLikelihoodField;
   s.audit_claims = true;
+  omp_set_num_threads(1);
   const DelibotResult r = RunDelibot(g, run.trace, &run.truth, s);
+  omp_set_num_threads(2);
+  test::ExpectSameRows(r, RunDelibot(g, run.trace, &run.truth, s));  // the audits too, at any thread count
   long passed = 0, refused = 0;
   for (const DelibotRow& row : r.rows) {
     passed += row.claim_audit == ClaimAuditOutcome::kPassed;

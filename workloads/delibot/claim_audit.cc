@@ -72,8 +72,8 @@ Refined Refine(SensorModel& model, const std::deque<RememberedScan>& scans, cons
       for (std::size_t i = 0; i < n; ++i) {
         if (settled[i]) continue;
         const Pose2& p = r.poses[i];
-        for (const Pose2& d : {Pose2{step_xy, 0, 0}, Pose2{-step_xy, 0, 0}, Pose2{0, step_xy, 0},
-                               Pose2{0, -step_xy, 0}, Pose2{0, 0, step_theta}, Pose2{0, 0, -step_theta}}) {
+        for (const Pose2& d : {Pose2{step_xy, 0, 0}, Pose2{-step_xy, 0, 0}, Pose2{0, step_xy, 0}, Pose2{0, -step_xy, 0},
+                               Pose2{0, 0, step_theta}, Pose2{0, 0, -step_theta}}) {
           const Pose2 q{p.x + d.x, p.y + d.y, WrapAngle(p.theta + d.theta)};
           if (!grid.IsFreePoint(q.x, q.y)) continue;
           trial.push_back(q);
@@ -110,12 +110,9 @@ Refined Refine(SensorModel& model, const std::deque<RememberedScan>& scans, cons
 
 std::string ToString(ClaimAuditOutcome outcome) {
   switch (outcome) {
-    case ClaimAuditOutcome::kNotRun:
-      return "";
-    case ClaimAuditOutcome::kPassed:
-      return "passed";
-    case ClaimAuditOutcome::kRefused:
-      return "refused";
+    case ClaimAuditOutcome::kNotRun: return "";
+    case ClaimAuditOutcome::kPassed: return "passed";
+    case ClaimAuditOutcome::kRefused: return "refused";
   }
   return "";
 }

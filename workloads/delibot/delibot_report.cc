@@ -356,10 +356,11 @@ void PrintDelibotSummary(std::ostream& out, const DelibotResult& result, const D
     for (const auto& r : result.rows)
       if (r.claim_audit == ClaimAuditOutcome::kRefused) last_refused = &r;
     if (last_refused)
-      emit("claims refused by audit {} (the claim's scans fit a place elsewhere within {:.1f} nats of the claimed one; "
-           "last at record {}, margin {:.1f} nats)",
-           m.claims_refused, s.mcl.hypothesis_floor.window_nats, last_refused->iteration,
-           last_refused->claim_audit_margin_nats);
+      emit(
+          "claims refused by audit {} (the claim's scans fit a place elsewhere within {:.1f} nats of the claimed one; "
+          "last at record {}, margin {:.1f} nats)",
+          m.claims_refused, s.mcl.hypothesis_floor.window_nats, last_refused->iteration,
+          last_refused->claim_audit_margin_nats);
     else
       emit("claims refused by audit 0");
   }

@@ -146,7 +146,8 @@ MclStepResult MonteCarloLocalizer::Update(const LaserScan& scan, const LaserGeom
     }
     result.injection_probability = std::max(0.0, 1.0 - std::exp(log_w_fast_ - log_w_slow_));
   }
-  const auto remembered = static_cast<std::size_t>(std::max(options_.injection_check_updates, options_.claim_audit_scans));
+  const auto remembered =
+      static_cast<std::size_t>(std::max(options_.injection_check_updates, options_.claim_audit_scans));
   if (remembered > 0) {
     recent_scans_.push_back({scan, geometry});
     while (recent_scans_.size() > remembered) recent_scans_.pop_front();
@@ -321,8 +322,8 @@ ClaimAudit MonteCarloLocalizer::AuditClaim(const Pose2& claimed, std::uint64_t i
   if (options_.claim_audit_scans <= 0) throw std::logic_error("AuditClaim with claim audits off");
   if (recent_scans_.empty()) throw std::logic_error("AuditClaim before the first sensor update");
   std::deque<RememberedScan> audited(
-      recent_scans_.end() -
-          static_cast<std::ptrdiff_t>(std::min(recent_scans_.size(), static_cast<std::size_t>(options_.claim_audit_scans))),
+      recent_scans_.end() - static_cast<std::ptrdiff_t>(
+                                std::min(recent_scans_.size(), static_cast<std::size_t>(options_.claim_audit_scans))),
       recent_scans_.end());
   MclOptions sizing = options_;
   sizing.initial_particle_count = kAutoInitialParticles;
