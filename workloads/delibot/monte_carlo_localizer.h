@@ -69,8 +69,9 @@ class MonteCarloLocalizer {
   // last claim_audit_scans sensor updates' scans (fewer if fewer ran),
   // sampling free space with the auto-sized dense first set's count of
   // uniform poses (streams keyed by `iteration`); the claimed place is the
-  // hypothesis clusters' bin (estimate_kernel_radius_m, one heading bin)
-  // and the margin the hypothesis floor's window. Throws std::logic_error
+  // poses within the hypothesis clusters' bin sizes of `claimed`
+  // (estimate_kernel_radius_m, 360 / hypothesis_heading_bins deg) and the
+  // margin the hypothesis floor's window. Throws std::logic_error
   // when claim audits are off or before the first sensor update.
   ClaimAudit AuditClaim(const Pose2& claimed, std::uint64_t iteration);
   const std::vector<Pose2>& particles() const { return particles_; }
