@@ -16,14 +16,14 @@ bool InPlace(const Pose2& pose, const ClaimedPlace& place) {
 }
 
 // Indices of the `keep` highest scores, best first; ties go to the lower
-// index, so the choice is the same on every run (NaN ranks last).
+// index, so the choice is the same on every run. Scores are finite: every
+// beam density has a positive floor, z_rand / max_range (delibot_run.h).
 std::vector<std::size_t> BestIndices(const std::vector<double>& scores, std::size_t keep) {
   std::vector<std::size_t> order(scores.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  auto score = [&](std::size_t i) {
-    return std::isnan(scores[i]) ? -std::numeric_limits<double>::infinity() : scores[i];
+  auto better = [&](std::size_t a, std::size_t b) {
+    return scores[a] > scores[b] || (scores[a] == scores[b] && a < b);
   };
-  auto better = [&](std::size_t a, std::size_t b) { return score(a) > score(b) || (score(a) == score(b) && a < b); };
   keep = std::min(keep, order.size());
   std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep), order.end(), better);
   order.resize(keep);
@@ -168,7 +168,7 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
   double best_in = -inf, best_out = -inf;
   bool any_out = false;
   for (std::size_t r = 0; r < refined.poses.size(); ++r) {
-    const double t = std::isnan(refined.totals[r]) ? -inf : refined.totals[r];
+    const double t = refined.totals[r];
     // A rival refined into the claimed place is the claimed place.
     if (r < claimed_starts || InPlace(refined.poses[r], place)) {
       best_in = std::max(best_in, t);
