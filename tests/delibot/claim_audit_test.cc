@@ -74,14 +74,34 @@ TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
   const std::size_t first_room = poses.size();
   for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + 10.0, poses[i].y, poses[i].theta});
   const ClaimedPlace place{run.truth.back(), 1.0, 2.0 * kPi / 12};
-  const ClaimAudit audit = AuditClaim(model, g, LastScans(run, 10), BeamSelection{6}, poses, place, kWindowNats);
+  int draws = 0;
+  auto draw = [&] {
+    ++draws;
+    return poses;
+  };
+  RememberedRivals rivals;
+  const std::deque<RememberedScan> scans = LastScans(run, 10);
+  const ClaimAudit audit = AuditClaim(model, g, scans, BeamSelection{6}, draw, place, kWindowNats, rivals);
   EXPECT_EQ(audit.outcome, ClaimAuditOutcome::kRefused) << audit.margin_nats;
+  EXPECT_FALSE(audit.rechecked);
   EXPECT_LT(std::abs(audit.margin_nats), kWindowNats);
   EXPECT_NEAR(audit.rival.x, run.truth.back().x + 10.0, 0.5);  // the twin place
   EXPECT_NEAR(audit.rival.y, run.truth.back().y, 0.5);
   EXPECT_EQ(audit.poses, poses.size());
   EXPECT_GE(audit.candidates, kClaimAuditCandidates);  // and the claimed place's own poses
   EXPECT_GE(audit.places, 1u);
+  EXPECT_EQ(draws, 1);
+
+  // The twin is remembered, and the next audit refuses on it without a
+  // dense sample.
+  ASSERT_FALSE(rivals.places.empty());
+  const ClaimAudit again = AuditClaim(model, g, scans, BeamSelection{6}, draw, place, kWindowNats, rivals);
+  EXPECT_EQ(again.outcome, ClaimAuditOutcome::kRefused);
+  EXPECT_TRUE(again.rechecked);
+  EXPECT_EQ(draws, 1);
+  EXPECT_EQ(again.poses, 0u);
+  EXPECT_NEAR(again.rival.x, run.truth.back().x + 10.0, 0.5);
+  EXPECT_LT(std::abs(again.margin_nats), kWindowNats);
 }
 
 TEST(ClaimAuditTest, TheTruePlaceOfAnAsymmetricRoomPassesAndAWrongOneIsRefused) {
@@ -93,19 +113,33 @@ TEST(ClaimAuditTest, TheTruePlaceOfAnAsymmetricRoomPassesAndAWrongOneIsRefused) 
   LikelihoodFieldModel model(g, LikelihoodFieldParams{});
   // The auto first set's density: 3395 poses per m^2 of free space.
   const std::vector<Pose2> poses = UniformFreePoses(g, 300000, 12.0, 4);
+  auto draw = [&] { return poses; };
   const std::deque<RememberedScan> scans = LastScans(run, 10);
   const Pose2 truth = run.truth.back();
+  RememberedRivals none;
   const ClaimAudit right =
-      AuditClaim(model, g, scans, BeamSelection{6}, poses, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats);
+      AuditClaim(model, g, scans, BeamSelection{6}, draw, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats, none);
   EXPECT_EQ(right.outcome, ClaimAuditOutcome::kPassed)
       << right.margin_nats << " nats; rival at " << right.rival.x << ", " << right.rival.y;
   EXPECT_GE(right.margin_nats, kWindowNats);
+  EXPECT_TRUE(none.places.empty());
   const Pose2 wrong{truth.x, truth.y + 4.0, truth.theta};
+  RememberedRivals rivals;
   const ClaimAudit refused =
-      AuditClaim(model, g, scans, BeamSelection{6}, poses, {wrong, 1.0, 2.0 * kPi / 12}, kWindowNats);
+      AuditClaim(model, g, scans, BeamSelection{6}, draw, {wrong, 1.0, 2.0 * kPi / 12}, kWindowNats, rivals);
   EXPECT_EQ(refused.outcome, ClaimAuditOutcome::kRefused);
   EXPECT_LT(refused.margin_nats, 0.0);
   EXPECT_LT(std::hypot(refused.rival.x - truth.x, refused.rival.y - truth.y), 1.0);  // the true place
+  // The true place, remembered as the wrong claim's rival, does not stop a
+  // right claim: the re-check clears it, and a full audit passes and
+  // forgets the rivals.
+  ASSERT_FALSE(rivals.places.empty());
+  const ClaimAudit after =
+      AuditClaim(model, g, scans, BeamSelection{6}, draw, {truth, 1.0, 2.0 * kPi / 12}, kWindowNats, rivals);
+  EXPECT_EQ(after.outcome, ClaimAuditOutcome::kPassed);
+  EXPECT_FALSE(after.rechecked);
+  EXPECT_EQ(after.margin_nats, right.margin_nats);
+  EXPECT_TRUE(rivals.places.empty());
 }
 
 TEST(ClaimAuditTest, ARunWithAuditsClaimsWhereNothingLooksAlike) {
@@ -135,7 +169,10 @@ TEST(ClaimAuditTest, ARunWithAuditsClaimsWhereNothingLooksAlike) {
 TEST(ClaimAuditTest, NeedsAScan) {
   const OccupancyGrid g = test::AsymmetricRoom();
   LikelihoodFieldModel model(g, LikelihoodFieldParams{});
-  EXPECT_THROW(AuditClaim(model, g, {}, BeamSelection{6}, {}, ClaimedPlace{}, kWindowNats), std::invalid_argument);
+  RememberedRivals rivals;
+  EXPECT_THROW(AuditClaim(model, g, {}, BeamSelection{6}, [] { return std::vector<Pose2>{}; }, ClaimedPlace{},
+                          kWindowNats, rivals),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -200,7 +200,9 @@ TEST(StagedHandOverTest, TrackingBeginsAfterTenUpdatesWithOneHypothesisAndCutsTh
   for (int k = 0; k < 20; ++k) {
     if (k == 3) global_model->live_places.resize(1);  // from update 3 one place is left
     const MclStepResult step = mcl.Update(still, run.trace.geometry, k);
-    if (k >= 1 && k <= 2) EXPECT_EQ(step.hypotheses_alive, 2) << "update " << k;
+    if (k >= 1 && k <= 2) {
+      EXPECT_EQ(step.hypotheses_alive, 2) << "update " << k;
+    }
     EXPECT_EQ(step.tracking, began_at >= 0) << "update " << k;
     if (step.began_tracking) {
       EXPECT_EQ(began_at, -1) << "tracking begins once";
@@ -320,7 +322,9 @@ TEST(DefaultSettingsTest, TheDemoConvergesEarlyAndClaimsOnlyWhatHolds) {
   EXPECT_TRUE(m.converged);
   EXPECT_EQ(m.jumps_after_convergence, 0);
   for (const DelibotRow& row : r.rows)
-    if (row.iteration >= m.self_convergence_iteration) ASSERT_LT(row.err_xy_m, 1.0) << "record " << row.iteration;
+    if (row.iteration >= m.self_convergence_iteration) {
+      ASSERT_LT(row.err_xy_m, 1.0) << "record " << row.iteration;
+    }
   EXPECT_LT(m.median_err_xy_m, 0.02);
   EXPECT_LT(m.final_err_xy_m, 0.05);
   // The beam model tracks: its updates cast rays (several nodes per ray;

@@ -23,8 +23,9 @@ inline void ExpectSameRows(const DelibotResult& one, const DelibotResult& two) {
     EXPECT_EQ(one.rows[i].hypotheses_alive, two.rows[i].hypotheses_alive) << i;
     EXPECT_EQ(one.rows[i].particles, two.rows[i].particles) << i;
     EXPECT_EQ(one.rows[i].claim_audit, two.rows[i].claim_audit) << i;
-    if (!std::isnan(one.rows[i].claim_audit_margin_nats) || !std::isnan(two.rows[i].claim_audit_margin_nats))
+    if (!std::isnan(one.rows[i].claim_audit_margin_nats) || !std::isnan(two.rows[i].claim_audit_margin_nats)) {
       EXPECT_EQ(one.rows[i].claim_audit_margin_nats, two.rows[i].claim_audit_margin_nats) << i;
+    }
   }
 }
 

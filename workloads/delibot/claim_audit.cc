@@ -30,15 +30,17 @@ std::vector<std::size_t> BestIndices(const std::vector<double>& scores, std::siz
   return order;
 }
 
-// Each pose's log-likelihood summed over the audited scans, the pose
-// replayed back to each scan through the odometry since.
+// Each pose's log-likelihood summed over the audited scans from index
+// `first` on, the pose replayed back to each scan through the odometry
+// since.
 std::vector<double> ScoreOnScans(SensorModel& model, const std::deque<RememberedScan>& scans,
                                  const BeamSelection& beams, const std::vector<Pose2>& poses_now,
-                                 SensorUpdateWork& work, ClaimAudit& audit) {
+                                 SensorUpdateWork& work, ClaimAudit& audit, std::size_t first = 0) {
   std::vector<double> total(poses_now.size(), 0.0), scores;
   std::vector<Pose2> replayed(poses_now.size());
   const Pose2& odometry_now = scans.back().scan.odometry;
-  for (const RememberedScan& remembered : scans) {
+  for (std::size_t s = first; s < scans.size(); ++s) {
+    const RememberedScan& remembered = scans[s];
     const Pose2 back = Between(odometry_now, remembered.scan.odometry);
     for (std::size_t j = 0; j < poses_now.size(); ++j) replayed[j] = Compose(poses_now[j], back);
     model.SelectionLogLikelihoods(replayed, remembered.scan, remembered.geometry, beams, scores, work);
@@ -106,6 +108,33 @@ Refined Refine(SensorModel& model, const std::deque<RememberedScan>& scans, cons
   return r;
 }
 
+// Compares the refined places: the first claimed_starts and any refined
+// into the claimed place are the claimed place, the rest rivals. Sets the
+// margin, the best rival and the outcome; returns the rivals within the
+// window (those a refusal remembers).
+std::vector<Pose2> Compare(const Refined& refined, std::size_t claimed_starts, const ClaimedPlace& place,
+                           double window_nats, ClaimAudit& audit) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double best_in = -inf, best_out = -inf;
+  for (std::size_t r = 0; r < refined.poses.size(); ++r) {
+    const double t = refined.totals[r];
+    if (r < claimed_starts || InPlace(refined.poses[r], place)) {
+      best_in = std::max(best_in, t);
+    } else if (t > best_out) {
+      best_out = t;
+      audit.rival = refined.poses[r];
+    }
+  }
+  audit.margin_nats = best_out == -inf ? inf : best_in - best_out;
+  audit.outcome = audit.margin_nats >= window_nats ? ClaimAuditOutcome::kPassed : ClaimAuditOutcome::kRefused;
+  std::vector<Pose2> within;
+  if (audit.outcome == ClaimAuditOutcome::kRefused)
+    for (std::size_t r = claimed_starts; r < refined.poses.size(); ++r)
+      if (!InPlace(refined.poses[r], place) && best_in - refined.totals[r] < window_nats)
+        within.push_back(refined.poses[r]);
+  return within;
+}
+
 }  // namespace
 
 std::string ToString(ClaimAuditOutcome outcome) {
@@ -118,12 +147,37 @@ std::string ToString(ClaimAuditOutcome outcome) {
 }
 
 ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
-                      const BeamSelection& beams, const std::vector<Pose2>& poses_now, const ClaimedPlace& place,
-                      double window_nats) {
+                      const BeamSelection& beams, const std::function<std::vector<Pose2>()>& draw_poses,
+                      const ClaimedPlace& place, double window_nats, RememberedRivals& rivals) {
   if (scans.empty()) throw std::invalid_argument("a claim audit needs at least one scan");
   ClaimAudit audit;
-  audit.poses = poses_now.size();
   SensorUpdateWork work;  // host-side: the audit is not a priced launch
+  const Pose2& odometry_now = scans.back().scan.odometry;
+
+  // The re-check: the rivals of the last refusal, moved by the odometry
+  // since, against the claimed place.
+  if (!rivals.places.empty()) {
+    const Pose2 moved = Between(rivals.odometry, odometry_now);
+    std::vector<Pose2> starts = {place.pose};
+    for (const Pose2& p : rivals.places) {
+      const Pose2 q = Compose(p, moved);
+      if (grid.IsFreePoint(q.x, q.y)) starts.push_back(q);
+    }
+    audit.places = starts.size() - 1;
+    const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
+    std::vector<Pose2> within = Compare(refined, 1, place, window_nats, audit);
+    if (audit.outcome == ClaimAuditOutcome::kRefused) {
+      audit.rechecked = true;
+      rivals = {std::move(within), odometry_now};
+      return audit;
+    }
+    const std::uint64_t rechecked_queries = audit.queries;
+    audit = ClaimAudit{};
+    audit.queries = rechecked_queries;
+  }
+
+  const std::vector<Pose2> poses_now = draw_poses();
+  audit.poses = poses_now.size();
   std::vector<double> latest;
   model.SelectionLogLikelihoods(poses_now, scans.back().scan, scans.back().geometry, beams, latest, work);
   audit.queries += work.rays;
@@ -138,7 +192,8 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
   audit.candidates = kept.size();
   std::vector<Pose2> candidates(kept.size());
   for (std::size_t j = 0; j < kept.size(); ++j) candidates[j] = poses_now[kept[j]];
-  const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit);
+  const std::size_t first = scans.size() - std::min(scans.size(), kClaimAuditCandidateScans);
+  const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit, first);
 
   // Places to refine: the claimed one from the filter's estimate and from
   // its best candidate; each rival place from its best candidate, places
@@ -162,30 +217,9 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
       taken = InPlace(candidates[j], {starts[r], place.radius_m, place.heading_rad});
     if (!taken) starts.push_back(candidates[j]);
   }
+  audit.places = starts.size() - claimed_starts;
   const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
-
-  const double inf = std::numeric_limits<double>::infinity();
-  double best_in = -inf, best_out = -inf;
-  bool any_out = false;
-  for (std::size_t r = 0; r < refined.poses.size(); ++r) {
-    const double t = refined.totals[r];
-    // A rival refined into the claimed place is the claimed place.
-    if (r < claimed_starts || InPlace(refined.poses[r], place)) {
-      best_in = std::max(best_in, t);
-      continue;
-    }
-    if (!any_out || t > best_out) {
-      best_out = t;
-      audit.rival = refined.poses[r];
-    }
-    any_out = true;
-  }
-  audit.places = refined.poses.size() - claimed_starts;
-  if (!any_out || best_out == -inf)
-    audit.margin_nats = inf;
-  else
-    audit.margin_nats = best_in - best_out;
-  audit.outcome = audit.margin_nats >= window_nats ? ClaimAuditOutcome::kPassed : ClaimAuditOutcome::kRefused;
+  rivals = {Compare(refined, claimed_starts, place, window_nats, audit), odometry_now};
   return audit;
 }
 

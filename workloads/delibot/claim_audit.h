@@ -24,9 +24,16 @@
 // The claim passes when the claimed place leads the best rival by the
 // filter's own rival window (the hypothesis floor's window_nats): a place
 // within it would be a live rival.
+//
+// A refused audit remembers the rival places that were within the window.
+// The next audit first moves them by the odometry since, refines them and
+// the claimed place, and refuses at once if one is still within the window:
+// a rival found once need not be found again by a new dense sample, which
+// is the audit's cost. Only a full audit passes a claim.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -41,12 +48,23 @@ namespace rc {
 enum class ClaimAuditOutcome { kNotRun, kPassed, kRefused };
 std::string ToString(ClaimAuditOutcome outcome);  // "", "passed", "refused"
 
+// Scans a claim is audited on: the latest ones, at most this many (fewer
+// when fewer sensor updates ran). Unit: sensor updates; range: [1, 1000].
+// Source: see docs/defaults.md, "The claim audit".
+inline constexpr int kClaimAuditScans = 10;
+
 // Candidates kept after the latest scan (a rule that acts as a model
 // parameter: a place none of whose poses ranks among them on the latest
 // scan is not compared). Unit: poses; range: >= 1. Source: the default cap
 // on the set while rivals are alive (delibot_defaults.h, 20000), the places
 // the filter itself can carry.
 inline constexpr std::size_t kClaimAuditCandidates = 20000;
+// Scans the candidates are scored on before places are chosen: the latest
+// ones, at most this many (the refinement uses every audited scan). Unit:
+// sensor updates; range: >= 1. Source: the claim's own evidence, its
+// kSustainRecords localized updates (claim_replay.h); it bounds the dense
+// stage's cost whatever the audited window.
+inline constexpr std::size_t kClaimAuditCandidateScans = 10;
 
 // Rival places refined and compared (a rule that acts as a model parameter:
 // a place ranked below them by its best sample is not compared). Unit:
@@ -75,8 +93,17 @@ struct ClaimedPlace {
   double heading_rad = 0.5;
 };
 
+// Rival places a refused audit leaves for the next one, as poses at the
+// time of `odometry` (the newest audited scan's odometry).
+struct RememberedRivals {
+  std::vector<Pose2> places;
+  Pose2 odometry;
+};
+
 struct ClaimAudit {
   ClaimAuditOutcome outcome = ClaimAuditOutcome::kNotRun;
+  // Refused by re-checking the remembered rivals, without a dense sample.
+  bool rechecked = false;
   // The claimed place's refined log-likelihood over the audited scans minus
   // the best rival place's (nats); +inf when no rival place was found.
   double margin_nats = std::numeric_limits<double>::quiet_NaN();
@@ -87,12 +114,15 @@ struct ClaimAudit {
   std::uint64_t queries = 0;   // the model's queries (rays or end-point look-ups)
 };
 
-// scans: the audited scans, oldest first, the newest being where
-// poses_now are (the odometry of each replays a pose back to it); at least
-// one. poses_now: the uniform sample of free space. grid: refinement moves
-// stay in its free space. Passes when margin_nats >= window_nats.
+// scans: the audited scans, oldest first, the newest being where the
+// poses are (the odometry of each replays a pose back to it); at least
+// one. draw_poses: the uniform sample of free space, drawn only for a full
+// audit. grid: refinement moves stay in its free space. Passes when
+// margin_nats >= window_nats. rivals: read (a re-check first when it holds
+// places) and replaced: the rivals within the window after a refusal,
+// none after a pass.
 ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
-                      const BeamSelection& beams, const std::vector<Pose2>& poses_now, const ClaimedPlace& place,
-                      double window_nats);
+                      const BeamSelection& beams, const std::function<std::vector<Pose2>()>& draw_poses,
+                      const ClaimedPlace& place, double window_nats, RememberedRivals& rivals);
 
 }  // namespace rc

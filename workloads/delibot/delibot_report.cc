@@ -172,6 +172,7 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"sensor_model", ToString(s.sensor_model)},
       {"first_set_scoring", ToString(s.first_set_scoring)},
       {"audit_claims", s.audit_claims},
+      {"claim_audit_scans", s.claim_audit_scans},
       {"max_range_m", s.beam.max_range_m},
       {"beam_model",
        {{"z_hit", s.beam.z_hit},

@@ -84,7 +84,7 @@ DelibotResult RunDelibot(const OccupancyGrid& grid, ScanSource& scans, const std
   const bool price = settings.price_backends && CastsRays(settings.sensor_model);
   MclOptions mcl_options = settings.mcl;
   mcl_options.record_kernel = price;
-  if (settings.audit_claims) mcl_options.claim_audit_scans = kSustainRecords;
+  if (settings.audit_claims) mcl_options.claim_audit_scans = settings.claim_audit_scans;
   std::unique_ptr<BackendLedger> ledger;
   // Pricing's host time of the launches an update was split into, which
   // runs inside the filter's update: moved from the filter's time to

@@ -60,10 +60,11 @@ struct DelibotSettings {
   // the filter switched hypotheses (a robot does not teleport).
   double jump_threshold_m = 1.0;
   // Audit every claim as it falls due (claim_audit.h) and make it only if
-  // the audit passes: the localizer keeps the claim's kSustainRecords scans
+  // the audit passes: the localizer keeps the last claim_audit_scans scans
   // (MclOptions::claim_audit_scans) and RunDelibot audits on them. Off by
   // default (docs/defaults.md, "The claim audit").
   bool audit_claims = false;
+  int claim_audit_scans = kClaimAuditScans;
   // Shadow costing: every modelled backend prices every update's ray batch
   // (beam model only; the likelihood field casts no rays), and the policy
   // picks the backend that "ran". Off by default in the library (pricing

@@ -325,20 +325,23 @@ ClaimAudit MonteCarloLocalizer::AuditClaim(const Pose2& claimed, std::uint64_t i
       recent_scans_.end() - static_cast<std::ptrdiff_t>(
                                 std::min(recent_scans_.size(), static_cast<std::size_t>(options_.claim_audit_scans))),
       recent_scans_.end());
-  MclOptions sizing = options_;
-  sizing.initial_particle_count = kAutoInitialParticles;
-  const double cell_area_m2 = grid_.resolution_m() * grid_.resolution_m();
-  const std::size_t n = InitialParticleCount(sizing, static_cast<double>(free_cells_.size()) * cell_area_m2);
-  std::vector<Pose2> poses(n);
-  const long count = static_cast<long>(n);
+  auto draw_poses = [&] {
+    MclOptions sizing = options_;
+    sizing.initial_particle_count = kAutoInitialParticles;
+    const double cell_area_m2 = grid_.resolution_m() * grid_.resolution_m();
+    const std::size_t n = InitialParticleCount(sizing, static_cast<double>(free_cells_.size()) * cell_area_m2);
+    std::vector<Pose2> poses(n);
+    const long count = static_cast<long>(n);
 #pragma omp parallel for schedule(static)
-  for (long i = 0; i < count; ++i) {
-    RandomStream stream(options_.seed, StreamPurpose::kClaimAudit, iteration, static_cast<std::uint64_t>(i));
-    poses[i] = RandomFreePose(stream);
-  }
+    for (long i = 0; i < count; ++i) {
+      RandomStream stream(options_.seed, StreamPurpose::kClaimAudit, iteration, static_cast<std::uint64_t>(i));
+      poses[i] = RandomFreePose(stream);
+    }
+    return poses;
+  };
   const ClaimedPlace place{claimed, options_.estimate_kernel_radius_m, 2.0 * kPi / options_.hypothesis_heading_bins};
-  return rc::AuditClaim(sensor_model_->PlaceModel(), grid_, audited, options_.beams, poses, place,
-                        options_.hypothesis_floor.window_nats);
+  return rc::AuditClaim(sensor_model_->PlaceModel(), grid_, audited, options_.beams, draw_poses, place,
+                        options_.hypothesis_floor.window_nats, audit_rivals_);
 }
 
 PoseEstimate MonteCarloLocalizer::Estimate() const {

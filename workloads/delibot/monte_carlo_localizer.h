@@ -71,7 +71,8 @@ class MonteCarloLocalizer {
   // uniform poses (streams keyed by `iteration`); the claimed place is the
   // poses within the hypothesis clusters' bin sizes of `claimed`
   // (estimate_kernel_radius_m, 360 / hypothesis_heading_bins deg) and the
-  // margin the hypothesis floor's window. Throws std::logic_error
+  // margin the hypothesis floor's window; a refused audit's rivals are
+  // re-checked first by the next. Throws std::logic_error
   // when claim audits are off or before the first sensor update.
   ClaimAudit AuditClaim(const Pose2& claimed, std::uint64_t iteration);
   const std::vector<Pose2>& particles() const { return particles_; }
@@ -125,6 +126,7 @@ class MonteCarloLocalizer {
   // The last max(injection_check_updates, claim_audit_scans) sensor
   // updates' scans, oldest first.
   std::deque<RememberedScan> recent_scans_;
+  RememberedRivals audit_rivals_;  // the last refused claim audit's rivals
   SensorUpdateWork check_work_;              // scratch for the injection check's casts
   std::vector<KernelRecord> check_records_;  // this record's, when record_kernel
 };
