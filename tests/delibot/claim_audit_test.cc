@@ -170,9 +170,10 @@ TEST(ClaimAuditTest, NeedsAScan) {
   const OccupancyGrid g = test::AsymmetricRoom();
   LikelihoodFieldModel model(g, LikelihoodFieldParams{});
   RememberedRivals rivals;
-  EXPECT_THROW(AuditClaim(model, g, {}, BeamSelection{6}, [] { return std::vector<Pose2>{}; }, ClaimedPlace{},
-                          kWindowNats, rivals),
-               std::invalid_argument);
+  EXPECT_THROW(
+      AuditClaim(
+          model, g, {}, BeamSelection{6}, [] { return std::vector<Pose2>{}; }, ClaimedPlace{}, kWindowNats, rivals),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -126,7 +126,7 @@ class MonteCarloLocalizer {
   // The last max(injection_check_updates, claim_audit_scans) sensor
   // updates' scans, oldest first.
   std::deque<RememberedScan> recent_scans_;
-  RememberedRivals audit_rivals_;  // the last refused claim audit's rivals
+  RememberedRivals audit_rivals_;            // the last refused claim audit's rivals
   SensorUpdateWork check_work_;              // scratch for the injection check's casts
   std::vector<KernelRecord> check_records_;  // this record's, when record_kernel
 };

@@ -265,10 +265,11 @@ void AddDelibotCommand(CLI::App& app) {
                   "mixture (both, the cut drawn half by each model's posterior; docs/defaults.md)")
       ->check(CLI::IsMember({"global", "tracking", "mixture"}))
       ->capture_default_str();
-  CLI::Option* claim_audit = cmd->add_flag("--claim-audit", s.audit_claims,
-                "Audit each claim of being localized before making it: the claim's latest scans must single out the "
-                "claimed place among uniform poses over the whole map (as many as the auto first set) by the rival "
-                "window; a refused claim is not made (docs/defaults.md, \"The claim audit\")");
+  CLI::Option* claim_audit = cmd->add_flag(
+      "--claim-audit", s.audit_claims,
+      "Audit each claim of being localized before making it: the claim's latest scans must single out the "
+      "claimed place among uniform poses over the whole map (as many as the auto first set) by the rival "
+      "window; a refused claim is not made (docs/defaults.md, \"The claim audit\")");
   cmd->add_option("--claim-audit-scans", s.claim_audit_scans,
                   "With --claim-audit, the latest sensor updates' scans a claim is audited on (count)")
       ->check(CLI::Range(1, 1000))
