@@ -110,8 +110,8 @@ Refined Refine(SensorModel& model, const std::deque<RememberedScan>& scans, cons
 
 // Compares the refined places: the first claimed_starts and any refined
 // into the claimed place are the claimed place, the rest rivals. Sets the
-// margin, the best rival and the outcome; returns the rivals within the
-// window (those a refusal remembers).
+// margin, the best rival and the outcome; returns the rival places after a
+// refusal (those it remembers), none after a pass.
 std::vector<Pose2> Compare(const Refined& refined, std::size_t claimed_starts, const ClaimedPlace& place,
                            double window_nats, ClaimAudit& audit) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -127,12 +127,11 @@ std::vector<Pose2> Compare(const Refined& refined, std::size_t claimed_starts, c
   }
   audit.margin_nats = best_out == -inf ? inf : best_in - best_out;
   audit.outcome = audit.margin_nats >= window_nats ? ClaimAuditOutcome::kPassed : ClaimAuditOutcome::kRefused;
-  std::vector<Pose2> within;
+  std::vector<Pose2> rivals;
   if (audit.outcome == ClaimAuditOutcome::kRefused)
     for (std::size_t r = claimed_starts; r < refined.poses.size(); ++r)
-      if (!InPlace(refined.poses[r], place) && best_in - refined.totals[r] < window_nats)
-        within.push_back(refined.poses[r]);
-  return within;
+      if (!InPlace(refined.poses[r], place)) rivals.push_back(refined.poses[r]);
+  return rivals;
 }
 
 }  // namespace
@@ -165,10 +164,10 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
     }
     audit.places = starts.size() - 1;
     const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
-    std::vector<Pose2> within = Compare(refined, 1, place, window_nats, audit);
+    std::vector<Pose2> compared = Compare(refined, 1, place, window_nats, audit);
     if (audit.outcome == ClaimAuditOutcome::kRefused) {
       audit.rechecked = true;
-      rivals = {std::move(within), odometry_now};
+      rivals = {std::move(compared), odometry_now};
       return audit;
     }
     const std::uint64_t rechecked_queries = audit.queries;

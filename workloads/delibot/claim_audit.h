@@ -25,11 +25,14 @@
 // filter's own rival window (the hypothesis floor's window_nats): a place
 // within it would be a live rival.
 //
-// A refused audit remembers the rival places that were within the window.
-// The next audit first moves them by the odometry since, refines them and
-// the claimed place, and refuses at once if one is still within the window:
-// a rival found once need not be found again by a new dense sample, which
-// is the audit's cost. Only a full audit passes a claim.
+// A refused audit remembers the rival places it compared. The next audit
+// first moves them by the odometry since, refines them and the claimed
+// place, and refuses at once if one is within the window: a rival found
+// once need not be found again by a new dense sample, which is the audit's
+// cost. All compared rivals are kept, not only those within the window: a
+// rival a few nats outside it may come within it on the next scans (on a
+// map of look-alike rooms keeping them cut the dense samples from 11 to 7,
+// docs/defaults.md). Only a full audit passes a claim.
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -123,8 +126,8 @@ struct ClaimAudit {
 // one. draw_poses: the uniform sample of free space, drawn only for a full
 // audit. grid: refinement moves stay in its free space. Passes when
 // margin_nats >= window_nats. rivals: read (a re-check first when it holds
-// places) and replaced: the rivals within the window after a refusal,
-// none after a pass.
+// places) and replaced: the rival places compared after a refusal, none
+// after a pass.
 ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
                       const BeamSelection& beams, const std::function<std::vector<Pose2>()>& draw_poses,
                       const ClaimedPlace& place, double window_nats, RememberedRivals& rivals);
