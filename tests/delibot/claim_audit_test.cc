@@ -4,6 +4,7 @@
 // in an asymmetric room the true place passes and a wrong one is refused,
 // and a run with audits on still claims where nothing looks alike, with
 // the same audits at any thread count.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <vector>
@@ -164,6 +165,43 @@ TEST(ClaimAuditTest, ARunWithAuditsClaimsWhereNothingLooksAlike) {
   EXPECT_EQ(r.summary.claims_refused, refused);
   EXPECT_GE(r.summary.standing_claim_iteration, 0);
   EXPECT_LT(r.summary.final_err_xy_m, 0.2);
+}
+
+TEST(ClaimAuditTest, RivalPlacesReachALookAlikeThatRanksBelowManyPlacesNearTheClaim) {
+  const ClaimedPlace place{{0.0, 0.0, 0.0}, 1.0, 2.0 * kPi / 12};
+  std::vector<Pose2> candidates;
+  std::vector<double> totals;
+  // Poses within the claimed place rank first; they are never rivals.
+  for (int i = 0; i < 5; ++i) {
+    candidates.push_back({0.1 * i, 0.0, 0.0});
+    totals.push_back(10.0);
+  }
+  // 49 places near the claim (1.1 m apart, 1.5-8.1 m from it), each
+  // fitting better than the far look-alike 30 m away, ranked last.
+  for (int a = 0; a < 7; ++a)
+    for (int b = 0; b < 7; ++b) {
+      candidates.push_back({1.5 + 1.1 * a, 1.1 * b, 0.0});
+      totals.push_back(5.0 - 0.01 * (7 * a + b));
+    }
+  const Pose2 look_alike{30.0, 0.0, 0.0};
+  candidates.push_back(look_alike);
+  totals.push_back(-1.0);
+  const std::vector<Pose2> rivals = RivalPlaces(candidates, totals, place);
+  ASSERT_GE(rivals.size(), kClaimAuditRivals);
+  EXPECT_LE(rivals.size(), kClaimAuditRivals + kClaimAuditSpreadRivals);
+  auto at = [](const Pose2& p, const Pose2& q) { return p.x == q.x && p.y == q.y; };
+  // The best places are all near the claim; the spread places reach it.
+  for (std::size_t r = 0; r < kClaimAuditRivals; ++r) EXPECT_FALSE(at(rivals[r], look_alike)) << r;
+  EXPECT_TRUE(std::any_of(rivals.begin(), rivals.end(), [&](const Pose2& p) { return at(p, look_alike); }));
+  for (const Pose2& r : rivals) EXPECT_GT(std::hypot(r.x, r.y), place.radius_m) << r.x << ", " << r.y;
+  // Spread places are two bin radii from the claim and from each other.
+  const std::vector<Pose2> spread(rivals.begin() + kClaimAuditRivals, rivals.end());
+  for (std::size_t i = 0; i < spread.size(); ++i) {
+    EXPECT_GT(std::hypot(spread[i].x, spread[i].y), 2.0 * place.radius_m);
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GT(std::hypot(spread[i].x - spread[j].x, spread[i].y - spread[j].y), 2.0 * place.radius_m);
+  }
+  EXPECT_THROW(RivalPlaces(candidates, {1.0}, place), std::invalid_argument);
 }
 
 TEST(ClaimAuditTest, NeedsAScan) {

@@ -145,6 +145,41 @@ std::string ToString(ClaimAuditOutcome outcome) {
   return "";
 }
 
+std::vector<Pose2> RivalPlaces(const std::vector<Pose2>& candidates, const std::vector<double>& totals,
+                               const ClaimedPlace& place) {
+  if (candidates.size() != totals.size()) throw std::invalid_argument("one total per candidate");
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return totals[a] > totals[b]; });
+  std::vector<Pose2> best, spread;
+  auto in_any = [&](const Pose2& pose, const std::vector<Pose2>& places) {
+    for (const Pose2& p : places)
+      if (InPlace(pose, {p, place.radius_m, place.heading_rad})) return true;
+    return false;
+  };
+  // The best places, each from its best candidate (a candidate within the
+  // bin of a place already taken belongs to it).
+  for (std::size_t j : order) {
+    if (best.size() >= kClaimAuditRivals) break;
+    if (!InPlace(candidates[j], place) && !in_any(candidates[j], best)) best.push_back(candidates[j]);
+  }
+  // The best place of each region away from the claim: a candidate farther
+  // than two bin radii from the claimed place and from every place taken
+  // for spread, at any heading.
+  const double spacing_m = 2.0 * place.radius_m;
+  auto far_from = [&](const Pose2& pose, const Pose2& p) { return std::hypot(pose.x - p.x, pose.y - p.y) > spacing_m; };
+  for (std::size_t j : order) {
+    if (spread.size() >= kClaimAuditSpreadRivals) break;
+    const Pose2& c = candidates[j];
+    if (!far_from(c, place.pose) || in_any(c, best)) continue;
+    bool far = true;
+    for (const Pose2& p : spread) far = far && far_from(c, p);
+    if (far) spread.push_back(c);
+  }
+  best.insert(best.end(), spread.begin(), spread.end());
+  return best;
+}
+
 ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
                       const BeamSelection& beams, const std::function<std::vector<Pose2>()>& draw_poses,
                       const ClaimedPlace& place, double window_nats, RememberedRivals& rivals) {
@@ -195,27 +230,15 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
   const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit, first);
 
   // Places to refine: the claimed one from the filter's estimate and from
-  // its best candidate; each rival place from its best candidate, places
-  // taken best first (a candidate within the bin of a place already taken
-  // belongs to it).
-  std::vector<std::size_t> order(candidates.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return total[a] > total[b]; });
+  // its best candidate, then the rival places.
   std::vector<Pose2> starts = {place.pose};
-  for (std::size_t j : order)
-    if (InPlace(candidates[j], place)) {
-      starts.push_back(candidates[j]);
-      break;
-    }
+  std::size_t best_in_place = candidates.size();
+  for (std::size_t j = 0; j < candidates.size(); ++j)
+    if (InPlace(candidates[j], place) && (best_in_place == candidates.size() || total[j] > total[best_in_place]))
+      best_in_place = j;
+  if (best_in_place < candidates.size()) starts.push_back(candidates[best_in_place]);
   const std::size_t claimed_starts = starts.size();
-  for (std::size_t j : order) {
-    if (starts.size() - claimed_starts >= kClaimAuditRivals) break;
-    if (InPlace(candidates[j], place)) continue;
-    bool taken = false;
-    for (std::size_t r = claimed_starts; r < starts.size() && !taken; ++r)
-      taken = InPlace(candidates[j], {starts[r], place.radius_m, place.heading_rad});
-    if (!taken) starts.push_back(candidates[j]);
-  }
+  for (const Pose2& rival : RivalPlaces(candidates, total, place)) starts.push_back(rival);
   audit.places = starts.size() - claimed_starts;
   const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
   rivals = {Compare(refined, claimed_starts, place, window_nats, audit), odometry_now};

@@ -19,7 +19,8 @@
 // within one place, so comparing samples favours rivals (and comparing the
 // filter's refined estimate with samples would favour the claim). So the
 // claimed place (from the estimate and from its best sample) and the
-// kClaimAuditRivals best other places (from their best samples) are each
+// kClaimAuditRivals best other places (from their best samples), with the
+// best place of each region away from the claim (RivalPlaces), are each
 // refined by a pattern search on the same scans, and their optima compared.
 // The claim passes when the claimed place leads the best rival by the
 // filter's own rival window (the hypothesis floor's window_nats): a place
@@ -78,6 +79,14 @@ inline constexpr std::size_t kClaimAuditCandidateScans = 10;
 // places; range: >= 1. Source: assumption; each costs about 400 poses
 // scored on every audited scan, small beside the uniform poses.
 inline constexpr std::size_t kClaimAuditRivals = 32;
+// Rival places taken for spread besides them: the best place of each region
+// away from the claim (RivalPlaces). Why: the best places crowd near the
+// claim, where a room's own ambiguity gives many bins that fit, and a
+// far look-alike that fits as well can rank below all of them (on
+// 64room_005 the true room's best pose ranked 129th; docs/defaults.md).
+// Unit: places; range: >= 0. Source: assumption, as many as the best
+// places.
+inline constexpr std::size_t kClaimAuditSpreadRivals = 32;
 // The refinement's first steps and how often they halve. Unit: m, rad,
 // count. Source: the first steps are about the spacing of the auto first
 // set's poses (4 within 0.15 m and 3 deg, mcl_options.h); four halvings end
@@ -120,6 +129,15 @@ struct ClaimAudit {
   std::size_t places = 0;      // rival places refined
   std::uint64_t queries = 0;   // the model's queries (rays or end-point look-ups)
 };
+
+// The rival places an audit refines, from candidates ranked by their totals
+// on the audited scans (best first; ties keep the candidates' order): the
+// kClaimAuditRivals best places outside the claimed one, each from its best
+// candidate, then up to kClaimAuditSpreadRivals more, the best candidate
+// of each region farther than two bin radii (2 radius_m) from the claimed
+// place and from every other place taken for spread.
+std::vector<Pose2> RivalPlaces(const std::vector<Pose2>& candidates, const std::vector<double>& totals,
+                               const ClaimedPlace& place);
 
 // scans: the audited scans, oldest first, the newest being where the
 // poses are (the odometry of each replays a pose back to it); at least
