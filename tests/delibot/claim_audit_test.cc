@@ -15,6 +15,7 @@
 #include "common/random_stream.h"
 #include "same_rows.h"
 #include "synthetic_world.h"
+#include "workloads/delibot/best_indices.h"
 #include "workloads/delibot/claim_audit.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/likelihood_field_model.h"
@@ -202,6 +203,38 @@ TEST(ClaimAuditTest, RivalPlacesReachALookAlikeThatRanksBelowManyPlacesNearTheCl
       EXPECT_GT(std::hypot(spread[i].x - spread[j].x, spread[i].y - spread[j].y), 2.0 * place.radius_m);
   }
   EXPECT_THROW(RivalPlaces(candidates, {1.0}, place), std::invalid_argument);
+}
+
+TEST(ClaimAuditTest, TheLikelihoodFieldsBestSelectionIsAFullScoringsBestWithFewerQueries) {
+  const OccupancyGrid g = test::AsymmetricRoom();
+  const test::SyntheticRun run = test::DriveThrough(g, {{5.5, 3.0, 0}, {7.5, 3.0, 0}}, 0.05, 0.03, 3);
+  const std::vector<Pose2> poses = UniformFreePoses(g, 200000, 12.0, 5);
+  LikelihoodFieldParams edge;
+  edge.unknown_is_edge = true;
+  edge.combination = BeamCombination::kAmclCubeSum;  // selection scores the product whatever this is
+  for (const LikelihoodFieldParams& params : {LikelihoodFieldParams{}, edge}) {
+    LikelihoodFieldModel model(g, params);
+    SensorUpdateWork work;
+    std::vector<double> scores;
+    model.SelectionLogLikelihoods(poses, run.trace.scans.back(), run.trace.geometry, BeamSelection{6}, scores, work);
+    const std::uint64_t full_queries = work.rays;
+    for (std::size_t keep : {std::size_t{1}, std::size_t{100}, std::size_t{20000}, poses.size() + 1}) {
+      const std::vector<std::size_t> expected = BestIndices(scores, keep);
+      for (int threads : {1, 2}) {
+        omp_set_num_threads(threads);
+        const std::vector<std::size_t> best =
+            model.BestSelection(poses, run.trace.scans.back(), run.trace.geometry, BeamSelection{6}, keep, work);
+        EXPECT_EQ(best, expected) << "keep " << keep << ", " << threads << " thread(s)";
+        // Fewer queries where some poses cannot be among the best; a full
+        // scoring where every pose is kept.
+        if (keep < poses.size()) {
+          EXPECT_LT(work.rays, full_queries) << "keep " << keep;
+        } else {
+          EXPECT_EQ(work.rays, full_queries);
+        }
+      }
+    }
+  }
 }
 
 TEST(ClaimAuditTest, NeedsAScan) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/pose_algebra.h"
+#include "workloads/delibot/best_indices.h"
 
 namespace rc {
 namespace {
@@ -13,21 +14,6 @@ namespace {
 bool InPlace(const Pose2& pose, const ClaimedPlace& place) {
   return std::hypot(pose.x - place.pose.x, pose.y - place.pose.y) <= place.radius_m &&
          std::abs(WrapAngle(pose.theta - place.pose.theta)) <= place.heading_rad;
-}
-
-// Indices of the `keep` highest scores, best first; ties go to the lower
-// index, so the choice is the same on every run. Scores are finite: every
-// beam density has a positive floor, z_rand / max_range (delibot_run.h).
-std::vector<std::size_t> BestIndices(const std::vector<double>& scores, std::size_t keep) {
-  std::vector<std::size_t> order(scores.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  auto better = [&](std::size_t a, std::size_t b) {
-    return scores[a] > scores[b] || (scores[a] == scores[b] && a < b);
-  };
-  keep = std::min(keep, order.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep), order.end(), better);
-  order.resize(keep);
-  return order;
 }
 
 // Each pose's log-likelihood summed over the audited scans from index
@@ -212,13 +198,11 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
 
   const std::vector<Pose2> poses_now = draw_poses();
   audit.poses = poses_now.size();
-  std::vector<double> latest;
-  model.SelectionLogLikelihoods(poses_now, scans.back().scan, scans.back().geometry, beams, latest, work);
-  audit.queries += work.rays;
-
   // The best on the latest scan, and every pose within the claimed place
   // (which is compared whether or not it ranks among them).
-  std::vector<std::size_t> kept = BestIndices(latest, kClaimAuditCandidates);
+  std::vector<std::size_t> kept =
+      model.BestSelection(poses_now, scans.back().scan, scans.back().geometry, beams, kClaimAuditCandidates, work);
+  audit.queries += work.rays;
   std::vector<bool> is_kept(poses_now.size(), false);
   for (std::size_t i : kept) is_kept[i] = true;
   for (std::size_t i = 0; i < poses_now.size(); ++i)

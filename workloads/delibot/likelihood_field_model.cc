@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 
 namespace rc {
@@ -83,6 +86,12 @@ double LikelihoodFieldModel::DistanceAt(double x_m, double y_m) const {
   return FaceDistance(depth_field_, u, v);
 }
 
+double LikelihoodFieldModel::EndPointGauss(const Pose2& sensor, double range_m, double angle_rad) const {
+  const double d = DistanceAt(sensor.x + range_m * std::cos(angle_rad), sensor.y + range_m * std::sin(angle_rad));
+  const double e = d / params_.sigma_hit_m;
+  return std::exp(-0.5 * e * e);
+}
+
 void LikelihoodFieldModel::LogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                           const LaserGeometry& geometry, const BeamSelection& beams,
                                           std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
@@ -113,10 +122,7 @@ void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const Lase
     for (int k = 0; k < beams_per_particle; ++k) {
       const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
       if (z >= params_.max_range_m) continue;
-      const double a = sensor.theta + geometry.BeamAngle(k * beams.beam_step);
-      const double d = DistanceAt(sensor.x + z * std::cos(a), sensor.y + z * std::sin(a));
-      const double e = d / params_.sigma_hit_m;
-      const double gauss = std::exp(-0.5 * e * e);
+      const double gauss = EndPointGauss(sensor, z, sensor.theta + geometry.BeamAngle(k * beams.beam_step));
       if (scan_likelihood.cube_sum())
         scan_likelihood.AddProbability(params_.z_hit * gauss + floor_density);
       else
@@ -129,6 +135,72 @@ void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const Lase
   work.rays = static_cast<std::uint64_t>(used_beams) * particles.size();
   work.nodes = work.rays;
   work.beams_scored = static_cast<int>(used_beams);
+}
+
+std::vector<std::size_t> LikelihoodFieldModel::BestSelection(const std::vector<Pose2>& poses, const LaserScan& scan,
+                                                             const LaserGeometry& geometry, const BeamSelection& beams,
+                                                             std::size_t keep, SensorUpdateWork& work) {
+  // Poses per block: the bound is raised between blocks. Any size gives the
+  // same indices; this one amortises the bound's update.
+  constexpr std::size_t kBlock = 65536;
+  const int beams_per_particle = beams.Count(geometry.beam_count);
+  std::vector<double> ranges;  // the used beams' ranges, in Score's order
+  std::vector<int> used;
+  for (int k = 0; k < beams_per_particle; ++k) {
+    const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
+    if (z >= params_.max_range_m) continue;
+    used.push_back(k);
+    ranges.push_back(z);
+  }
+  const int m = static_cast<int>(used.size());
+  // Computed as Score computes the product, so a scored pose's total is
+  // bit for bit the one SelectionLogLikelihoods gives.
+  const double gauss_norm = params_.z_hit * kInvSqrt2Pi / params_.sigma_hit_m;
+  const double floor_density = params_.z_rand / params_.max_range_m;
+  const double beam_max = std::log(gauss_norm + floor_density);  // gauss <= 1
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> scores(poses.size(), -inf);
+  std::vector<double> best;  // the keep best scores so far
+  double bound = -inf;       // the keep-th best so far: the final one is at least this
+  std::uint64_t queries = 0;
+  for (std::size_t begin = 0; begin < poses.size(); begin += kBlock) {
+    const long first = static_cast<long>(begin), last = static_cast<long>(std::min(poses.size(), begin + kBlock));
+    long block_queries = 0;
+#pragma omp parallel for schedule(static) reduction(+ : block_queries)
+    for (long i = first; i < last; ++i) {
+      const Pose2 sensor = SensorPose(poses[i], geometry);
+      double sum = 0.0;
+      int b = 0;
+      for (; b < m; ++b) {
+        // The rounding slack keeps the bound above every sum the remaining
+        // beams can reach in floating point.
+        const double reachable = sum + (m - b) * beam_max;
+        if (reachable + 1e-9 * (1.0 + std::abs(sum) + (m - b) * std::abs(beam_max)) < bound) break;
+        const double gauss =
+            EndPointGauss(sensor, ranges[static_cast<std::size_t>(b)],
+                          sensor.theta + geometry.BeamAngle(used[static_cast<std::size_t>(b)] * beams.beam_step));
+        sum += std::log(gauss_norm * gauss + floor_density);
+      }
+      block_queries += b;
+      if (b == m) scores[static_cast<std::size_t>(i)] = sum;
+    }
+    queries += static_cast<std::uint64_t>(block_queries);
+    if (keep == 0) continue;
+    for (long i = first; i < last; ++i)
+      if (scores[static_cast<std::size_t>(i)] > -inf) best.push_back(scores[static_cast<std::size_t>(i)]);
+    if (best.size() >= keep) {
+      std::nth_element(best.begin(), best.begin() + static_cast<std::ptrdiff_t>(keep - 1), best.end(),
+                       std::greater<double>());
+      best.resize(keep);
+      bound = best.back();
+    }
+  }
+  work.batch.queries.clear();
+  work.hits.clear();
+  work.rays = queries;
+  work.nodes = queries;
+  work.beams_scored = m;
+  return BestIndices(scores, keep);
 }
 
 }  // namespace rc

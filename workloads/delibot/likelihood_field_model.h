@@ -54,6 +54,15 @@ class LikelihoodFieldModel final : public SensorModel {
   void SelectionLogLikelihoods(const std::vector<Pose2>& particles, const LaserScan& scan,
                                const LaserGeometry& geometry, const BeamSelection& beams,
                                std::vector<double>& log_likelihoods, SensorUpdateWork& work) override;
+  // Branch and bound on the product: every beam's log density is at most
+  // log(gauss_norm + floor), so a pose whose partial sum plus that bound
+  // for its remaining beams falls below the keep-th best score found so far
+  // cannot be among the best and is left unscored. Poses go in fixed
+  // blocks, so the bound and the work are the same at any thread count;
+  // the indices are those of a full scoring.
+  std::vector<std::size_t> BestSelection(const std::vector<Pose2>& poses, const LaserScan& scan,
+                                         const LaserGeometry& geometry, const BeamSelection& beams, std::size_t keep,
+                                         SensorUpdateWork& work) override;
   // Distance (m) from a point to the face of the nearest occupied cell
   // (bilinear between cell centres, see the .cc); inside a wall, its depth
   // below the nearest free cell's face if signed_distance, else 0;
@@ -65,6 +74,10 @@ class LikelihoodFieldModel final : public SensorModel {
   // (cell units, centres at integers), minus half a cell: 0 on the face of
   // a target cell; each sample capped so the far field sits at the cap.
   double FaceDistance(const DistanceField& field, double u, double v) const;
+  // exp(-e^2 / 2) for the end point of a beam of range_m at angle_rad from
+  // the sensor, e its distance in sigma_hit: the one computation Score and
+  // BestSelection share, so both give the same totals bit for bit.
+  double EndPointGauss(const Pose2& sensor, double range_m, double angle_rad) const;
   void Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
              const BeamSelection& beams, BeamCombination combination, std::vector<double>& log_likelihoods,
              SensorUpdateWork& work) const;

@@ -15,6 +15,7 @@
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_recorded.h"
 #include "traces/sensor_trace.h"
+#include "workloads/delibot/best_indices.h"
 
 namespace rc {
 
@@ -80,6 +81,17 @@ class SensorModel {
                                        const LaserGeometry& geometry, const BeamSelection& beams,
                                        std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
     LogLikelihoods(particles, scan, geometry, beams, log_likelihoods, work);
+  }
+  // Indices of the `keep` poses with the highest SelectionLogLikelihoods,
+  // best first, ties to the lower index (BestIndices): exactly those of a
+  // full scoring, though a model may leave unscored the poses a bound
+  // proves cannot be among them. work.rays counts the queries made.
+  virtual std::vector<std::size_t> BestSelection(const std::vector<Pose2>& poses, const LaserScan& scan,
+                                                 const LaserGeometry& geometry, const BeamSelection& beams,
+                                                 std::size_t keep, SensorUpdateWork& work) {
+    std::vector<double> scores;
+    SelectionLogLikelihoods(poses, scan, geometry, beams, scores, work);
+    return BestIndices(scores, keep);
   }
   // A model with a global-localization stage and a tracking stage
   // (staged_sensor_model.h) switches when the localizer calls BeginTracking,
