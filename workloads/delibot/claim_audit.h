@@ -125,17 +125,18 @@ struct ClaimAudit {
   double margin_nats = std::numeric_limits<double>::quiet_NaN();
   Pose2 rival;                 // the best rival place's refined pose (valid for a finite margin)
   std::size_t poses = 0;       // uniform poses drawn
-  std::size_t candidates = 0;  // of them, scored on every audited scan
+  std::size_t candidates = 0;  // of them, scored on the latest kClaimAuditCandidateScans scans
   std::size_t places = 0;      // rival places refined
   std::uint64_t queries = 0;   // the model's queries (rays or end-point look-ups)
 };
 
 // The rival places an audit refines, from candidates ranked by their totals
-// on the audited scans (best first; ties keep the candidates' order): the
-// kClaimAuditRivals best places outside the claimed one, each from its best
-// candidate, then up to kClaimAuditSpreadRivals more, the best candidate
-// of each region farther than two bin radii (2 radius_m) from the claimed
-// place and from every other place taken for spread.
+// on the latest kClaimAuditCandidateScans scans (best first; ties keep the
+// candidates' order): the kClaimAuditRivals best places outside the
+// claimed one, each from its best candidate, then up to
+// kClaimAuditSpreadRivals more, the best candidate of each region farther
+// than two bin radii (2 radius_m) from the claimed place and from every
+// other place taken for spread.
 std::vector<Pose2> RivalPlaces(const std::vector<Pose2>& candidates, const std::vector<double>& totals,
                                const ClaimedPlace& place);
 
