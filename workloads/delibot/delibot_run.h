@@ -64,7 +64,7 @@ struct DelibotSettings {
   // (MclOptions::claim_audit_scans) and RunDelibot audits on them. Off by
   // default (docs/defaults.md, "The claim audit").
   bool audit_claims = false;
-  int claim_audit_scans = kClaimAuditScans;
+  int claim_audit_scans = kClaimAuditScans;  // [1, 1000] sensor updates (--claim-audit-scans)
   // Shadow costing: every modelled backend prices every update's ray batch
   // (beam model only; the likelihood field casts no rays), and the policy
   // picks the backend that "ran". Off by default in the library (pricing

@@ -76,8 +76,8 @@ struct MclOptions {
   int injection_check_updates = 0;
   // Claim audit (claim_audit.h): the localizer remembers this many recent
   // sensor updates' scans so that a claim can be audited on them
-  // (AuditClaim); 0 = off (the default). The run audits every claim as it
-  // falls due when this is the claim's kSustainRecords updates
+  // (AuditClaim); 0 = off (the default). RunDelibot sets it from
+  // DelibotSettings::claim_audit_scans when it audits claims
   // (delibot_run.h). [0, 1000] sensor updates.
   int claim_audit_scans = 0;
   // A sensor update runs only after the odometry has moved this far since
