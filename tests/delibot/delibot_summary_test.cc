@@ -120,6 +120,10 @@ TEST(DelibotSummaryTest, AClaimItsAuditRefusedIsNotMadeAndANewOneNeedsTenMoreUpd
   EXPECT_EQ(once.claims_refused, 1);
   EXPECT_EQ(once.claims_withdrawn, 0);
   EXPECT_EQ(once.standing_claim_iteration, 10);
+  // The filter's own claim is the one it made, not the refused one, and
+  // without ground truth it is also the convergence.
+  EXPECT_EQ(once.self_convergence_iteration, 10);
+  EXPECT_EQ(once.convergence_iteration, 10);
   // A passed audit makes the claim; an audit outcome at a record where no
   // claim is due changes nothing.
   rows[19].claim_audit = ClaimAuditOutcome::kPassed;
@@ -131,6 +135,8 @@ TEST(DelibotSummaryTest, AClaimItsAuditRefusedIsNotMadeAndANewOneNeedsTenMoreUpd
   const DelibotSummary never = SummarizeDelibot(rows, s);
   EXPECT_EQ(never.claims_refused, 4);
   EXPECT_EQ(never.standing_claim_iteration, -1);
+  EXPECT_EQ(never.self_convergence_iteration, -1);
+  EXPECT_EQ(never.convergence_iteration, -1);
   EXPECT_FALSE(never.converged);
 }
 

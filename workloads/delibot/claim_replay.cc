@@ -35,6 +35,7 @@ bool ClaimReplay::Step(const DelibotRow& row, bool localized) {
 void ClaimReplay::Settle(bool accepted) {
   if (accepted) {
     standing_from_ = run_start_;
+    if (first_made_from_ < 0) first_made_from_ = run_start_;
     return;
   }
   ++refused_;

@@ -36,6 +36,8 @@ class ClaimReplay {
   void Settle(bool accepted);
   // The record from which the standing claim was made (-1: none stands).
   long standing_from() const { return standing_from_; }
+  // The record from which the first claim was made (-1: none was).
+  long first_made_from() const { return first_made_from_; }
   long withdrawn() const { return withdrawn_; }
   long refused() const { return refused_; }
 
@@ -46,6 +48,7 @@ class ClaimReplay {
   int run_ = 0;
   long run_start_ = -1;
   long standing_from_ = -1;
+  long first_made_from_ = -1;
   long withdrawn_ = 0;
   long refused_ = 0;
 };

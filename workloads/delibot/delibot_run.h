@@ -147,6 +147,8 @@ struct DelibotSummary {
   // above) even when ground truth is given: the record from which the
   // filter itself claims to be localized, which is all a user without
   // ground truth sees. Equal to convergence_iteration without ground truth.
+  // With claim audits, a due claim its audit refused is not made: this is
+  // then the record from which the first claim made was made.
   long self_convergence_iteration = -1;
   // A claim stands until the filter itself contradicts it: after the claim
   // its estimate jumps (> jump_threshold_m between two records) or it

@@ -92,6 +92,10 @@ DelibotSummary Summarize(const std::vector<DelibotRow>& rows, const DelibotSetti
   sum.standing_claim_iteration = claims.standing_from();
   sum.claims_withdrawn = claims.withdrawn();
   sum.claims_refused = claims.refused();
+  // A claim its audit refused was never made: the filter's own claim is
+  // then the first one made (-1 if every due claim was refused), not the
+  // first that fell due.
+  if (sum.claims_refused > 0) sum.self_convergence_iteration = claims.first_made_from();
   sum.convergence_iteration = gt ? FirstSustained(rows, localized, false) : sum.self_convergence_iteration;
   if (sum.convergence_iteration >= 0) {
     std::vector<double> exy, eth, cons;
