@@ -316,5 +316,52 @@ class SensitivityAnalysis(unittest.TestCase):
             self.assertIn("| A vs B | p.x |", f.read())
 
 
+class ClaimAuditAnalysis(unittest.TestCase):
+    """scripts/claim_audit_study.py: a claim graded held or wrong from its
+    timeline, a run that never claimed, and a held claim the audit lost."""
+
+    def test_claims_graded_and_lost_claims_named(self):
+        import subprocess
+        import pandas as pd
+        work = tempfile.mkdtemp(prefix="rc_claim_audit_test_")
+        self.addCleanup(shutil.rmtree, work)
+        points = []
+
+        def point(name, seed, run, claim, errors, refused, host_s):
+            folder = os.path.join(work, f"{name}_{seed}_{run}")
+            os.makedirs(folder)
+            with open(os.path.join(folder, "timeline.csv"), "w") as f:
+                f.write("iteration,err_xy_m\n" + "".join(f"{i},{e}\n" for i, e in enumerate(errors)))
+            points.append({"point": os.path.basename(folder), "group": "g", "workload": "delibot", "status": "ok",
+                           "folder": folder, "map_label": name, "seed": seed, "run": run,
+                           "accuracy.convergence_iteration_without_ground_truth": claim,
+                           "accuracy.claims_refused_by_audit": refused, "totals.wall_s": host_s})
+
+        # Seed 1: both claim at 2 and hold. Seed 2: the defaults claim at 0 a
+        # place 5 m off (wrong); the audit never claims. Seed 3: the
+        # defaults' claim holds, the audit's comes at 8 with only 1 of 2
+        # records within 1 m (wrong), so that held claim is lost.
+        near, far = [0.1] * 10, [5.0] * 10
+        point("maze", 1, "defaults", 2, near, 0, 10.0)
+        point("maze", 1, "audit", 2, near, 0, 12.0)
+        point("maze", 2, "defaults", 0, far, 0, 20.0)
+        point("maze", 2, "audit", -1, far, 7, 60.0)
+        point("maze", 3, "defaults", 1, near, 0, 30.0)
+        point("maze", 3, "audit", 8, near[:8] + [0.1, 3.0], 2, 40.0)
+        merged = os.path.join(work, "m.csv")
+        pd.DataFrame(points).to_csv(merged, index=False)
+        out = os.path.join(work, "analysis")
+        script = os.path.join(REPO, "scripts", "claim_audit_study.py")
+        p = subprocess.run([sys.executable, script, merged, out], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        with open(os.path.join(out, "claim_audit_study.md")) as f:
+            md = f.read()
+        self.assertIn("| maze | defaults | 3 | 3 / 2 / 1 / 0 | 0, 1, 2 | 0 | 20.0 |", md)
+        self.assertIn("| maze | audit | 3 | 2 / 1 / 1 / 1 | 2, 8 | 9 | 40.0 |", md)
+        self.assertIn("Held claims lost with audits: maze seed 3 (claim at record 1 without audits).", md)
+        rows = pd.read_csv(os.path.join(out, "claim_audit_study.csv"))
+        self.assertEqual(len(rows), 6)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)
