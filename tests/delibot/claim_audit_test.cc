@@ -86,6 +86,7 @@ TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
   const ClaimAudit audit = AuditClaim(model, g, scans, BeamSelection{6}, draw, place, kWindowNats, rivals);
   EXPECT_EQ(audit.outcome, ClaimAuditOutcome::kRefused) << audit.margin_nats;
   EXPECT_FALSE(audit.rechecked);
+  EXPECT_FALSE(audit.neighbourhood);  // the twin is 10 m away: the whole map's stage found it
   EXPECT_LT(std::abs(audit.margin_nats), kWindowNats);
   EXPECT_NEAR(audit.rival.x, run.truth.back().x + 10.0, 0.5);  // the twin place
   EXPECT_NEAR(audit.rival.y, run.truth.back().y, 0.5);
@@ -104,6 +105,49 @@ TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
   EXPECT_EQ(again.poses, 0u);
   EXPECT_NEAR(again.rival.x, run.truth.back().x + 10.0, 0.5);
   EXPECT_LT(std::abs(again.margin_nats), kWindowNats);
+}
+
+// Two identical 3 m rooms whose centres are 3.5 m apart (0.125 m cells, exact
+// in binary), each with a box that makes it asymmetric inside.
+OccupancyGrid NearTwinRooms() {
+  OccupancyGrid g(52, 24, 0.125);
+  for (int room = 0; room < 2; ++room) {
+    const int x0 = 28 * room;
+    auto wall = [&](int xa, int ya, int xb, int yb) {
+      for (int x = x0 + xa; x <= x0 + xb; ++x)
+        for (int y = ya; y <= yb; ++y) g.Set(x, y, CellState::kOccupied);
+    };
+    wall(0, 0, 23, 0);
+    wall(0, 23, 23, 23);
+    wall(0, 0, 0, 23);
+    wall(23, 0, 23, 23);
+    wall(15, 14, 18, 18);  // box
+  }
+  for (int x = 24; x < 28; ++x)
+    for (int y = 0; y < 24; ++y) g.Set(x, y, CellState::kOccupied);
+  return g;
+}
+
+TEST(ClaimAuditTest, ATwinInTheClaimsNeighbourhoodRefusesBeforeTheWholeMapIsScored) {
+  const OccupancyGrid g = NearTwinRooms();
+  const test::SyntheticRun run = test::DriveThrough(g, {{0.8, 0.8, 0}, {1.4, 2.2, 0}}, 0.05, 0.0, 1);
+  LikelihoodFieldModel model(g, LikelihoodFieldParams{});
+  std::vector<Pose2> poses = UniformFreePoses(g, 15000, 3.0, 3);
+  const std::size_t first_room = poses.size();
+  for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + 3.5, poses[i].y, poses[i].theta});
+  auto draw = [&] { return poses; };
+  const ClaimedPlace place{run.truth.back(), 1.0, 2.0 * kPi / 12};
+  std::size_t near = 0;
+  for (const Pose2& p : poses) near += std::hypot(p.x - place.pose.x, p.y - place.pose.y) <= kClaimAuditNeighbourhoodM;
+  ASSERT_LT(near, poses.size());  // some of the twin room is beyond the neighbourhood
+  RememberedRivals rivals;
+  const ClaimAudit audit = AuditClaim(model, g, LastScans(run, 10), BeamSelection{6}, draw, place, kWindowNats, rivals);
+  EXPECT_EQ(audit.outcome, ClaimAuditOutcome::kRefused) << audit.margin_nats;
+  EXPECT_TRUE(audit.neighbourhood);
+  EXPECT_EQ(audit.poses, near);  // only the neighbourhood was scored
+  EXPECT_NEAR(audit.rival.x, run.truth.back().x + 3.5, 0.5);
+  EXPECT_NEAR(audit.rival.y, run.truth.back().y, 0.5);
+  EXPECT_FALSE(rivals.places.empty());
 }
 
 TEST(ClaimAuditTest, TheTruePlaceOfAnAsymmetricRoomPassesAndAWrongOneIsRefused) {

@@ -120,6 +120,46 @@ std::vector<Pose2> Compare(const Refined& refined, std::size_t claimed_starts, c
   return rivals;
 }
 
+// The dense stage on `poses`: the best `keep` on the latest scan and every
+// pose within the claimed place, scored on the candidate scans; the
+// claimed place and the rival places refined and compared. Sets the audit's
+// counts, margin and outcome; returns the compared rival places after a
+// refusal, none after a pass.
+std::vector<Pose2> AuditOnPoses(SensorModel& model, const OccupancyGrid& grid, const std::deque<RememberedScan>& scans,
+                                const BeamSelection& beams, const std::vector<Pose2>& poses, std::size_t keep,
+                                const ClaimedPlace& place, double window_nats, SensorUpdateWork& work,
+                                ClaimAudit& audit) {
+  audit.poses = poses.size();
+  // The best on the latest scan, and every pose within the claimed place
+  // (which is compared whether or not it ranks among them).
+  std::vector<std::size_t> kept =
+      model.BestSelection(poses, scans.back().scan, scans.back().geometry, beams, keep, work);
+  audit.queries += work.rays;
+  std::vector<bool> is_kept(poses.size(), false);
+  for (std::size_t i : kept) is_kept[i] = true;
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (!is_kept[i] && InPlace(poses[i], place)) kept.push_back(i);
+  audit.candidates = kept.size();
+  std::vector<Pose2> candidates(kept.size());
+  for (std::size_t j = 0; j < kept.size(); ++j) candidates[j] = poses[kept[j]];
+  const std::size_t first = scans.size() - std::min(scans.size(), kClaimAuditCandidateScans);
+  const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit, first);
+
+  // Places to refine: the claimed one from the filter's estimate and from
+  // its best candidate, then the rival places.
+  std::vector<Pose2> starts = {place.pose};
+  std::size_t best_in_place = candidates.size();
+  for (std::size_t j = 0; j < candidates.size(); ++j)
+    if (InPlace(candidates[j], place) && (best_in_place == candidates.size() || total[j] > total[best_in_place]))
+      best_in_place = j;
+  if (best_in_place < candidates.size()) starts.push_back(candidates[best_in_place]);
+  const std::size_t claimed_starts = starts.size();
+  for (const Pose2& rival : RivalPlaces(candidates, total, place)) starts.push_back(rival);
+  audit.places = starts.size() - claimed_starts;
+  const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
+  return Compare(refined, claimed_starts, place, window_nats, audit);
+}
+
 }  // namespace
 
 std::string ToString(ClaimAuditOutcome outcome) {
@@ -197,35 +237,27 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
   }
 
   const std::vector<Pose2> poses_now = draw_poses();
-  audit.poses = poses_now.size();
-  // The best on the latest scan, and every pose within the claimed place
-  // (which is compared whether or not it ranks among them).
-  std::vector<std::size_t> kept =
-      model.BestSelection(poses_now, scans.back().scan, scans.back().geometry, beams, kClaimAuditCandidates, work);
-  audit.queries += work.rays;
-  std::vector<bool> is_kept(poses_now.size(), false);
-  for (std::size_t i : kept) is_kept[i] = true;
-  for (std::size_t i = 0; i < poses_now.size(); ++i)
-    if (!is_kept[i] && InPlace(poses_now[i], place)) kept.push_back(i);
-  audit.candidates = kept.size();
-  std::vector<Pose2> candidates(kept.size());
-  for (std::size_t j = 0; j < kept.size(); ++j) candidates[j] = poses_now[kept[j]];
-  const std::size_t first = scans.size() - std::min(scans.size(), kClaimAuditCandidateScans);
-  const std::vector<double> total = ScoreOnScans(model, scans, beams, candidates, work, audit, first);
-
-  // Places to refine: the claimed one from the filter's estimate and from
-  // its best candidate, then the rival places.
-  std::vector<Pose2> starts = {place.pose};
-  std::size_t best_in_place = candidates.size();
-  for (std::size_t j = 0; j < candidates.size(); ++j)
-    if (InPlace(candidates[j], place) && (best_in_place == candidates.size() || total[j] > total[best_in_place]))
-      best_in_place = j;
-  if (best_in_place < candidates.size()) starts.push_back(candidates[best_in_place]);
-  const std::size_t claimed_starts = starts.size();
-  for (const Pose2& rival : RivalPlaces(candidates, total, place)) starts.push_back(rival);
-  audit.places = starts.size() - claimed_starts;
-  const Refined refined = Refine(model, scans, beams, grid, std::move(starts), work, audit);
-  rivals = {Compare(refined, claimed_starts, place, window_nats, audit), odometry_now};
+  // The claim's neighbourhood first: a refusal needs only one rival, and
+  // there most are (a room's own ambiguity); only a pass needs the whole
+  // map. The neighbourhood keeps the same share of candidates as of poses.
+  std::vector<Pose2> near;
+  for (const Pose2& p : poses_now)
+    if (std::hypot(p.x - place.pose.x, p.y - place.pose.y) <= kClaimAuditNeighbourhoodM) near.push_back(p);
+  if (!near.empty() && near.size() < poses_now.size()) {
+    const std::size_t keep = std::max<std::size_t>(
+        1,
+        static_cast<std::size_t>(std::ceil(static_cast<double>(kClaimAuditCandidates) *
+                                           static_cast<double>(near.size()) / static_cast<double>(poses_now.size()))));
+    std::vector<Pose2> compared = AuditOnPoses(model, grid, scans, beams, near, keep, place, window_nats, work, audit);
+    if (audit.outcome == ClaimAuditOutcome::kRefused) {
+      audit.neighbourhood = true;
+      rivals = {std::move(compared), odometry_now};
+      return audit;
+    }
+  }
+  audit.neighbourhood = false;
+  rivals = {AuditOnPoses(model, grid, scans, beams, poses_now, kClaimAuditCandidates, place, window_nats, work, audit),
+            odometry_now};
   return audit;
 }
 
