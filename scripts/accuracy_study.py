@@ -110,9 +110,7 @@ def markdown(table):
 def main():
     merged, out_dir = analysis_io.arguments(__doc__)
     table, ok = analysis_io.load(merged)
-    for column in ("map_label", "mode", "seed"):
-        if column not in table.columns:
-            sys.exit(f"{merged}: no '{column}' column: not the accuracy study's table")
+    analysis_io.require_columns(table, merged, ("map_label", "mode", "seed"), "the accuracy study")
     seeds = per_seed(ok)
     if seeds.empty:
         sys.exit(f"{merged}: no (map, seed) with both runs ok")

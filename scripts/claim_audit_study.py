@@ -74,9 +74,7 @@ def summary(points):
 def main():
     merged, out_dir = analysis_io.arguments(__doc__)
     table, ok = analysis_io.load(merged)
-    for column in ("map_label", "seed", "run", CLAIM, HOST_S):
-        if column not in table.columns:
-            sys.exit(f"{merged}: no '{column}' column: not a claim study's table")
+    analysis_io.require_columns(table, merged, ("map_label", "seed", "run", CLAIM, HOST_S), "a claim study")
     points = per_point(ok)
     if points.empty:
         sys.exit(f"{merged}: no point ran")

@@ -29,6 +29,14 @@ def load(merged_csv):
     return table, table[table["status"] == "ok"].copy()
 
 
+def require_columns(table, merged_csv, columns, study):
+    """Exits naming the first of `columns` the merged table lacks: then it is
+    not `study`'s table."""
+    for column in columns:
+        if column not in table.columns:
+            sys.exit(f"{merged_csv}: no '{column}' column: not {study}'s table")
+
+
 def _atomic(path, write):
     tmp = f"{path}.tmp-{os.getpid()}"
     write(tmp)

@@ -147,8 +147,12 @@ def _expand_group(name, group):
     `readable` gives each a short text for folder names."""
     # An option set to null is left out, here rather than at the command
     # line, so it is not part of the point's id either; "null" is how a
-    # `--config 'points={options: {X: null}}'` override (strings only) says it.
-    base = {k: v for k, v in (group.get("options") or {}).items() if v is not None and v != "null"}
+    # `--config 'points={options: {X: null}}'` override (strings only) says
+    # it, and "true" / "false" how it gives a flag (no rcbench option takes
+    # those words as a value).
+    flags = {"true": True, "false": False}
+    base = {k: flags.get(v, v) if isinstance(v, str) else v
+            for k, v in (group.get("options") or {}).items() if v is not None and v != "null"}
     group_vars = group.get("vars") or {}
     if not isinstance(group_vars, dict) or any(isinstance(v, (dict, list)) for v in group_vars.values()):
         raise StudyError(f"points group '{name}': 'vars' must map names to scalars")

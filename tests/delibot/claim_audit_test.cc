@@ -25,24 +25,25 @@ namespace {
 
 constexpr double kWindowNats = 6.0;  // the defaults' rival window
 
+// Marks the cells [xa, xb] x [ya, yb] occupied.
+void Block(OccupancyGrid& g, int xa, int ya, int xb, int yb) {
+  for (int x = xa; x <= xb; ++x)
+    for (int y = ya; y <= yb; ++y) g.Set(x, y, CellState::kOccupied);
+}
+
 // Two identical rooms side by side, 10 m x 7.5 m each at 0.125 m (exact in
 // binary, so a pose shifted by one room maps onto the same cells): each has
 // its own walls, a pillar and a box, placed so that nothing inside a room
 // looks alike.
 OccupancyGrid TwinRooms() {
   OccupancyGrid g(160, 60, 0.125);
-  for (int room = 0; room < 2; ++room) {
-    const int x0 = 80 * room;
-    auto wall = [&](int xa, int ya, int xb, int yb) {
-      for (int x = x0 + xa; x <= x0 + xb; ++x)
-        for (int y = ya; y <= yb; ++y) g.Set(x, y, CellState::kOccupied);
-    };
-    wall(0, 0, 79, 1);
-    wall(0, 58, 79, 59);
-    wall(0, 0, 1, 59);
-    wall(78, 0, 79, 59);
-    wall(20, 38, 23, 41);  // pillar
-    wall(50, 8, 60, 14);   // box
+  for (const int x0 : {0, 80}) {
+    Block(g, x0, 0, x0 + 79, 1);
+    Block(g, x0, 58, x0 + 79, 59);
+    Block(g, x0, 0, x0 + 1, 59);
+    Block(g, x0 + 78, 0, x0 + 79, 59);
+    Block(g, x0 + 20, 38, x0 + 23, 41);  // pillar
+    Block(g, x0 + 50, 8, x0 + 60, 14);   // box
   }
   return g;
 }
@@ -55,6 +56,13 @@ std::vector<Pose2> UniformFreePoses(const OccupancyGrid& g, std::size_t n, doubl
                   stream.Uniform(-kPi, kPi)};
     if (g.IsFreePoint(p.x, p.y)) poses.push_back(p);
   }
+  return poses;
+}
+
+// The poses followed by each one's twin, dx_m farther along x.
+std::vector<Pose2> WithTwins(std::vector<Pose2> poses, double dx_m) {
+  const std::size_t first_room = poses.size();
+  for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + dx_m, poses[i].y, poses[i].theta});
   return poses;
 }
 
@@ -72,9 +80,7 @@ TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
   LikelihoodFieldModel model(g, LikelihoodFieldParams{});
   // Poses in the first room and each one's twin in the second: every pose
   // in the claimed place has a twin that fits the scans as well.
-  std::vector<Pose2> poses = UniformFreePoses(g, 100000, 10.0, 2);
-  const std::size_t first_room = poses.size();
-  for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + 10.0, poses[i].y, poses[i].theta});
+  const std::vector<Pose2> poses = WithTwins(UniformFreePoses(g, 100000, 10.0, 2), 10.0);
   const ClaimedPlace place{run.truth.back(), 1.0, 2.0 * kPi / 12};
   int draws = 0;
   auto draw = [&] {
@@ -111,20 +117,14 @@ TEST(ClaimAuditTest, ATwinPlaceSampledAsDenselyIsARival) {
 // in binary), each with a box that makes it asymmetric inside.
 OccupancyGrid NearTwinRooms() {
   OccupancyGrid g(52, 24, 0.125);
-  for (int room = 0; room < 2; ++room) {
-    const int x0 = 28 * room;
-    auto wall = [&](int xa, int ya, int xb, int yb) {
-      for (int x = x0 + xa; x <= x0 + xb; ++x)
-        for (int y = ya; y <= yb; ++y) g.Set(x, y, CellState::kOccupied);
-    };
-    wall(0, 0, 23, 0);
-    wall(0, 23, 23, 23);
-    wall(0, 0, 0, 23);
-    wall(23, 0, 23, 23);
-    wall(15, 14, 18, 18);  // box
+  for (const int x0 : {0, 28}) {
+    Block(g, x0, 0, x0 + 23, 0);
+    Block(g, x0, 23, x0 + 23, 23);
+    Block(g, x0, 0, x0, 23);
+    Block(g, x0 + 23, 0, x0 + 23, 23);
+    Block(g, x0 + 15, 14, x0 + 18, 18);  // box
   }
-  for (int x = 24; x < 28; ++x)
-    for (int y = 0; y < 24; ++y) g.Set(x, y, CellState::kOccupied);
+  Block(g, 24, 0, 27, 23);  // between the rooms
   return g;
 }
 
@@ -132,9 +132,7 @@ TEST(ClaimAuditTest, ATwinInTheClaimsNeighbourhoodRefusesBeforeTheWholeMapIsScor
   const OccupancyGrid g = NearTwinRooms();
   const test::SyntheticRun run = test::DriveThrough(g, {{0.8, 0.8, 0}, {1.4, 2.2, 0}}, 0.05, 0.0, 1);
   LikelihoodFieldModel model(g, LikelihoodFieldParams{});
-  std::vector<Pose2> poses = UniformFreePoses(g, 15000, 3.0, 3);
-  const std::size_t first_room = poses.size();
-  for (std::size_t i = 0; i < first_room; ++i) poses.push_back({poses[i].x + 3.5, poses[i].y, poses[i].theta});
+  const std::vector<Pose2> poses = WithTwins(UniformFreePoses(g, 15000, 3.0, 3), 3.5);
   auto draw = [&] { return poses; };
   const ClaimedPlace place{run.truth.back(), 1.0, 2.0 * kPi / 12};
   std::size_t near = 0;

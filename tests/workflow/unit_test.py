@@ -102,6 +102,10 @@ class Expansion(unittest.TestCase):
         self.assertTrue(all(p["options"]["hypothesis-floor"] == "20" for p in s.points.values()))
         self.assertTrue(all(p["options"]["quiet"] is True for p in s.points.values()))  # the file's options stay
         self.assertFalse(set(s.points) & set(Study(base()).points))  # new options: new points
+        update_config(config, {"points": yaml.load("{options: {claim-audit: true}}", Loader=yaml.BaseLoader)})
+        flagged = Study(config).points.values()
+        self.assertTrue(all(p["options"]["claim-audit"] is True for p in flagged))  # "true": a flag
+        self.assertTrue(all("--claim-audit" in command_line(p) and "true" not in command_line(p) for p in flagged))
         update_config(config, {"points": yaml.load("{options: {quiet: null}}", Loader=yaml.BaseLoader)})
         self.assertTrue(all("quiet" not in p["options"] for p in Study(config).points.values()))  # null: left out
         without = base()
