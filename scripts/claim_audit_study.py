@@ -67,8 +67,7 @@ def summary(points):
         if plain["claim_record"] >= 0 and plain["held"] == 1 and not (
                 audited["claim_record"] >= 0 and audited["held"] == 1):
             lost.append(f"{map_name} seed {seed} (claim at record {plain['claim_record']} without audits)")
-    text = "\n".join(lines) + "\n\nHeld claims lost with audits: " + ("; ".join(lost) or "none") + ".\n"
-    return text
+    return "\n".join(lines) + "\n\nHeld claims lost with audits: " + ("; ".join(lost) or "none") + ".\n"
 
 
 def main():

@@ -84,6 +84,13 @@ def _slug(values, limit=60):
     return text[:limit].strip("_-") or "point"
 
 
+def _flag(value):
+    """An option value as the study means it: a `--config` override arrives
+    as strings, so "true" / "false" there give a flag (no rcbench option
+    takes those words as a value)."""
+    return {"true": True, "false": False}.get(value, value) if isinstance(value, str) else value
+
+
 def _axis_values(group_name, axis, values):
     """[(label column or None, label, value, options)] of one grid axis."""
     where = f"points group '{group_name}', axis '{axis}'"
@@ -107,7 +114,7 @@ def _axis_values(group_name, axis, values):
         out = []
         for label, v in values.items():
             if isinstance(v, dict):
-                out.append((axis, str(label), str(label), dict(v)))
+                out.append((axis, str(label), str(label), {k: _flag(x) for k, x in v.items()}))
             elif isinstance(v, list):
                 raise StudyError(f"{where}, label '{label}': a value is a scalar or a mapping of options")
             else:
@@ -147,12 +154,8 @@ def _expand_group(name, group):
     `readable` gives each a short text for folder names."""
     # An option set to null is left out, here rather than at the command
     # line, so it is not part of the point's id either; "null" is how a
-    # `--config 'points={options: {X: null}}'` override (strings only) says
-    # it, and "true" / "false" how it gives a flag (no rcbench option takes
-    # those words as a value).
-    flags = {"true": True, "false": False}
-    base = {k: flags.get(v, v) if isinstance(v, str) else v
-            for k, v in (group.get("options") or {}).items() if v is not None and v != "null"}
+    # `--config 'points={options: {X: null}}'` override (strings only) says it.
+    base = {k: _flag(v) for k, v in (group.get("options") or {}).items() if v is not None and v != "null"}
     group_vars = group.get("vars") or {}
     if not isinstance(group_vars, dict) or any(isinstance(v, (dict, list)) for v in group_vars.values()):
         raise StudyError(f"points group '{name}': 'vars' must map names to scalars")
@@ -164,7 +167,7 @@ def _expand_group(name, group):
         for e in entries:
             scalars = {k: v for k, v in e.items() if not isinstance(v, (dict, list))}
             readable = {k: f"{k}{v}" for k, v in scalars.items() if "/" not in str(v)}
-            out.append(({}, {**base, **e}, {**group_vars, **scalars}, readable))
+            out.append(({}, {**base, **{k: _flag(x) for k, x in e.items()}}, {**group_vars, **scalars}, readable))
         return out
     grid = group.get("grid") or {}
     if not isinstance(grid, dict):

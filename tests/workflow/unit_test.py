@@ -106,6 +106,11 @@ class Expansion(unittest.TestCase):
         flagged = Study(config).points.values()
         self.assertTrue(all(p["options"]["claim-audit"] is True for p in flagged))  # "true": a flag
         self.assertTrue(all("--claim-audit" in command_line(p) and "true" not in command_line(p) for p in flagged))
+        variant = base()
+        update_config(variant, {"points": yaml.load("{grid: {mode: {global: {particles: 5000, quiet: false}}}}",
+                                                    Loader=yaml.BaseLoader)})
+        in_global = [p for p in Study(variant).points.values() if p["labels"]["mode"] == "global"]
+        self.assertTrue(in_global and all(p["options"]["quiet"] is False for p in in_global))  # a variant too
         update_config(config, {"points": yaml.load("{options: {quiet: null}}", Loader=yaml.BaseLoader)})
         self.assertTrue(all("quiet" not in p["options"] for p in Study(config).points.values()))  # null: left out
         without = base()

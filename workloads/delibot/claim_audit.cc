@@ -255,7 +255,6 @@ ClaimAudit AuditClaim(SensorModel& model, const OccupancyGrid& grid, const std::
       return audit;
     }
   }
-  audit.neighbourhood = false;
   rivals = {AuditOnPoses(model, grid, scans, beams, poses_now, kClaimAuditCandidates, place, window_nats, work, audit),
             odometry_now};
   return audit;
