@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""Analysis of a DeliBot claim study: the same traces run with and without
-`--claim-audit` (scripts/workflow/studies/claim_audit_held_out.yaml), each
-run's claim graded against the ground truth.
+"""Analysis of a DeliBot claim study: the same traces run with the claim
+audit (run "audit") and without it (run "unaudited", `--no-claim-audit`;
+scripts/workflow/studies/claim_audit_held_out.yaml), each run's claim
+graded against the ground truth.
 
 A run's claim is the filter's own, ground-truth-free claim of being
 localized (the summary's convergence_iteration_without_ground_truth: with
@@ -61,7 +62,7 @@ def summary(points):
     lost = []
     for (map_name, seed), sel in points.groupby(["map", "seed"], sort=False):
         by_run = {r["run"]: r for _, r in sel.iterrows()}
-        plain, audited = by_run.get("defaults"), by_run.get("audit")
+        plain, audited = by_run.get("unaudited"), by_run.get("audit")
         if plain is None or audited is None:
             continue
         if plain["claim_record"] >= 0 and plain["held"] == 1 and not (

@@ -16,8 +16,10 @@ are not priced).
 
 Configurations:
   defaults           rcbench delibot's defaults (docs/defaults.md)
+  defaults unaudited the same with --no-claim-audit: what the claim audit costs
   previous defaults  the beam model (product), 2000 uniform particles,
-                     augmented MCL, no floor: the defaults before
+                     augmented MCL, no floor, no claim audit: the defaults
+                     before docs/defaults.md
   mrpt beam          MRPT's CMonteCarloLocalization2D, ray tracing, 2000 particles
   mrpt beam N        the same with N particles (--mrpt-particles), tracking only
 
@@ -38,7 +40,8 @@ import sys
 from rcbench_files import InputError, read_poses, read_timeline_rows
 
 PREVIOUS_DEFAULTS = ["--sensor-model", "beam", "--beam-combine", "product", "--initial-particles", "0",
-                     "--hypothesis-floor", "0", "--recovery-alpha-slow", "0.001"]
+                     "--hypothesis-floor", "0", "--recovery-alpha-slow", "0.001", "--no-claim-audit"]
+UNAUDITED = ["--no-claim-audit"]
 
 
 def run(cmd):
@@ -73,9 +76,11 @@ def main():
         sys.exit(f"defaults_cost: {e}")
     start = ["--initial-pose", f"{x!r},{y!r},{theta!r}"]
 
-    configs = [("defaults", "global", []), ("previous defaults", "global", PREVIOUS_DEFAULTS),
+    configs = [("defaults", "global", []), ("defaults unaudited", "global", UNAUDITED),
+               ("previous defaults", "global", PREVIOUS_DEFAULTS),
                ("mrpt beam", "global", ["--engine", "mrpt", "--sensor-model", "beam"]),
-               ("defaults", "tracking", start), ("previous defaults", "tracking", PREVIOUS_DEFAULTS + start),
+               ("defaults", "tracking", start), ("defaults unaudited", "tracking", UNAUDITED + start),
+               ("previous defaults", "tracking", PREVIOUS_DEFAULTS + start),
                ("mrpt beam", "tracking", ["--engine", "mrpt", "--sensor-model", "beam"] + start)]
     for n in [int(v) for v in args.mrpt_particles.split(",") if v]:
         configs.append((f"mrpt beam {n}", "tracking",

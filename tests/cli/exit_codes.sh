@@ -45,8 +45,9 @@ code 2 "delibot --replay-sms" -- delibot --map map.yaml --trace good.log --repla
 code 2 "delibot --replay-block-stride" -- delibot --map map.yaml --trace good.log --replay-block-stride 0
 code 2 "delibot --first-set-model tracking, one-stage model" -- delibot --map map.yaml --trace good.log --sensor-model beam --first-set-model tracking
 code 2 "delibot --claim-audit with the MRPT engine" -- delibot --map map.yaml --trace good.log --engine mrpt --claim-audit
-code 2 "delibot --claim-audit-scans without --claim-audit" -- delibot --map map.yaml --trace good.log --claim-audit-scans 30
-code 2 "delibot --claim-audit-scans 0" -- delibot --map map.yaml --trace good.log --claim-audit --claim-audit-scans 0
+code 2 "delibot --claim-audit-scans with --no-claim-audit" -- delibot --map map.yaml --trace good.log --no-claim-audit --claim-audit-scans 30
+code 2 "delibot --claim-audit with --no-claim-audit" -- delibot --map map.yaml --trace good.log --claim-audit --no-claim-audit
+code 2 "delibot --claim-audit-scans 0" -- delibot --map map.yaml --trace good.log --claim-audit-scans 0
 
 # A file that cannot be read is bad input.
 code 1 "delibot missing map" -- delibot --map absent.yaml --trace good.log

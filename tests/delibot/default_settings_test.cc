@@ -255,6 +255,7 @@ TEST(InitialParticleCountTest, AutoLeavesFourParticlesNearAnyPose) {
 TEST(DefaultSettingsTest, DefaultsFitTheOptionsAUserGives) {
   DelibotSettings s = DefaultDelibotSettings();
   EXPECT_EQ(s.sensor_model, SensorModelKind::kLikelihoodThenBeam);
+  EXPECT_TRUE(s.audit_claims);
   std::string error;
   EXPECT_TRUE(s.mcl.IsValid(&error)) << error;
   // A small set: the floor follows it, so that it stays valid.
@@ -282,6 +283,13 @@ TEST(DefaultSettingsTest, DefaultsFitTheOptionsAUserGives) {
   EXPECT_EQ(s.mcl.initial_particle_count, 0);
   EXPECT_EQ(s.mcl.hypothesis_floor.min_particles, 0);
   EXPECT_EQ(s.mcl.max_particle_count, 0);
+  EXPECT_FALSE(s.audit_claims);
+  // ... but an audit asked for stays, for the engine to refuse.
+  s = DefaultDelibotSettings();
+  GivenDelibotOptions audit_given;
+  audit_given.claim_audit = true;
+  FitDefaultsToGivenOptions(s, audit_given, true);
+  EXPECT_TRUE(s.audit_claims);
 }
 
 struct Demo {
@@ -305,9 +313,9 @@ Demo MakeDemo(int records) {
 
 // The README's first command (`rcbench delibot`, seed 1): converged within
 // the first quarter of the records, the filter's own claim made there too,
-// never withdrawn, and every record after it within 1 m of the truth; then
-// tracked by the beam model, whose ray casts the backends price, to about
-// a centimetre.
+// never withdrawn, its audit passed, and every record after it within 1 m
+// of the truth; then tracked by the beam model, whose ray casts the
+// backends price, to about a centimetre.
 TEST(DefaultSettingsTest, TheDemoConvergesEarlyAndClaimsOnlyWhatHolds) {
   const Demo demo = MakeDemo(400);
   const DelibotResult r = RunDelibot(demo.grid, demo.trace, &demo.truth, DefaultDelibotSettings());
@@ -318,6 +326,10 @@ TEST(DefaultSettingsTest, TheDemoConvergesEarlyAndClaimsOnlyWhatHolds) {
   ASSERT_GE(m.self_convergence_iteration, 0);
   EXPECT_LT(m.self_convergence_iteration, 100);
   EXPECT_EQ(m.claims_withdrawn, 0);
+  EXPECT_EQ(m.claims_refused, 0);
+  long audits_passed = 0;
+  for (const DelibotRow& row : r.rows) audits_passed += row.claim_audit == ClaimAuditOutcome::kPassed;
+  EXPECT_EQ(audits_passed, 1);
   EXPECT_EQ(m.standing_claim_iteration, m.self_convergence_iteration);
   EXPECT_TRUE(m.converged);
   EXPECT_EQ(m.jumps_after_convergence, 0);

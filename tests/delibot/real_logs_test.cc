@@ -302,10 +302,14 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogCautiousRecipe,
 // are alive, then the beam model. Checked where each stage matters:
 // robotdata3, where the beam model's product drifts 1.2 m from the
 // reference while tracking and the cube sum the defaults use does not, and
-// robotdata4, the shortest log. Seed 1: a claim in the first half, never
-// withdrawn, every checkpoint after it within 1 m, the beam model tracking
-// from the hand-over on (ray casts: several nodes per query), and the end
-// within 0.3 m of the reference.
+// robotdata4, the shortest log. Seed 1: a claim, never withdrawn, the
+// beam model tracking from the hand-over on (ray casts: several nodes per
+// query), every checkpoint from the hand-over on within 1 m, and the end
+// within 0.3 m of the reference. The claim audit makes the claim late
+// (records 1158 of 1240 and 536 of 600): Wean's corridors look alike over
+// a few scans, and a claim is made only once its scans single out its
+// place. The audit does not steer the filter, so the hand-over comes as
+// early as without it.
 class RealLogDefaultSettings : public ::testing::TestWithParam<RealLog> {};
 
 TEST_P(RealLogDefaultSettings, ClaimsOnlyWhatHoldsAndTracksWithTheBeamModel) {
@@ -315,14 +319,22 @@ TEST_P(RealLogDefaultSettings, ClaimsOnlyWhatHoldsAndTracksWithTheBeamModel) {
   EXPECT_FALSE(r.summary.any_non_finite_weight);
   const long claim = r.summary.convergence_iteration;
   ASSERT_GE(claim, 0);
-  EXPECT_LT(claim, static_cast<long>(r.rows.size()) / 2);
   EXPECT_EQ(r.summary.claims_withdrawn, 0);
   EXPECT_EQ(r.summary.standing_claim_iteration, claim);
+  long hand_over = -1;
+  for (const DelibotRow& row : r.rows)
+    if (row.tracking_stage) {
+      hand_over = row.iteration;
+      break;
+    }
+  ASSERT_GE(hand_over, 0);
+  EXPECT_LE(hand_over, claim + 10);
   for (const Checkpoint& c : GetParam().checkpoints)
-    if (c.record >= claim) {
+    if (c.record >= std::min(hand_over, claim)) {
       EXPECT_LT(PositionError(r.rows[c.record], c.reference), 1.0) << GetParam().name << " record " << c.record;
     }
-  // The hand-over comes with the claim: at most its 10 updates later.
+  // Once handed over, the beam model tracks: at most 10 updates of the
+  // global model after the claim.
   int global_updates_after_claim = 0;
   for (const DelibotRow& row : r.rows)
     if (row.iteration >= claim && row.sensor_updated) {

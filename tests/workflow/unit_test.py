@@ -346,16 +346,16 @@ class ClaimAuditAnalysis(unittest.TestCase):
                            "accuracy.convergence_iteration_without_ground_truth": claim,
                            "accuracy.claims_refused_by_audit": refused, "totals.wall_s": host_s})
 
-        # Seed 1: both claim at 2 and hold. Seed 2: the defaults claim at 0 a
+        # Seed 1: both claim at 2 and hold. Seed 2: the unaudited run claims at 0 a
         # place 5 m off (wrong); the audit never claims. Seed 3: the
-        # defaults' claim holds, the audit's comes at 8 with only 1 of 2
+        # unaudited claim holds, the audit's comes at 8 with only 1 of 2
         # records within 1 m (wrong), so that held claim is lost.
         near, far = [0.1] * 10, [5.0] * 10
-        point("maze", 1, "defaults", 2, near, 0, 10.0)
+        point("maze", 1, "unaudited", 2, near, 0, 10.0)
         point("maze", 1, "audit", 2, near, 0, 12.0)
-        point("maze", 2, "defaults", 0, far, 0, 20.0)
+        point("maze", 2, "unaudited", 0, far, 0, 20.0)
         point("maze", 2, "audit", -1, far, 7, 60.0)
-        point("maze", 3, "defaults", 1, near, 0, 30.0)
+        point("maze", 3, "unaudited", 1, near, 0, 30.0)
         point("maze", 3, "audit", 8, near[:8] + [0.1, 3.0], 2, 40.0)
         merged = os.path.join(work, "m.csv")
         pd.DataFrame(points).to_csv(merged, index=False)
@@ -365,7 +365,7 @@ class ClaimAuditAnalysis(unittest.TestCase):
         self.assertEqual(p.returncode, 0, p.stderr)
         with open(os.path.join(out, "claim_audit_study.md")) as f:
             md = f.read()
-        self.assertIn("| maze | defaults | 3 | 3 / 2 / 1 / 0 | 0, 1, 2 | 0 | 20.0 |", md)
+        self.assertIn("| maze | unaudited | 3 | 3 / 2 / 1 / 0 | 0, 1, 2 | 0 | 20.0 |", md)
         self.assertIn("| maze | audit | 3 | 2 / 1 / 1 / 1 | 2, 8 | 9 | 40.0 |", md)
         self.assertIn("Held claims lost with audits: maze seed 3 (claim at record 1 without audits).", md)
         rows = pd.read_csv(os.path.join(out, "claim_audit_study.csv"))

@@ -24,6 +24,10 @@ DelibotSettings DefaultDelibotSettings() {
   s.mcl.hypothesis_floor = {kDefaultFloorParticles, kDefaultWindowNats};
   s.mcl.max_particle_count = kDefaultMaxParticles;
   s.mcl.alpha_slow = 0.0;
+  // docs/defaults.md, "The claim audit": on held-out traces it refused
+  // every wrong claim the filter made (38 in 123 runs) and lost no claim
+  // that held, at 1.2-2x the host time; on the real logs every claim holds.
+  s.audit_claims = true;
   return s;
 }
 
@@ -34,6 +38,7 @@ std::string FitDefaultsToGivenOptions(DelibotSettings& s, const GivenDelibotOpti
     if (!given.initial_particles) m.initial_particle_count = 0;
     if (!given.hypothesis_floor) m.hypothesis_floor.min_particles = 0;
     if (!given.max_particles) m.max_particle_count = 0;
+    if (!given.claim_audit) s.audit_claims = false;
     if (!given.sensor_model && s.sensor_model == SensorModelKind::kLikelihoodThenBeam) {
       s.sensor_model = SensorModelKind::kBeam;
       notes += "note: MRPT has no staged sensor model; its beam model (ray tracing) runs\n";

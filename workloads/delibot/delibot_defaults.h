@@ -15,7 +15,8 @@ namespace rc {
 // belief has rivals, the beam model (also the cube sum) once one hypothesis is left;
 // the dense first set sized by the map (kAutoInitialParticles); a
 // 500-particle floor per hypothesis in a 6-nat window, the set growing to
-// 20000 while rivals are alive; no random injection.
+// 20000 while rivals are alive; no random injection; every claim of being
+// localized audited before it is made (claim_audit.h).
 DelibotSettings DefaultDelibotSettings();
 
 // Which options the user gave; the defaults of the others follow them.
@@ -24,6 +25,7 @@ struct GivenDelibotOptions {
   bool initial_particles = false;
   bool hypothesis_floor = false;
   bool max_particles = false;
+  bool claim_audit = false;  // --claim-audit or --no-claim-audit
 };
 
 // Fits the defaults the user did not override to the options they gave:

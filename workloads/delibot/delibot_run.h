@@ -61,14 +61,16 @@ struct DelibotSettings {
   double jump_threshold_m = 1.0;
   // Audit every claim as it falls due (claim_audit.h) and make it only if
   // the audit passes: the localizer keeps the last claim_audit_scans scans
-  // (MclOptions::claim_audit_scans) and RunDelibot audits on them. Off by
-  // default (docs/defaults.md, "The claim audit").
+  // (MclOptions::claim_audit_scans) and RunDelibot audits on them. Off in
+  // these plain settings, on in DefaultDelibotSettings (`rcbench delibot`;
+  // docs/defaults.md, "The claim audit").
   bool audit_claims = false;
   int claim_audit_scans = kClaimAuditScans;  // [1, 1000] sensor updates (--claim-audit-scans)
   // Shadow costing: every modelled backend prices every update's ray batch
   // (beam model only; the likelihood field casts no rays), and the policy
   // picks the backend that "ran". Off by default in the library (pricing
-  // costs 2-5x the filter); the CLI turns it on unless --no-pricing.
+  // costs about 1.1-1.35x the unpriced run, docs/pricing.md); the CLI turns
+  // it on unless --no-pricing.
   bool price_backends = false;
   BackendParameters backend_params;
   LedgerOptions ledger;
