@@ -9,10 +9,11 @@ the true first pose (mode=tracking). This script reports, per map:
     0.2 m and 5 deg for 10 consecutive records, and still so at the end);
   - the median tracking error, the runs still within 0.2 m at the end, and
     the jumps (estimate moved > 1 m between records) after convergence;
-  - whether global localization's own (ground-truth-free) claim of
-    convergence held: at least 95 % of the records from the claim on within
-    1 m of the truth (what a user without ground truth would have relied
-    on), and the same for the claim standing at the end (a claim the filter
+  - global localization's own (ground-truth-free) claims of convergence:
+    made, held, wrong and never made, and the median claim record (a claim
+    held if at least 95 % of the records from it on are within 1 m of the
+    truth: what a user without ground truth would have relied on), and
+    whether the claim standing at the end held (a claim the filter
     contradicted later, by a jump or injected particles, is withdrawn).
 Why these settings (1000 records, 500 tracking particles): docs/studies.md.
 
@@ -81,6 +82,8 @@ def summary(seeds):
         trk = sel["tracking_median_err_xy_m"]
         its = list(conv["global_convergence_iteration"])
         n = len(sel)
+        made = sel[sel["global_own_claim_record"] >= 0]
+        held = int(made["global_own_claim_held"].sum())
         out.append({
             "map": name, "seeds": n,
             "global_converged": f"{len(conv)}/{n} ({100 * len(conv) / n:.0f}%)",
@@ -90,7 +93,8 @@ def summary(seeds):
             "worst_tracking_median_err_xy_m": f"{trk.max():.3f}",
             "tracking_localized_at_end": f"{int(sel['tracking_converged'].sum())}/{n}",
             "tracking_jumps": int(sel["tracking_jumps"].sum()),
-            "global_own_claim_held": f"{int(sel['global_own_claim_held'].sum())}/{n}",
+            "global_own_claims_made_held_wrong_never": f"{len(made)} / {held} / {len(made) - held} / {n - len(made)}",
+            "global_median_own_claim_record": statistics.median(made["global_own_claim_record"]) if len(made) else "-",
             "global_standing_claim_held": f"{int(sel['global_standing_claim_held'].sum())}/{n}",
         })
     return pd.DataFrame(out)
@@ -99,7 +103,8 @@ def summary(seeds):
 def markdown(table):
     head = ["map", "seeds", "global localization converged", "median convergence record",
             "jumps after global convergence", "tracking median error (m)", "worst tracking median (m)",
-            "tracking still localized at the end", "tracking jumps", "global: own claim held",
+            "tracking still localized at the end", "tracking jumps",
+            "global: own claims made / held / wrong / never", "global: median own claim record",
             "global: claim standing at the end held"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for _, r in table.iterrows():

@@ -276,6 +276,17 @@ TEST(DefaultSettingsTest, DefaultsFitTheOptionsAUserGives) {
   s.mcl.particle_count = 300;
   FitDefaultsToGivenOptions(s, given, false);
   EXPECT_FALSE(s.mcl.IsValid(&error));
+  // The beam model alone: claims unaudited, with a note, unless asked for.
+  s = DefaultDelibotSettings();
+  s.sensor_model = SensorModelKind::kBeam;
+  EXPECT_NE(FitDefaultsToGivenOptions(s, {}, false).find("not audited"), std::string::npos);
+  EXPECT_FALSE(s.audit_claims);
+  s = DefaultDelibotSettings();
+  s.sensor_model = SensorModelKind::kBeam;
+  GivenDelibotOptions asked;
+  asked.claim_audit = true;
+  EXPECT_EQ(FitDefaultsToGivenOptions(s, asked, false), "");
+  EXPECT_TRUE(s.audit_claims);
   // MRPT has none of our filter's extras, and no staged model.
   s = DefaultDelibotSettings();
   EXPECT_NE(FitDefaultsToGivenOptions(s, {}, true).find("beam"), std::string::npos);

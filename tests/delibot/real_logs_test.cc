@@ -306,7 +306,7 @@ INSTANTIATE_TEST_SUITE_P(Wean, RealLogCautiousRecipe,
 // beam model tracking from the hand-over on (ray casts: several nodes per
 // query), every checkpoint from the hand-over on within 1 m, and the end
 // within 0.3 m of the reference. The claim audit makes the claim late
-// (records 1158 of 1240 and 536 of 600): Wean's corridors look alike over
+// (records 1158 of 1241 and 536 of 600): Wean's corridors look alike over
 // a few scans, and a claim is made only once its scans single out its
 // place. The audit does not steer the filter, so the hand-over comes as
 // early as without it.

@@ -372,5 +372,46 @@ class ClaimAuditAnalysis(unittest.TestCase):
         self.assertEqual(len(rows), 6)
 
 
+class AccuracyAnalysis(unittest.TestCase):
+    """scripts/accuracy_study.py: global localization's own claims counted as
+    made / held / wrong / never, with the median claim record."""
+
+    def test_claims_made_held_wrong_never(self):
+        import subprocess
+        import pandas as pd
+        work = tempfile.mkdtemp(prefix="rc_accuracy_test_")
+        self.addCleanup(shutil.rmtree, work)
+        points = []
+
+        def point(seed, mode, claim, errors):
+            folder = os.path.join(work, f"{seed}_{mode}")
+            os.makedirs(folder)
+            with open(os.path.join(folder, "timeline.csv"), "w") as f:
+                f.write("iteration,err_xy_m\n" + "".join(f"{i},{e}\n" for i, e in enumerate(errors)))
+            points.append({"point": os.path.basename(folder), "status": "ok", "folder": folder, "map_label": "m",
+                           "mode": mode, "seed": seed, "accuracy.convergence_iteration": 0,
+                           "accuracy.converged_at_end": True, "accuracy.median_err_xy_m": errors[-1],
+                           "accuracy.final_err_xy_m": errors[-1], "accuracy.jumps_after_convergence": 0,
+                           "totals.wall_per_update_s": 0.01,
+                           "accuracy.convergence_iteration_without_ground_truth": claim,
+                           "accuracy.standing_claim_iteration": claim})
+
+        # Seed 1 claims at 2 and holds, seed 2 claims at 4 a place 5 m off,
+        # seed 3 never claims.
+        near, far = [0.1] * 10, [5.0] * 10
+        for seed, claim, errors in ((1, 2, near), (2, 4, far), (3, -1, near)):
+            point(seed, "global", claim, errors)
+            point(seed, "tracking", -1, near)
+        merged = os.path.join(work, "m.csv")
+        pd.DataFrame(points).to_csv(merged, index=False)
+        out = os.path.join(work, "analysis")
+        script = os.path.join(REPO, "scripts", "accuracy_study.py")
+        p = subprocess.run([sys.executable, script, merged, out], capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        with open(os.path.join(out, "accuracy_study.md")) as f:
+            md = f.read()
+        self.assertIn("| 2 / 1 / 1 / 1 | 3.0 | 1/3 |", md)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)

@@ -45,6 +45,16 @@ std::string FitDefaultsToGivenOptions(DelibotSettings& s, const GivenDelibotOpti
     }
     return notes;
   }
+  // The audit was checked scoring places with the likelihood field (a
+  // staged or likelihood model's PlaceModel); with the beam model alone it
+  // would cast a ray per beam for each of up to 4e6 uniform poses, and it
+  // was never checked so.
+  if (!given.claim_audit && s.audit_claims && s.sensor_model == SensorModelKind::kBeam) {
+    s.audit_claims = false;
+    notes +=
+        "note: claims are not audited with --sensor-model beam (the audit was checked scoring with the "
+        "likelihood field; --claim-audit asks for it)\n";
+  }
   if (!given.hypothesis_floor)
     m.hypothesis_floor.min_particles = std::min(m.hypothesis_floor.min_particles, m.particle_count / 2);
   if (!given.max_particles)

@@ -33,7 +33,9 @@ struct GivenDelibotOptions {
 // MclOptions), the set's cap at least the particles and 0 without a floor.
 // For the MRPT engine the options MRPT has no counterpart of go back to
 // "off" unless given (given, the engine refuses them), and an unstated
-// sensor model is the beam model: MRPT has no staged model. Returns notes
+// sensor model is the beam model: MRPT has no staged model. With our
+// engine and the beam model alone, claims are not audited unless asked
+// (the audit was checked scoring with the likelihood field). Returns notes
 // for the user, one per line, empty if none.
 std::string FitDefaultsToGivenOptions(DelibotSettings& settings, const GivenDelibotOptions& given, bool mrpt_engine);
 

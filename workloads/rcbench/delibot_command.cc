@@ -25,6 +25,7 @@
 #include "workloads/delibot/delibot_report.h"
 #include "workloads/delibot/delibot_run.h"
 #include "workloads/delibot/mrpt/delibot_engine.h"
+#include "workloads/delibot/returns_beyond_reach.h"
 #include "workloads/delibot/trace_simulator.h"
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/demo_inputs.h"
@@ -168,6 +169,7 @@ void Run(DelibotCli& cli) {
             << s.mcl.beams.beam_step << " beam(s), " << (s.initial_pose ? "tracking" : "global localization")
             << (s.audit_claims ? ", claims audited" : "") << ", seed " << s.mcl.seed << ", " << provenance.threads
             << " thread(s)\n";
+  std::cout << BeyondReachNote(CountReturnsBeyondReach(*scans, s.beam.max_range_m), s.beam.max_range_m);
   const LaserGeometry& geometry = scans->geometry();
   const std::uint64_t need = DelibotMemoryLowerBound(s, geometry.beam_count);
   if (need > MemoryCapBytes())
