@@ -325,13 +325,26 @@ class SensitivityAnalysis(unittest.TestCase):
             self.assertIn("| A vs B | p.x |", f.read())
 
 
+def run_analysis(test, work, points, name):
+    """Runs scripts/<name>.py on `points` as a merged study table in `work`;
+    returns the <name>.md it wrote (the test fails if the script does)."""
+    import subprocess
+    import pandas as pd
+    merged = os.path.join(work, "m.csv")
+    pd.DataFrame(points).to_csv(merged, index=False)
+    out = os.path.join(work, "analysis")
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", name + ".py"), merged, out],
+                       capture_output=True, text=True)
+    test.assertEqual(p.returncode, 0, p.stderr)
+    with open(os.path.join(out, name + ".md")) as f:
+        return f.read()
+
+
 class ClaimAuditAnalysis(unittest.TestCase):
     """scripts/claim_audit_study.py: a claim graded held or wrong from its
     timeline, a run that never claimed, and a held claim the audit lost."""
 
     def test_claims_graded_and_lost_claims_named(self):
-        import subprocess
-        import pandas as pd
         work = tempfile.mkdtemp(prefix="rc_claim_audit_test_")
         self.addCleanup(shutil.rmtree, work)
         points = []
@@ -357,19 +370,12 @@ class ClaimAuditAnalysis(unittest.TestCase):
         point("maze", 2, "audit", -1, far, 7, 60.0)
         point("maze", 3, "unaudited", 1, near, 0, 30.0)
         point("maze", 3, "audit", 8, near[:8] + [0.1, 3.0], 2, 40.0)
-        merged = os.path.join(work, "m.csv")
-        pd.DataFrame(points).to_csv(merged, index=False)
-        out = os.path.join(work, "analysis")
-        script = os.path.join(REPO, "scripts", "claim_audit_study.py")
-        p = subprocess.run([sys.executable, script, merged, out], capture_output=True, text=True)
-        self.assertEqual(p.returncode, 0, p.stderr)
-        with open(os.path.join(out, "claim_audit_study.md")) as f:
-            md = f.read()
+        md = run_analysis(self, work, points, "claim_audit_study")
         self.assertIn("| maze | unaudited | 3 | 3 / 2 / 1 / 0 | 0, 1, 2 | 0 | 20.0 |", md)
         self.assertIn("| maze | audit | 3 | 2 / 1 / 1 / 1 | 2, 8 | 9 | 40.0 |", md)
         self.assertIn("Held claims lost with audits: maze seed 3 (claim at record 1 without audits).", md)
-        rows = pd.read_csv(os.path.join(out, "claim_audit_study.csv"))
-        self.assertEqual(len(rows), 6)
+        with open(os.path.join(work, "analysis", "claim_audit_study.csv")) as f:
+            self.assertEqual(len(f.read().splitlines()), 1 + 6)  # a header, a row per point
 
 
 class AccuracyAnalysis(unittest.TestCase):
@@ -377,8 +383,6 @@ class AccuracyAnalysis(unittest.TestCase):
     made / held / wrong / never, with the median claim record."""
 
     def test_claims_made_held_wrong_never(self):
-        import subprocess
-        import pandas as pd
         work = tempfile.mkdtemp(prefix="rc_accuracy_test_")
         self.addCleanup(shutil.rmtree, work)
         points = []
@@ -402,14 +406,7 @@ class AccuracyAnalysis(unittest.TestCase):
         for seed, claim, errors in ((1, 2, near), (2, 4, far), (3, -1, near)):
             point(seed, "global", claim, errors)
             point(seed, "tracking", -1, near)
-        merged = os.path.join(work, "m.csv")
-        pd.DataFrame(points).to_csv(merged, index=False)
-        out = os.path.join(work, "analysis")
-        script = os.path.join(REPO, "scripts", "accuracy_study.py")
-        p = subprocess.run([sys.executable, script, merged, out], capture_output=True, text=True)
-        self.assertEqual(p.returncode, 0, p.stderr)
-        with open(os.path.join(out, "accuracy_study.md")) as f:
-            md = f.read()
+        md = run_analysis(self, work, points, "accuracy_study")
         self.assertIn("| 2 / 1 / 1 / 1 | 3.0 | 1/3 |", md)
 
 
