@@ -26,6 +26,7 @@ struct GivenDelibotOptions {
   bool hypothesis_floor = false;
   bool max_particles = false;
   bool claim_audit = false;  // --claim-audit or --no-claim-audit
+  bool max_range = false;    // --max-range (not given: fitted to the trace, returns_beyond_reach.h)
 };
 
 // Fits the defaults the user did not override to the options they gave:

@@ -156,6 +156,9 @@ void Run(DelibotCli& cli) {
     }
   }
 
+  // Before anything reads the reach; the summary records the fitted one.
+  std::cout << FitReachToTrace(s.beam.max_range_m, CountReturnsBeyondReach(*scans, s.beam.max_range_m),
+                               cli.given.max_range);
   // "auto" resolved here, so that the summary records the count drawn.
   const double free_area_m2 =
       static_cast<double>(grid.CountCells(CellState::kFree)) * grid.resolution_m() * grid.resolution_m();
@@ -169,7 +172,6 @@ void Run(DelibotCli& cli) {
             << s.mcl.beams.beam_step << " beam(s), " << (s.initial_pose ? "tracking" : "global localization")
             << (s.audit_claims ? ", claims audited" : "") << ", seed " << s.mcl.seed << ", " << provenance.threads
             << " thread(s)\n";
-  std::cout << BeyondReachNote(CountReturnsBeyondReach(*scans, s.beam.max_range_m), s.beam.max_range_m);
   const LaserGeometry& geometry = scans->geometry();
   const std::uint64_t need = DelibotMemoryLowerBound(s, geometry.beam_count);
   if (need > MemoryCapBytes())
@@ -292,7 +294,10 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--seed", s.mcl.seed, "Random seed (unitless)")->capture_default_str();
   cmd->add_option("--max-records", s.max_records, "Process at most N laser records (count; 0 = all)")
       ->capture_default_str();
-  cmd->add_option("--max-range", s.beam.max_range_m, "Model max range (m); readings at or beyond are 'no return'")
+  cmd->add_option("--max-range", s.beam.max_range_m,
+                  "Model max range (m); readings at or beyond are 'no return'. Not given: 10, widened to cover 95% "
+                  "of the trace's returns when more than a quarter lie beyond it (docs/delibot.md, \"Max range\")")
+      ->each([cli](const std::string&) { cli->given.max_range = true; })
       ->capture_default_str();
   cmd->add_option("--sigma-hit", s.beam.sigma_hit_m, "Beam model hit sigma (m)")->capture_default_str();
   cmd->add_option("--z-hit", s.beam.z_hit, "Beam model hit weight (unitless)")->capture_default_str();
