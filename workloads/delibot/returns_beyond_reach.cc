@@ -12,15 +12,15 @@ double ReturnsBeyondReach::QuantileM(double q) const {
   long below = 0;
   for (std::size_t i = 0; i < bins.size(); ++i) {
     below += bins[i];
-    if (static_cast<double>(below) >= wanted) return static_cast<double>(i + 1) * kReachBinM;
+    if (static_cast<double>(below) >= wanted) return static_cast<double>(i + 1) / kReachBinsPerM;
   }
-  return static_cast<double>(bins.size()) * kReachBinM;
+  return static_cast<double>(bins.size()) / kReachBinsPerM;
 }
 
 ReturnsBeyondReach CountReturnsBeyondReach(ScanSource& scans, double model_max_range_m) {
   ReturnsBeyondReach count;
   const double sensor_max_m = scans.geometry().max_range_m;
-  count.bins.assign(static_cast<std::size_t>(std::ceil(sensor_max_m / kReachBinM)) + 1, 0);
+  count.bins.assign(static_cast<std::size_t>(std::ceil(sensor_max_m * kReachBinsPerM)) + 1, 0);
   scans.Rewind();
   LaserScan scan;
   while (scans.Next(scan))
@@ -29,7 +29,7 @@ ReturnsBeyondReach CountReturnsBeyondReach(ScanSource& scans, double model_max_r
       ++count.returns;
       count.beyond += r >= model_max_range_m;
       count.longest_m = std::max(count.longest_m, static_cast<double>(r));
-      ++count.bins[std::min(count.bins.size() - 1, static_cast<std::size_t>(r / kReachBinM))];
+      ++count.bins[std::min(count.bins.size() - 1, static_cast<std::size_t>(r * kReachBinsPerM))];
     }
   scans.Rewind();
   return count;

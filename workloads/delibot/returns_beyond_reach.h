@@ -27,15 +27,15 @@ inline constexpr double kBeyondReachNoteFraction = 0.25;
 // Source: what the default 10 m covers on the Wean logs the defaults were
 // chosen on (their 95th percentile returns are 9.7-10.5 m).
 inline constexpr double kWidenedReachQuantile = 0.95;
-// The width of the return-length bins the quantile is read from (m); a
-// widened reach is a bin's upper edge. Source: the Wean map's cell.
-inline constexpr double kReachBinM = 0.1;
+// Return-length bins per metre (0.1 m bins) the quantile is read from; a
+// widened reach is a bin's upper edge. Source: the Wean map's 0.1 m cell.
+inline constexpr int kReachBinsPerM = 10;
 
 struct ReturnsBeyondReach {
   long returns = 0;        // readings below the sensor's max range
   long beyond = 0;         // of those, at or beyond the models' max range
   double longest_m = 0.0;  // the longest return (m)
-  std::vector<long> bins;  // returns per kReachBinM of length, from 0
+  std::vector<long> bins;  // returns per 1 / kReachBinsPerM m of length, from 0
   double Fraction() const { return returns > 0 ? static_cast<double>(beyond) / returns : 0.0; }
   // The smallest bin edge (m) that at least `q` of the returns lie below.
   double QuantileM(double q) const;
