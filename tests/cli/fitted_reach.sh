@@ -5,12 +5,7 @@
 # reach (note and summary agree), and with --max-range 10 keeps it and says
 # what it leaves out; on the office, nothing is fitted or said.
 # Usage: fitted_reach.sh <path to rcbench>
-set -u
-RCBENCH="$1"
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-cd "$WORK"
-fail() { echo "FAIL $*"; exit 1; }
+source "$(dirname "$0")/cli_check_start.sh" "$@"
 
 "$RCBENCH" make-map --kind hall --output hall.yaml >/dev/null || fail "make-map hall"
 "$RCBENCH" simulate --map hall.yaml --output hall.log --records 60 --seed 701 >/dev/null || fail "simulate hall"

@@ -4,12 +4,7 @@
 # localizes; the same log run with a wrong --laser-offset does not, so the
 # mount the reader measured is the one the filter used.
 # Usage: other_robot_mount.sh <path to rcbench>
-set -u
-RCBENCH="$1"
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-cd "$WORK"
-fail() { echo "FAIL $*"; exit 1; }
+source "$(dirname "$0")/cli_check_start.sh" "$@"
 
 "$RCBENCH" make-map --output map.yaml >/dev/null || fail "make-map"
 "$RCBENCH" simulate --map map.yaml --output mount20.log --records 80 --laser-offset 0.2 >/dev/null || fail "simulate"

@@ -4,12 +4,7 @@
 # run); the same run to completion leaves the complete timeline without the
 # marker, with the hindsight oracle's columns (traces/csv_table.h).
 # Usage: sigkill_timeline.sh <path to rcbench>
-set -u
-RCBENCH="$1"
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-cd "$WORK"
-fail() { echo "FAIL $*"; exit 1; }
+source "$(dirname "$0")/cli_check_start.sh" "$@"
 
 "$RCBENCH" make-map --output map.yaml >/dev/null || fail "make-map"
 "$RCBENCH" simulate --map map.yaml --output long.log --records 400 >/dev/null || fail "simulate"
