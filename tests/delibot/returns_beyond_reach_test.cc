@@ -71,7 +71,7 @@ TEST(ReturnsBeyondReachTest, WidensTheReachOnlyWhenNotGivenAndMoreThanAQuarterLi
 TEST(ReturnsBeyondReachTest, QuietUpToTheThreshold) {
   ReturnsBeyondReach c;
   c.returns = 100;
-  c.beyond = static_cast<long>(kBeyondReachNoteFraction * 100);
+  c.beyond = static_cast<long>(kBeyondReachFraction * 100);
   c.bins.assign(10, 10);
   double reach = 10.0;
   EXPECT_EQ(FitReachToTrace(reach, c, false), "");

@@ -36,7 +36,7 @@ ReturnsBeyondReach CountReturnsBeyondReach(ScanSource& scans, double model_max_r
 }
 
 std::string FitReachToTrace(double& max_range_m, const ReturnsBeyondReach& count, bool max_range_given) {
-  if (count.Fraction() <= kBeyondReachNoteFraction) return "";
+  if (count.Fraction() <= kBeyondReachFraction) return "";
   const double beyond_percent = 100.0 * count.Fraction();
   if (max_range_given)
     return fmt::format(

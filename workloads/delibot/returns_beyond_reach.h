@@ -22,7 +22,7 @@ namespace rc {
 // four Wean logs and the held-out robotdata5 3-6 %, a simulated Intel lab
 // trace 8 %, the demo and the MovingAI traces of the claim audit's checks
 // (at 0.05 m cells) 0-1 %; the generated hall 40 %.
-inline constexpr double kBeyondReachNoteFraction = 0.25;
+inline constexpr double kBeyondReachFraction = 0.25;
 // The share of the returns a widened reach covers. Unit: fraction, (0, 1].
 // Source: what the default 10 m covers on the Wean logs the defaults were
 // chosen on (their 95th percentile returns are 9.7-10.5 m).
@@ -45,7 +45,7 @@ struct ReturnsBeyondReach {
 ReturnsBeyondReach CountReturnsBeyondReach(ScanSource& scans, double model_max_range_m);
 
 // Fits the models' reach to the trace: with --max-range not given and more
-// than kBeyondReachNoteFraction of the returns beyond `max_range_m`, widens
+// than kBeyondReachFraction of the returns beyond `max_range_m`, widens
 // it to the kWidenedReachQuantile return. Returns the note for the user
 // (one line ending in a newline: the reach widened, or, given, that many
 // returns lie beyond it), or "" when at most that share lies beyond.

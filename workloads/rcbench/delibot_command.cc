@@ -272,7 +272,8 @@ void AddDelibotCommand(CLI::App& app) {
       ->capture_default_str();
   CLI::Option* claim_audit =
       cmd->add_flag("--claim-audit", s.audit_claims,
-                    "Audit each claim of being localized before making it (the default): the claim's latest "
+                    "Audit each claim of being localized before making it (the default, but with --sensor-model beam "
+                    "only when given): the claim's latest "
                     "scans must single out the claimed place among uniform poses near it, then over the whole "
                     "map (as many as the auto first set), by the rival window; a refused claim is not made "
                     "(docs/defaults.md, \"The claim audit\")")
