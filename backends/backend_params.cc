@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "backends/json_document.h"
 #include "common/input_error.h"
 
 namespace rc {
@@ -328,14 +329,7 @@ struct VariantLister {
 }  // namespace
 
 BackendParameters ParseBackendParameters(const std::string& json_text, const std::string& file_name) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::exception& e) {
-    // Not only parse_error: a number too large for a double is out_of_range
-    // (a tests/fuzz finding that escaped as an uncaught exception).
-    throw InputError(file_name, 0, "", std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json j = ParseJsonDocument(json_text, file_name);
   if (!j.is_object()) throw InputError(file_name, 0, "", "expected a JSON object at the top level");
   std::map<std::string, nlohmann::json> values;
   Flatten(j, "", values);
@@ -355,12 +349,7 @@ std::vector<ParameterVariants> SweepVariants(const BackendParameters& p) {
 
 BackendParameters WithParameter(const BackendParameters& p, const std::string& key, const std::string& json_value) {
   BackendParameters out = p;
-  nlohmann::json value;
-  try {
-    value = nlohmann::json::parse(json_value);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError("<parameter>", 0, key, std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json value = ParseJsonDocument(json_value, "<parameter>", key);
   ApplyOverrides(out, {{key, value}}, "<parameter>");
   return out;
 }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "backends/json_document.h"
 #include "common/input_error.h"
 
 namespace rc {
@@ -45,12 +46,7 @@ BackendPreset ArtifactPreset() {
 }
 
 BackendPreset ParseBackendPreset(const std::string& json_text, const std::string& file_name) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(file_name, 0, "", std::string("not valid JSON: ") + e.what());
-  }
+  nlohmann::json j = ParseJsonDocument(json_text, file_name);
   if (!j.is_object()) throw InputError(file_name, 0, "", "expected a JSON object at the top level");
   BackendPreset preset;
   preset.name = file_name;

@@ -9,6 +9,7 @@
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
+#include "backends/backend_preset.h"
 #include "common/input_error.h"
 #include "support/input_error_expectations.h"
 #include "support/temp_dir.h"
@@ -81,6 +82,19 @@ TEST(BackendParameters, InvalidValuesAndBadJson) {
   ParseError(R"({"gpu": {"sms": 888E888888}})");  // number overflow: out_of_range, not parse_error
   ParseError(R"([1, 2])");
   EXPECT_THROW(LoadBackendParameters("/nonexistent/params.json"), InputError);
+}
+
+// Every way into the parameters parses JSON in one place, so an overflowing
+// number is bad input on each (the preset path once let it escape as an
+// internal error), and a syntax error names its line.
+TEST(BackendParameters, EveryJsonEntryRefusesOverflowAsInput) {
+  const std::string overflow = R"({"gpu": {"sms": 1e400}})";
+  EXPECT_EQ(test::InputErrorFrom([&] { ParseBackendPreset(overflow, "preset.json"); }, overflow).file(), "preset.json");
+  EXPECT_EQ(test::InputErrorFrom([&] { WithParameter(BackendParameters{}, "gpu.sms", "1e400"); }, "1e400").field(),
+            "gpu.sms");
+  const std::string broken = "{\n  \"gpu\": {\n    \"sms\": ,\n  }\n}";
+  EXPECT_EQ(ParseError(broken).line(), 3);
+  EXPECT_EQ(test::InputErrorFrom([&] { ParseBackendPreset(broken, "preset.json"); }, broken).line(), 3);
 }
 
 TEST(BackendParameters, SactLatencyScaleScalesOnlyTheSactUnits) {
