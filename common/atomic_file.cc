@@ -19,6 +19,29 @@ void CreateParentFolders(const std::string& path) {
   if (error) throw OutputError(path, "cannot create the output folder '" + parent.string() + "': " + error.message());
 }
 
+void CheckOutputPaths(const std::vector<std::string>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> seen;
+  for (const std::string& path : paths) {
+    if (path.empty()) continue;
+    std::error_code error;
+    if (fs::is_directory(path, error)) throw OutputError(path, "is a folder; give a file path for this output");
+    for (fs::path above = fs::path(path).parent_path(); !above.empty(); above = above.parent_path()) {
+      if (!fs::exists(above, error)) {
+        if (above == above.parent_path()) break;
+        continue;
+      }
+      if (!fs::is_directory(above, error))
+        throw OutputError(path, "cannot create the output: '" + above.string() + "' is a file, not a folder");
+      break;
+    }
+    const fs::path normal = fs::absolute(path, error).lexically_normal();
+    for (const fs::path& other : seen)
+      if (other == normal) throw OutputError(path, "given for two outputs; each output needs its own path");
+    seen.push_back(normal);
+  }
+}
+
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temp_path_(path_ + ".tmp" + std::to_string(::getpid())) {
   CreateParentFolders(path_);

@@ -10,12 +10,22 @@
 // It does not fsync, so it promises nothing about an operating-system crash.
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace rc {
 
 // Creates the folders above `path` (nothing for a bare file name). Throws
 // OutputError naming the folder when that fails.
 void CreateParentFolders(const std::string& path);
+
+// Checks that each of `paths` (empty ones skipped) can become an output file:
+// it is not an existing folder, no file stands where a folder above it must
+// be, and no two of them are the same path. A command with several outputs
+// calls it with all of them before it starts work: each output is atomic,
+// but they are written one after another at the end, so without the check
+// a bad last path would fail the run after the first outputs were in place.
+// Throws OutputError naming the path.
+void CheckOutputPaths(const std::vector<std::string>& paths);
 
 class AtomicFile {
  public:

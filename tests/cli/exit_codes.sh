@@ -58,6 +58,46 @@ code 1 "collide missing boxes" -- collide --obbs absent.csv --scene shelf
 code 1 "movebot missing obstacles" -- movebot --obstacles absent.txt
 code 1 "backends bad params" -- backends --backend-params bad.json
 
+# Values a run cannot use are refused, never replaced by a default.
+code 2 "carribot --resolution nan" -- carribot --map wall.map --start 0,0 --goal 1,0 --resolution nan
+code 2 "delibot --map-resolution nan" -- delibot --map map.yaml --trace good.log --map-resolution nan
+code 2 "delibot --max-range inf" -- delibot --map map.yaml --trace good.log --max-range inf
+code 2 "delibot --initial-pose nan" -- delibot --map map.yaml --trace good.log --initial-pose nan,1,0
+code 2 "delibot --initial-pose off the map" -- delibot --map map.yaml --trace good.log --initial-pose 500,500,0
+grep -q "^rcbench: usage: --initial-pose" err.txt || { echo "FAIL --initial-pose: no usage line"; failures=$((failures + 1)); }
+# A JSON number beyond a double's range is bad input on every path in.
+printf '{"gpu": {"sms": 1e400}}' > overflow.json
+printf 'pos,joint,c_x,c_y,c_z,a_x1,a_y1,a_z1,a_x2,a_y2,a_z2,a_x3,a_y3,a_z3,h_x,h_y,h_z\n0,0,0,0,0.1,1,0,0,0,1,0,0,0,1,0.1,0.1,0.1\n' > one.csv
+code 1 "backends --backend-params 1e400" -- backends --backend-params overflow.json
+code 1 "collide --backend-params 1e400" -- collide --obbs one.csv --scene shelf --backend-params overflow.json
+# MoveBot: a start outside the joint limits is a bad command line, one in
+# collision with the scene bad input naming the scene's file.
+printf '0, 0, 0, 5, 5, 5, 0.1, 0.1, 0.1\n' > far.txt
+printf '0, 0, 0, 0, 0, 0.3, 2, 2, 2\n' > around.txt
+code 2 "movebot --start beyond a joint limit" -- movebot --obstacles far.txt --iterations 10 --start 2,0,0,0,0
+code 2 "movebot --start nan" -- movebot --obstacles far.txt --iterations 10 --start nan,0,0,0,0
+code 1 "movebot start in collision" -- movebot --obstacles around.txt --iterations 10
+grep -q "around.txt.*in collision" err.txt || { echo "FAIL movebot collision: file not named"; failures=$((failures + 1)); }
+# simulate on a map with no free cell: bad input, not an internal error.
+printf 'type octile\nheight 2\nwidth 2\nmap\n@@\n@@\n' > full.map
+code 1 "simulate no free cell" -- simulate --map full.map --output sim.log --records 3
+[ -e sim.log ] && { echo "FAIL simulate no free cell: wrote sim.log"; failures=$((failures + 1)); }
+
+# An output path that cannot be written fails before the run, so no other
+# output of the run is left behind.
+mkdir -p a_folder
+code 1 "carribot --path a folder" -- carribot --map wall.map --start 0,0 --goal 1,0 --timeline t1.csv --path a_folder
+code 1 "carribot --plot under a file" -- carribot --map wall.map --start 0,0 --goal 1,0 --timeline t1.csv --plot good.log/x.png
+code 1 "delibot --summary a folder" -- delibot --map map.yaml --trace good.log --timeline t1.csv --summary a_folder
+code 1 "movebot --path a folder" -- movebot --obstacles far.txt --iterations 10 --timeline t1.csv --path a_folder
+code 1 "simulate --ground-truth a folder" -- simulate --map map.yaml --output t1.log --ground-truth a_folder --records 3
+code 1 "collide --timeline a folder" -- collide --obbs one.csv --scene shelf --output t1.csv --timeline a_folder
+code 1 "make-map --output a folder" -- make-map --output a_folder
+code 1 "carribot two outputs, one path" -- carribot --map wall.map --start 0,0 --goal 1,0 --timeline t1.csv --path t1.csv
+for f in t1.csv t1.log a_folder.pgm; do
+  [ -e "$f" ] && { echo "FAIL an output was left behind: $f"; failures=$((failures + 1)); }
+done
+
 # No path: carribot's goal behind a wall; outputs are still written.
 code 3 "carribot unreachable" -- carribot --map wall.map --scen wall.map.scen --timeline t.csv --quiet
 [ -f t.csv ] || { echo "FAIL carribot unreachable: no timeline"; failures=$((failures + 1)); }

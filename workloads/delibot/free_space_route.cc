@@ -38,8 +38,7 @@ ReachableFreeSpace::ReachableFreeSpace(const OccupancyGrid& grid, double robot_r
       size_y_(grid.size_y()) {
   if (!(robot_radius_m > 0.0) || !std::isfinite(robot_radius_m))
     throw std::invalid_argument("robot radius must be a positive number of metres");
-  if (grid.CountCells(CellState::kFree) == 0)
-    throw std::invalid_argument("map has no free cell: there is nowhere to drive");
+  if (grid.CountCells(CellState::kFree) == 0) throw NoRoomToDrive("map has no free cell: there is nowhere to drive");
 
   const DistanceField field = DistanceField::Build(grid, DistanceTarget::kBlocking);
   const double required_m = robot_radius_m + kSqrt2 * resolution_m_ + kClearanceSlackM;
@@ -58,10 +57,10 @@ ReachableFreeSpace::ReachableFreeSpace(const OccupancyGrid& grid, double robot_r
     }
   }
   if (!any_safe)
-    throw std::invalid_argument("free space too narrow for a robot of radius " + Metres(robot_radius_m) +
-                                ": the widest free cell is " + Metres(widest_m) +
-                                " from the nearest blocking cell (centre to centre), the robot needs " +
-                                Metres(required_m) + " (radius + sqrt(2) * resolution)");
+    throw NoRoomToDrive("free space too narrow for a robot of radius " + Metres(robot_radius_m) +
+                        ": the widest free cell is " + Metres(widest_m) +
+                        " from the nearest blocking cell (centre to centre), the robot needs " + Metres(required_m) +
+                        " (radius + sqrt(2) * resolution)");
 
   // Largest 4-connected component of safe cells. 8-connected moves without
   // corner cutting connect exactly the same cells, so A* stays inside it.

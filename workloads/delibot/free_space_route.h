@@ -24,6 +24,7 @@
 // reachable cell; A* allocates 13 bytes per cell per leg. Precomputation: one
 // distance transform (linear in the cell count) and one flood fill.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,19 @@ struct RoutePoint {
 
 class RandomStream;
 
+// The map leaves a disc robot nowhere to drive: no free cell, or no free
+// cell wide enough for it. The map's fault, not a bug, so a caller that knows
+// the map's file reports it as bad input.
+class NoRoomToDrive : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 // The free space a disc robot of a given radius can reach.
 class ReachableFreeSpace {
  public:
-  // Throws std::invalid_argument when the radius is not positive and finite,
-  // when the grid has no free cell, and when no free cell is wide enough for
+  // Throws std::invalid_argument when the radius is not positive and finite;
+  // NoRoomToDrive when the grid has no free cell or none wide enough for
   // the robot (the message gives the widest clearance the map offers).
   ReachableFreeSpace(const OccupancyGrid& grid, double robot_radius_m);
 

@@ -49,22 +49,26 @@ std::string Describe(const ArmConfiguration& q) {
   return s + ") rad";
 }
 
-void CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, const char* name) {
+void RequireEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, const char* name) {
   std::string why;
-  if (!checker.arm().WithinLimits(q, &why))
+  if (CheckEndpoint(checker, q, &why) != EndpointProblem::kNone)
     throw std::invalid_argument(std::string(name) + " " + Describe(q) + ": " + why);
-  if (checker.Collides(q))
-    throw std::invalid_argument(std::string(name) + " " + Describe(q) +
-                                " is in collision: a link box overlaps an obstacle");
 }
 
 }  // namespace
 
+EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why) {
+  if (!checker.arm().WithinLimits(q, why)) return EndpointProblem::kOutsideLimits;
+  if (!checker.Collides(q)) return EndpointProblem::kNone;
+  if (why) *why = "in collision: a link box overlaps an obstacle";
+  return EndpointProblem::kInCollision;
+}
+
 MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& settings) {
   std::string error;
   if (!settings.IsValid(&error)) throw std::invalid_argument(error);
-  CheckEndpoint(checker, settings.start, "start");
-  CheckEndpoint(checker, settings.goal, "goal");
+  RequireEndpoint(checker, settings.start, "start");
+  RequireEndpoint(checker, settings.goal, "goal");
 
   const LocobotArm& arm = checker.arm();
   auto space = std::make_shared<ob::RealVectorStateSpace>(kArmJoints);

@@ -73,9 +73,16 @@ struct MoveBotResult {
   LedgerSummary collision_pricing, nn_pricing;
 };
 
+// Why `q` cannot be a start or goal, for the caller to report as its own
+// kind of error before planning: kOutsideLimits (a joint beyond the arm's
+// limits, or not finite), kInCollision (a link box overlaps an obstacle of
+// the scene). `why` says which joint or that it collides.
+enum class EndpointProblem { kNone, kOutsideLimits, kInCollision };
+EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why);
+
 // Throws std::invalid_argument naming the problem when the settings are
-// invalid, or when start or goal is outside the joint limits or in
-// collision (both checks run before planning).
+// invalid, or when start or goal has an EndpointProblem (both checked
+// before planning; callers that tell a user check them first).
 MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& settings);
 
 }  // namespace rc

@@ -21,6 +21,7 @@
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "common/atomic_file.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
@@ -34,6 +35,7 @@
 #include "workloads/carribot/path_plot.h"
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/map_options.h"
+#include "workloads/rcbench/number_checks.h"
 #include "workloads/rcbench/progress_bar.h"
 
 namespace rc {
@@ -153,6 +155,7 @@ void CheckUsage(const CarribotCli& cli) {
   for (const int h : {cli.start_heading, cli.goal_heading})
     if (h != kAnyHeading && (h < 0 || h >= cli.headings))
       throw UsageError("heading index " + std::to_string(h) + " is outside [0, " + std::to_string(cli.headings) + ")");
+  CheckOutputPaths({cli.timeline_path, cli.path_path, cli.plot_path});
 }
 
 std::string Describe(const PlannerOptions& o, const CarribotResult& run, FootprintCheckerKind checker) {
@@ -318,7 +321,7 @@ void AddCarribotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--resolution,--map-resolution", cli->resolution_m,
                   "Cell size (m) for MovingAI maps (default 1) and images")
-      ->check(CLI::PositiveNumber);
+      ->check(FinitePositive());
   cmd->add_option(
          "--map-scale", cli->map_scale,
          "Split every cell into NxN cells (count N; RoWild's --scale-map); start and goal cells are multiplied by N")

@@ -253,6 +253,7 @@ void Run(const CollideCli& cli) {
   if (scenes != 1) throw UsageError("give exactly one scene: --boxes FILE.csv, --octree FILE.bt|.ot or --scene shelf");
   if (!cli.scene.empty() && cli.scene != "shelf") throw UsageError("--scene: only 'shelf' is generated");
   if (!cli.scene_output_path.empty() && cli.scene.empty()) throw UsageError("--scene-output needs --scene");
+  CheckOutputPaths({cli.output_path, cli.timeline_path, cli.scene_output_path});
   const std::vector<RobotObb> robot = ReadObbCsv(cli.obbs_path);
   std::cout << "obbs: " << cli.obbs_path << " (" << robot.size() << " OBBs)\n";
 

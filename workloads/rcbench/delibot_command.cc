@@ -5,6 +5,8 @@
 #include <iostream>
 #include <omp.h>
 
+#include <fmt/format.h>
+
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
@@ -30,6 +32,7 @@
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/demo_inputs.h"
 #include "workloads/rcbench/map_options.h"
+#include "workloads/rcbench/number_checks.h"
 #include "workloads/rcbench/progress_bar.h"
 #include "workloads/rcbench/trace_lines.h"
 
@@ -156,6 +159,12 @@ void Run(DelibotCli& cli) {
     }
   }
 
+  if (s.initial_pose) {
+    const Pose2& p = *s.initial_pose;
+    if (!(p.x >= 0.0 && p.x < grid.extent_x_m() && p.y >= 0.0 && p.y < grid.extent_y_m()))
+      throw UsageError(fmt::format("--initial-pose {:g},{:g} m is off the map, which spans [0, {:g}) x [0, {:g}) m",
+                                   p.x, p.y, grid.extent_x_m(), grid.extent_y_m()));
+  }
   // Before anything reads the reach; the summary records the fitted one.
   std::cout << FitReachToTrace(s.beam.max_range_m, CountReturnsBeyondReach(*scans, s.beam.max_range_m),
                                cli.given.max_range);
@@ -181,7 +190,9 @@ void Run(DelibotCli& cli) {
   if (s.mcl.beams.beam_step > geometry.beam_count)
     throw UsageError("--beam-step " + std::to_string(s.mcl.beams.beam_step) + " exceeds the trace's " +
                      std::to_string(geometry.beam_count) + " beams");
-  // An output folder that cannot be made fails now, not after the run.
+  // An output path that cannot be written, or a folder that cannot be made,
+  // fails now, not after the run.
+  CheckOutputPaths({cli.timeline_path, cli.summary_path});
   if (!cli.summary_path.empty()) CreateParentFolders(cli.summary_path);
   // The timeline streams, one flushed row per record, under its incomplete
   // marker until the run completes; the summary is written only after.
@@ -230,8 +241,9 @@ void AddDelibotCommand(CLI::App& app) {
                   "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
                   "('occupied')");
   cmd->add_option(
-      "--map-resolution", cli->map_resolution_m,
-      "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap");
+         "--map-resolution", cli->map_resolution_m,
+         "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap")
+      ->check(FinitePositive());
   cmd->add_option("--trace", cli->trace_path,
                   "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");
   cmd->add_option("--trace-format", cli->trace_format, "auto | cmu | rowild | carmen | rawlog")->capture_default_str();
@@ -298,6 +310,7 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--max-range", s.beam.max_range_m,
                   "Model max range (m); readings at or beyond are 'no return'. Not given: 10, widened to cover 95% "
                   "of the trace's returns when more than a quarter lie beyond it (docs/delibot.md, \"Max range\")")
+      ->check(FinitePositive())
       ->each([cli](const std::string&) { cli->given.max_range = true; })
       ->capture_default_str();
   cmd->add_option("--sigma-hit", s.beam.sigma_hit_m, "Beam model hit sigma (m)")->capture_default_str();
@@ -317,10 +330,12 @@ void AddDelibotCommand(CLI::App& app) {
   cmd->add_option("--lf-sigma-hit", s.likelihood.sigma_hit_m, "Likelihood field sigma (m)")->capture_default_str();
   cmd->add_option("--lf-max-dist", s.likelihood.max_occ_dist_m, "Likelihood field distance cap (m)")
       ->capture_default_str();
-  cmd->add_option("--lf-distance", cli->lf_distance,
-                  "Likelihood field inside walls: 'unsigned' scores 0 there (AMCL's field; biased forward on "
-                  "maps that match the world), 'signed' scores an end point's depth below the wall face "
-                  "(unbiased, but worse on maps that draw open doors as walls; see README)")
+  cmd->add_option(
+         "--lf-distance", cli->lf_distance,
+         "Likelihood field inside walls: 'unsigned' scores 0 there (AMCL's field; biased forward on "
+         "maps that match the world), 'signed' scores an end point's depth below the wall face "
+         "(unbiased, but worse on maps that draw open doors as walls; docs/delibot.md, \"Likelihood field, signed or "
+         "not\")")
       ->check(CLI::IsMember({"signed", "unsigned"}))
       ->capture_default_str();
   cmd->add_option("--lf-unknown", cli->lf_unknown,
@@ -368,8 +383,7 @@ void AddDelibotCommand(CLI::App& app) {
                   "How far a kept hypothesis may trail the heaviest, as a log posterior ratio (nats); while a "
                   "second hypothesis is that close, the filter does not claim convergence. With amcl-cube "
                   "(--lf-combine or --beam-combine) the ratio is of the cube sum's weights, a far smaller scale (6 in "
-                  "the README's "
-                  "cautious recipe)")
+                  "the cautious recipe, docs/real_logs_cautious_recipe.md)")
       ->capture_default_str();
   cmd->add_option("--recovery-alpha-slow", s.mcl.alpha_slow,
                   "Augmented MCL slow average rate (1/sensor update; 0 = no recovery)")
@@ -383,7 +397,8 @@ void AddDelibotCommand(CLI::App& app) {
          "published)")
       ->capture_default_str();
   cmd->add_option("--initial-pose", cli->initial_pose,
-                  "Track from X,Y,THETA (m, m, rad) instead of global localization")
+                  "Track from X,Y,THETA (m, m, rad) instead of global localization; X,Y on the map")
+      ->check(Finite())
       ->expected(3)
       ->delimiter(',');
   cmd->add_option("--initial-sigma-xy", s.initial_sigma_xy_m, "Tracking start spread (m)")->capture_default_str();

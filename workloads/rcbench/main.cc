@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // The same "rcbench: usage:" line as a UsageError thrown by a subcommand.
+    std::cerr << "rcbench: usage: " << e.what() << "\nRun with --help for more information.\n";
     return rc::ToInt(rc::ExitCode::kUsage);
   } catch (...) {
     return rc::ToInt(rc::ReportException(std::current_exception(), std::cerr));

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <optional>
 
+#include "common/atomic_file.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/hall_map_generator.h"
@@ -49,8 +50,9 @@ void AddMakeMapCommand(CLI::App& app) {
       if (cli->resolution_m) options.resolution_m = *cli->resolution_m;
       grid = GenerateOfficeMap(options);
     }
-    const auto parent = std::filesystem::path(cli->output).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent);
+    // SaveRosMap's image goes beside the YAML under the YAML's stem.
+    const std::filesystem::path yaml(cli->output);
+    CheckOutputPaths({cli->output, (yaml.parent_path() / (yaml.stem().string() + ".pgm")).string()});
     SaveRosMap(grid, cli->output, RosMapSaveOptions{});
     std::cout << "wrote " << cli->output << ": " << grid.size_x() << " x " << grid.size_y() << " cells of "
               << grid.resolution_m() << " m, " << grid.CountCells(CellState::kFree) << " free, "

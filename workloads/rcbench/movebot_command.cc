@@ -6,10 +6,11 @@
 // check (path_verification.h) before any output is written.
 //
 // Exit codes (also in --help): 0 an exact path, verified collision-free;
-// 1 bad input (a file, start or goal outside the joint limits or in
-// collision) or a path that failed the independent check (then nothing is
-// written); 2 bad usage; 3 no exact path within the budget (approximate or
-// none; every output is still written and says so).
+// 1 bad input (a file, or a start or goal in collision with the scene);
+// 2 bad usage (also a start or goal outside the joint limits); 3 no exact
+// path within the budget (approximate or none; every output is still
+// written and says so); 4 a path that failed the independent check (a bug;
+// nothing is written).
 //
 //   rcbench movebot                      # shared data's locobot scene, RoWild's start and goal
 #include <cstdlib>
@@ -19,12 +20,15 @@
 #include <memory>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
 #include "backends/backend.h"
 #include "backends/backend_params.h"
 #include "backends/scheduler/scheduler_cli.h"
+#include "common/atomic_file.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "robocore/collision/octree_from_octomap.h"
@@ -98,11 +102,13 @@ int Run(MovebotCli& cli) {
       cli.verify_resolution_rad > 0 ? cli.verify_resolution_rad : s.motion_resolution_rad / 10;
   if (!cli.octree_path.empty() && !cli.obstacles_path.empty())
     throw UsageError("give --obstacles FILE or --octree FILE.bt, not both");
+  CheckOutputPaths({cli.timeline_path, cli.anytime_path, cli.path_path, cli.ompl_log_path});
 
   // The scene, and the same obstacles as world boxes for the independent check.
   ArmScene scene;
   std::vector<Obbd> check_boxes;
   std::string scene_text;
+  std::string scene_path;  // the file the obstacles came from
   if (!cli.octree_path.empty()) {
     BoxTree tree = LoadOctoMapFile(cli.octree_path);
     for (const Aabbd& b : tree.boxes) {
@@ -113,6 +119,7 @@ int Run(MovebotCli& cli) {
     }
     scene = ArmScene::FromBoxTree(std::move(tree));
     scene_text = "octree " + cli.octree_path;
+    scene_path = cli.octree_path;
   } else {
     const std::string path = cli.obstacles_path.empty() ? kDefaultObstacles : cli.obstacles_path;
     if (cli.obstacles_path.empty() && !std::filesystem::exists(path))
@@ -121,6 +128,7 @@ int Run(MovebotCli& cli) {
     for (const Obstacle& o : obstacles) check_boxes.push_back(o.box);
     scene = ArmScene::FromObstacles(obstacles);
     scene_text = "obstacles " + path;
+    scene_path = path;
   }
   std::cout << "scene: " << scene_text << " (" << scene.box_count() << " boxes in " << scene.frames().size()
             << " frame(s), " << scene.node_count() << " tree nodes)\n";
@@ -129,6 +137,16 @@ int Run(MovebotCli& cli) {
 
   const LocobotArm arm;
   ArmCollisionChecker checker(arm, scene);
+  for (const auto& [q, option] : {std::pair{&s.start, "--start"}, std::pair{&s.goal, "--goal"}}) {
+    std::string why;
+    switch (CheckEndpoint(checker, *q, &why)) {
+      case EndpointProblem::kNone: break;
+      case EndpointProblem::kOutsideLimits:
+        throw UsageError(fmt::format("{} {:g} rad: {}", option, fmt::join(*q, ","), why));
+      case EndpointProblem::kInCollision:
+        throw InputError(scene_path, 0, "", fmt::format("{} {:g} rad is {}", option, fmt::join(*q, ","), why));
+    }
+  }
   const MoveBotResult result = RunMoveBot(checker, s);
 
   PathVerification verification;
@@ -207,8 +225,8 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_flag("--ompl-verbose", cli->ompl_verbose, "Show OMPL's own info messages");
   cmd->footer(ExitCodeFooter(
       "no exact path within the budget (approximate or none; outputs are still written). A start or goal outside "
-      "[-pi/2, pi/2] or in collision is bad input (1); a returned path that fails the independent collision check "
-      "is an internal error (4), with nothing written"));
+      "[-pi/2, pi/2] counts as a bad command line, one in collision with the scene as bad input, and a returned "
+      "path that fails the independent collision check as an internal error, with nothing written"));
   cmd->callback([cli] { ExitUnlessSuccess(Run(*cli)); });
 }
 

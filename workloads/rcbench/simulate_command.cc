@@ -3,15 +3,18 @@
 #include <filesystem>
 #include <iostream>
 
+#include "common/atomic_file.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "maps/map_loader.h"
 #include "maps/office_map_generator.h"
 #include "traces/cmu_log_writer.h"
 #include "traces/ground_truth_io.h"
+#include "workloads/delibot/free_space_route.h"
 #include "workloads/delibot/trace_simulator.h"
 #include "workloads/rcbench/commands.h"
 #include "workloads/rcbench/map_options.h"
+#include "workloads/rcbench/number_checks.h"
 
 namespace rc {
 
@@ -32,7 +35,8 @@ void AddSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'");
   cmd->add_option("--map-resolution", cli->map_resolution_m,
-                  "Cell size (m) for MovingAI maps (default 1) and images (required)");
+                  "Cell size (m) for MovingAI maps (default 1) and images (required)")
+      ->check(FinitePositive());
   AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--output", cli->output, "Trace path (CMU robotdata format)")->capture_default_str();
   cmd->add_option("--ground-truth", cli->ground_truth, "Ground-truth path (default: the trace path with .gt)");
@@ -75,6 +79,9 @@ void AddSimulateCommand(CLI::App& app) {
     if (cli->no_noise) options.DisableNoise();
     std::string error;
     if (!options.IsValid(&error)) throw UsageError(error);
+    std::string gt_path = cli->ground_truth;
+    if (gt_path.empty()) gt_path = std::filesystem::path(cli->output).replace_extension(".gt").string();
+    CheckOutputPaths({cli->output, gt_path});
     OccupancyGrid grid;
     if (cli->map_path.empty()) {
       grid = GenerateOfficeMap(OfficeMapOptions{});
@@ -87,9 +94,12 @@ void AddSimulateCommand(CLI::App& app) {
       PrintMapLines(std::cout, cli->map_path, loaded);
       grid = std::move(loaded.grid);
     }
-    const SimulatedTrace sim = SimulateTrace(grid, options);
-    std::string gt_path = cli->ground_truth;
-    if (gt_path.empty()) gt_path = std::filesystem::path(cli->output).replace_extension(".gt").string();
+    SimulatedTrace sim;
+    try {
+      sim = SimulateTrace(grid, options);
+    } catch (const NoRoomToDrive& e) {
+      throw InputError(cli->map_path.empty() ? "generated office map" : cli->map_path, 0, "", e.what());
+    }
     WriteCmuLog(sim.trace, cli->output);
     WriteGroundTruth(gt_path, sim.ground_truth);
     std::cout << "wrote " << cli->output << " (" << sim.trace.scans.size() << " laser records) and " << gt_path
