@@ -3,6 +3,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
 
 namespace rc {
 
@@ -32,11 +35,39 @@ std::vector<std::string_view> SplitFields(std::string_view line, bool comma_sepa
   return out;
 }
 
+void StripUtf8Bom(std::string& text) {
+  if (text.compare(0, kUtf8Bom.size(), kUtf8Bom) == 0) text.erase(0, kUtf8Bom.size());
+}
+
+void RejectDirectory(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, 0, "", "is a directory, not a file");
+}
+
+bool LooksNumeric(std::string_view token) {
+  if (token.empty()) return false;
+  const std::string text(token);
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
+}
+
 LineReader::LineReader(std::istream& in, std::string file_name) : in_(in), file_(std::move(file_name)) {}
 
 bool LineReader::Next(std::string& line) {
-  if (!std::getline(in_, line)) return false;
+  errno = 0;
+  if (!std::getline(in_, line)) {
+    // getline sets badbit when the stream buffer's read fails (EISDIR for a
+    // directory, EIO), and only eofbit/failbit at a true end of file.
+    if (!in_.bad()) return false;
+    const int error = errno;
+    RejectDirectory(file_);
+    if (error == EISDIR) throw InputError(file_, 0, "", "is a directory, not a file");
+    throw InputError(file_, line_number_ + 1, "",
+                     std::string("read error") + (error ? std::string(": ") + std::strerror(error) : ""));
+  }
   ++line_number_;
+  if (line_number_ == 1) StripUtf8Bom(line);
   if (!line.empty() && line.back() == '\r') line.pop_back();
   return true;
 }
@@ -44,6 +75,9 @@ bool LineReader::Next(std::string& line) {
 double LineReader::ParseDouble(std::string_view token, const std::string& field) const {
   if (token.empty()) Fail(field, "empty value where a number was expected");
   std::string text(token);
+  // strtod reads C99 hexadecimal floats; no format here writes them.
+  if (text.find_first_of("xX") != std::string::npos && LooksNumeric(text))
+    Fail(field, "'" + text + "' is a hexadecimal number; only decimal numbers are accepted");
   char* end = nullptr;
   errno = 0;
   double value = std::strtod(text.c_str(), &end);

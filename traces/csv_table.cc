@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "common/input_error.h"
+#include "common/text_fields.h"
 
 namespace rc {
 namespace {
@@ -179,11 +180,13 @@ void CsvTable::Commit(const std::function<std::vector<CsvCell>(std::size_t row)>
 }
 
 CsvContents ReadCsv(const std::string& path) {
+  RejectDirectory(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open CSV file");
   std::stringstream buffer;
   buffer << in.rdbuf();
   std::string text = buffer.str();
+  StripUtf8Bom(text);
 
   CsvContents contents;
   long line = 1;

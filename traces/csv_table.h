@@ -139,7 +139,9 @@ class CsvTable {
 // A minimal RFC 4180 reader (quoted fields, doubled quotes, embedded commas
 // and newlines), for tests and tools that check written tables. Throws
 // InputError (file, line, field) on an unterminated quote, text after a
-// closing quote, a row whose width differs from the header, or an empty file.
+// closing quote, a row whose width differs from the header, an empty file or
+// a directory. A leading UTF-8 byte-order mark is skipped (spreadsheets write
+// one).
 // A first line kIncompleteMarker marks a timeline prefix: complete is then
 // false, and a last row cut off before its newline (the writer was killed
 // mid-row) is dropped and counted rather than reported as an error.

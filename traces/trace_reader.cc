@@ -1,6 +1,5 @@
 #include "traces/trace_reader.h"
 
-#include <cstdlib>
 #include <fstream>
 
 #include "common/text_fields.h"
@@ -11,13 +10,6 @@ namespace rc {
 namespace {
 
 constexpr std::size_t kRowildFields = 183;
-
-bool IsNumber(std::string_view token) {
-  const std::string text(token);
-  char* end = nullptr;
-  std::strtod(text.c_str(), &end);
-  return !text.empty() && end == text.c_str() + text.size();
-}
 
 // Messages CARMEN's logger documents; enough to recognise a CARMEN log by its
 // first message without mistaking other upper-case text for one.
@@ -45,7 +37,7 @@ std::string DetectTraceFormat(const std::string& path) {
     if (IsKnownCarmenMessage(fields[0])) return "carmen";
     if (fields.size() == kRowildFields) {
       for (std::size_t i = 0; i < fields.size(); ++i)
-        if (!IsNumber(fields[i]))
+        if (!LooksNumeric(fields[i]))
           reader.Fail("field " + std::to_string(i + 1),
                       "looks like a RoWild log (183 fields) but '" + std::string(fields[i]) + "' is not a number");
       return "rowild";

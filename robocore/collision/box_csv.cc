@@ -19,14 +19,6 @@ const char* const kBoxColumns[6] = {"cx", "cy", "cz", "hx", "hy", "hz"};
 
 bool IsBlank(const std::string& line) { return line.find_first_not_of(" \t") == std::string::npos; }
 
-bool LooksNumeric(std::string_view field) {
-  if (field.empty()) return false;
-  std::string text(field);
-  char* end = nullptr;
-  std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size();
-}
-
 void CheckColumnCount(const LineReader& reader, const std::vector<std::string_view>& fields, std::size_t expected,
                       const char* what) {
   if (fields.size() != expected)

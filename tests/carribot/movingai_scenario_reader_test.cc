@@ -1,6 +1,8 @@
 // The .scen reader: well-formed files and every malformed line it must name.
 #include "workloads/carribot/movingai_scenario_reader.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
 
 #include "carribot/carribot_test_util.h"
@@ -67,6 +69,7 @@ TEST(MovingAiScenarioReader, EveryMalformedLineNamesLineAndField) {
       {"0\tm.map\t4\t3\t0\t0\t3\t2\tabc", "optimal_length", "not a number"},
       {"0\tm.map\t4\t3\t0\t0\t3\t2\t-1", "optimal_length", "negative"},
       {"0\tm.map\t4\t3\t0\t0\t3\t2\tnan", "optimal_length", "not finite"},
+      {"0\tm.map\t4\t3\t0\t0\t3\t2\t0x1p2", "optimal_length", "hexadecimal"},
   };
   test::TempDir dir;
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -75,6 +78,20 @@ TEST(MovingAiScenarioReader, EveryMalformedLineNamesLineAndField) {
     EXPECT_TRUE(ThrowsInputError([&] { ReadMovingAiScenarios(path); }, 3, cases[i].field, cases[i].problem))
         << "case " << i << ": " << cases[i].line;
   }
+}
+
+TEST(MovingAiScenarioReader, AByteOrderMarkBeforeTheVersionLineIsSkipped) {
+  test::TempDir dir;
+  const MovingAiScenarioFile f = ReadMovingAiScenarios(dir.Write("a.scen", "\xEF\xBB\xBF" + kGood));
+  ASSERT_EQ(f.scenarios.size(), 2u);
+  EXPECT_EQ(f.scenarios[0].line, 2);
+}
+
+TEST(MovingAiScenarioReader, ADirectoryIsNotAnEmptyFile) {
+  test::TempDir dir;
+  const std::string path = dir.Path("a.scen");
+  std::filesystem::create_directory(path);
+  EXPECT_TRUE(ThrowsInputError([&] { ReadMovingAiScenarios(path); }, 0, "", "is a directory, not a file"));
 }
 
 TEST(MovingAiScenarioReader, MissingFileIsAnInputError) {

@@ -1,5 +1,7 @@
 #include "maps/map_loader.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
@@ -111,6 +113,46 @@ TEST(MapLoader, DatWithAnotherHeaderIsAnInputError) {
   EXPECT_TRUE(ThrowsInputError([&] { LoadMap(path); }, 2, "header", "must start with"));
   const auto empty = dir.Write("e.dat", "\n\n");
   EXPECT_TRUE(ThrowsInputError([&] { LoadMap(empty); }, 0, "header", "empty"));
+}
+
+// Notepad and other Windows editors start a UTF-8 file with a byte-order
+// mark; it is not part of the first header line.
+TEST(MapLoader, TextMapsMayStartWithAByteOrderMark) {
+  test::TempDir dir;
+  const std::string bom = "\xEF\xBB\xBF";
+  const LoadedMap cmu = LoadMap(dir.Write("a.dat", bom + kCmu));
+  EXPECT_EQ(cmu.format, "cmu");
+  EXPECT_EQ(cmu.grid.At(1, 0), CellState::kOccupied);
+  EXPECT_EQ(LoadMap(dir.Write("b.dat", bom + kRowild)).format, "rowild");
+  MapLoadOptions cmu_format;
+  cmu_format.format = "cmu";  // the loader itself, not only the format detection
+  EXPECT_EQ(LoadMap(dir.Write("c.txt", bom + kCmu), cmu_format).grid.At(0, 0), CellState::kFree);
+  EXPECT_EQ(LoadMap(dir.Write("m.map", bom + kMovingAi)).grid.At(1, 0), CellState::kOccupied);
+}
+
+TEST(MapLoader, ADirectoryIsNotAnEmptyMap) {
+  test::TempDir dir;
+  for (const char* name : {"d.dat", "d.map"}) {
+    const std::string path = dir.Path(name);
+    std::filesystem::create_directory(path);
+    EXPECT_TRUE(ThrowsInputError([&] { LoadMap(path); }, 0, "", "is a directory, not a file")) << name;
+    for (const char* format : {"cmu", "rowild", "movingai"}) {
+      MapLoadOptions o;
+      o.format = format;
+      EXPECT_TRUE(ThrowsInputError([&] { LoadMap(path, o); }, 0, "", "is a directory")) << name << " " << format;
+    }
+  }
+}
+
+// strtod reads C99 hex floats; the map formats are decimal, as the ROS YAML.
+TEST(MapLoader, HexadecimalCellValuesAreRefused) {
+  test::TempDir dir;
+  std::string cmu = kCmu;
+  cmu.replace(cmu.find("0.0\n"), 3, "0x0");
+  EXPECT_TRUE(ThrowsInputError([&] { LoadMap(dir.Write("a.dat", cmu)); }, 7, "map row 1, column 0", "hexadecimal"));
+  std::string rowild = kRowild;
+  rowild.replace(rowild.find("1.0\n"), 3, "0x1p-1");
+  EXPECT_TRUE(ThrowsInputError([&] { LoadMap(dir.Write("b.dat", rowild)); }, 4, "map row 0, column 0", "hexadecimal"));
 }
 
 TEST(MapLoader, OptionsThatDoNotApplyAreRejected) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <vector>
 
@@ -76,6 +77,17 @@ TEST(CmuLogReader, ZeroRangeIsAValidReading) {
   EXPECT_EQ(trace.scans[0].ranges_m[10], 0.0f);
 }
 
+// A log saved by a Windows editor starts with a UTF-8 byte-order mark.
+TEST(CmuLogReader, AByteOrderMarkBeforeTheFirstRecordIsSkipped) {
+  TempDir dir;
+  const std::string path = dir.Write("bom.log", "\xEF\xBB\xBF" + kOdometryLine + CmuLaserLine().Text());
+  TraceReadStats stats;
+  const SensorTrace trace = ReadCmuLog(path, {}, &stats);
+  ASSERT_EQ(trace.scans.size(), 1u);
+  EXPECT_EQ(trace.scans[0].source_line, 2);
+  EXPECT_EQ(stats.odometry_records, 1);
+}
+
 TEST(CmuLogReader, GeometryIsTheWeanLaser) {
   const LaserGeometry g = CmuLaserGeometry();
   EXPECT_EQ(g.beam_count, 180);
@@ -102,6 +114,20 @@ TEST(CmuLogReaderBadInput, InfRange) {
   l.ranges[0] = "inf";
   const std::string path = dir.Write("inf.log", l.Text());
   ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "range 1");
+}
+
+// strtod reads C99 hex floats ("0x1p7" = 128); the format is decimal.
+TEST(CmuLogReaderBadInput, HexadecimalRangeOrPose) {
+  TempDir dir;
+  for (const char* hex : {"0x1p7", "0x10", "0x1p-1"}) {
+    CmuLaserLine l;
+    l.ranges[13] = hex;
+    const std::string path = dir.Write("hex.log", l.Text());
+    ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "range 14");
+    EXPECT_TRUE(test::ThrowsInputError([&] { ReadCmuLog(path); }, 1, "range 14", "hexadecimal")) << hex;
+  }
+  const std::string path = dir.Write("hex_pose.log", "O 0x64 200 0.5 0.9\n" + CmuLaserLine().Text());
+  ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "x");
 }
 
 TEST(CmuLogReaderBadInput, NegativeRange) {
@@ -270,6 +296,13 @@ TEST(CmuLogReaderBadInput, RotatedLaser) {
   l.laser_theta_offset = 0.1;
   const std::string path = dir.Write("rot.log", l.Text());
   ExpectInputError([&] { ReadCmuLog(path); }, path, 1, "thetal");
+}
+
+TEST(CmuLogReaderBadInput, ADirectoryIsNotAnEmptyTrace) {
+  TempDir dir;
+  const std::string path = dir.Path("folder.log");
+  std::filesystem::create_directory(path);
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadCmuLog(path); }, 0, "", "is a directory, not a file"));
 }
 
 TEST(CmuLogReaderBadInput, MissingFile) {

@@ -115,6 +115,22 @@ TEST(ReadCsv, CrlfAndQuotedEmptyFields) {
   EXPECT_EQ(csv.rows[1], (std::vector<std::string>{"3", "x\"y"}));
 }
 
+// Spreadsheets save CSV with a UTF-8 byte-order mark; it is not part of the
+// first column's name.
+TEST(ReadCsv, SkipsAByteOrderMark) {
+  TempDir dir;
+  const CsvContents csv = ReadCsv(dir.Write("t.csv",
+                                            "\xEF\xBB\xBF"
+                                            "a,b\n1,2\n"));
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"a", "b"}));
+  ASSERT_EQ(csv.rows.size(), 1u);
+}
+
+TEST(ReadCsvBadInput, ADirectoryIsNotAnEmptyFile) {
+  TempDir dir;
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadCsv(dir.path().string()); }, 0, "", "is a directory, not a file"));
+}
+
 TEST(ReadCsvBadInput, RowWidthDiffersFromHeader) {
   TempDir dir;
   const std::string path = dir.Write("t.csv", "a,b\n1,2\n3\n");

@@ -1,6 +1,7 @@
 #include "traces/ground_truth_io.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -56,6 +57,26 @@ TEST(GroundTruthIo, WriterRejectsNonFinitePoseAndLeavesNoFile) {
   const std::string path = dir.Path("truth.txt");
   EXPECT_THROW(WriteGroundTruth(path, {{0.0, {0.0, NAN, 0.0}, 0}}), std::invalid_argument);
   EXPECT_EQ(dir.FileCount(), 0);
+}
+
+// With the mark, the '#' header line was taken for a 5-field pose.
+TEST(GroundTruthIo, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  TempDir dir;
+  const std::string path = dir.Write("gt.txt", "\xEF\xBB\xBF# t_s x_m y_m theta_rad\n0.5 1 2 3\n");
+  const GroundTruth truth = ReadGroundTruth(path);
+  ASSERT_EQ(truth.poses.size(), 1u);
+  EXPECT_EQ(truth.poses[0].source_line, 2);
+  const std::string no_header = dir.Write("gt2.txt",
+                                          "\xEF\xBB\xBF"
+                                          "0.5 1 2 3\n");
+  EXPECT_EQ(ReadGroundTruth(no_header).poses[0].time_s, 0.5);
+}
+
+TEST(GroundTruthIoBadInput, ADirectoryIsNotAnEmptyFile) {
+  TempDir dir;
+  const std::string path = dir.Path("truth");
+  std::filesystem::create_directory(path);
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadGroundTruth(path); }, 0, "", "is a directory, not a file"));
 }
 
 TEST(GroundTruthIoBadInput, NanValue) {

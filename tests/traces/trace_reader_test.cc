@@ -1,5 +1,6 @@
 #include "traces/trace_reader.h"
 
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -31,6 +32,28 @@ TEST(DetectTraceFormat, ByContentNotExtension) {
   EXPECT_EQ(DetectTraceFormat(dir.Write("c.clf", "# CARMEN Logfile\n" + kFlaser361)), "carmen");
   // CARMEN's own logger names its files .log.
   EXPECT_EQ(DetectTraceFormat(dir.Write("d.log", "PARAM robot_use_laser on\n" + kFlaser361)), "carmen");
+}
+
+TEST(DetectTraceFormat, SkipsAByteOrderMark) {
+  TempDir dir;
+  const std::string bom = "\xEF\xBB\xBF";
+  EXPECT_EQ(DetectTraceFormat(dir.Write("a.log", bom + "O 1 2 3 4\n" + kCmuLaser)), "cmu");
+  EXPECT_EQ(DetectTraceFormat(dir.Write("b.txt", bom + kRowild)), "rowild");
+  EXPECT_EQ(DetectTraceFormat(dir.Write("c.clf", bom + kFlaser361)), "carmen");
+  EXPECT_EQ(ReadTrace(dir.Write("d.txt", bom + kRowild + kRowild), {}).scans.size(), 2u);
+}
+
+TEST(DetectTraceFormat, ADirectoryIsNotAnEmptyTrace) {
+  TempDir dir;
+  const std::string path = dir.Path("folder.log");
+  std::filesystem::create_directory(path);
+  EXPECT_TRUE(test::ThrowsInputError([&] { DetectTraceFormat(path); }, 0, "", "is a directory, not a file"));
+  for (const char* format : {"cmu", "rowild", "carmen"}) {
+    TraceReadOptions o;
+    o.format = format;
+    EXPECT_TRUE(test::ThrowsInputError([&] { ReadTrace(path, o); }, 0, "", "is a directory")) << format;
+    EXPECT_TRUE(test::ThrowsInputError([&] { OpenTraceStream(path, o); }, 0, "", "is a directory")) << format;
+  }
 }
 
 TEST(DetectTraceFormat, UnknownContentIsAnError) {
