@@ -250,8 +250,13 @@ std::vector<ParameterDescription> DescribeBackendParameters(const BackendParamet
   return rows;
 }
 
-void PrintBackendParameters(std::ostream& out, const BackendParameters& p) {
-  const auto rows = DescribeBackendParameters(p);
+void PrintBackendParameters(std::ostream& out, const BackendParameters& p, const std::string& given_by) {
+  auto rows = DescribeBackendParameters(p);
+  const auto defaults = DescribeBackendParameters(BackendParameters{});
+  for (std::size_t i = 0; i < rows.size() && i < defaults.size(); ++i)
+    if (rows[i].key == defaults[i].key && rows[i].value != defaults[i].value)
+      rows[i].source = "given: " + (given_by.empty() ? std::string("an override") : given_by) + " (default " +
+                       defaults[i].value + ", " + defaults[i].source + ")";
   std::size_t key_width = 0, value_width = 0, unit_width = 0, range_width = 5;
   for (const auto& r : rows) {
     key_width = std::max(key_width, r.key.size());

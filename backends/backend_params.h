@@ -194,8 +194,11 @@ struct ParameterDescription {
   std::string source;
 };
 std::vector<ParameterDescription> DescribeBackendParameters(const BackendParameters& p);
-// Prints every parameter with its value, unit, range and source (`rcbench backends`).
-void PrintBackendParameters(std::ostream& out, const BackendParameters& p);
+// Prints every parameter with its value, unit, range and source (`rcbench
+// backends`). A value that differs from the default is sourced to
+// `given_by` (the --backend-params file or preset), with the default and its
+// source after it, so no printed source claims a value it did not give.
+void PrintBackendParameters(std::ostream& out, const BackendParameters& p, const std::string& given_by = "");
 // One parameter as a sensitivity sweep sees it: its key, its declaration,
 // its value, and the values the sweep tries, as JSON text: a number is
 // halved and doubled (integers rounded; clipped to its range; dropped when

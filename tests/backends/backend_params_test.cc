@@ -84,6 +84,23 @@ TEST(BackendParameters, InvalidValuesAndBadJson) {
   EXPECT_THROW(LoadBackendParameters("/nonexistent/params.json"), InputError);
 }
 
+// A printed source never claims a value it did not give: an overridden
+// parameter is sourced to the override, with the default beside it.
+TEST(BackendParameters, PrintedSourceOfAnOverrideIsTheOverride) {
+  const BackendParameters p = ParseBackendParameters(R"({"gpu": {"sms": 16}})", "sms.json");
+  std::ostringstream out;
+  PrintBackendParameters(out, p, "sms.json");
+  std::string sms_line, l1_line, line;
+  std::istringstream lines(out.str());
+  while (std::getline(lines, line)) {
+    if (line.rfind("gpu.sms ", 0) == 0) sms_line = line;
+    if (line.rfind("gpu.l1_bytes ", 0) == 0) l1_line = line;
+  }
+  EXPECT_NE(sms_line.find("given: sms.json (default 8,"), std::string::npos) << sms_line;
+  ASSERT_FALSE(l1_line.empty());
+  EXPECT_EQ(l1_line.find("given:"), std::string::npos) << l1_line;
+}
+
 // Every way into the parameters parses JSON in one place, so an overflowing
 // number is bad input on each (the preset path once let it escape as an
 // internal error), and a syntax error names its line.

@@ -28,7 +28,7 @@ void AddBackendsCommand(CLI::App& app) {
       std::cout << name << ": " << backend->specs().description << "\n";
     }
     std::cout << "\n";
-    PrintBackendParameters(std::cout, params);
+    PrintBackendParameters(std::cout, params, *params_path);
   });
 }
 
