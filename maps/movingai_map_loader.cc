@@ -90,6 +90,9 @@ OccupancyGrid LoadMovingAiMap(const std::string& path, const MovingAiMapOptions&
       throw InputError(path, reader.line_number() + 1, row_field,
                        "file ends after " + std::to_string(y) + " of " + std::to_string(header.height) +
                            " rows (height " + std::to_string(header.height) + ")");
+    // Spaces or tabs after the last cell are an editor's residue, like the
+    // '\r' of CRLF that LineReader drops; inside a row they stay an error.
+    line.erase(line.find_last_not_of(" \t") + 1);
     if (static_cast<long>(line.size()) != header.width)
       reader.Fail(row_field,
                   "has " + std::to_string(line.size()) + " characters, expected width " + std::to_string(header.width));

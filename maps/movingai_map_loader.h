@@ -14,6 +14,10 @@
 // MovingAI scenario files, so scenario coordinates index the grid directly.
 // Line 0 of the body is y = 0, so the map appears mirrored top to bottom when
 // compared with an image of it (whose row 0 is the largest y).
+//
+// Accepted from other tools: a UTF-8 byte-order mark and CRLF line ends
+// (LineReader), and spaces or tabs after a row's last cell. A space inside a
+// row is an unknown terrain character.
 #include <string>
 
 #include "maps/occupancy_grid.h"
@@ -26,8 +30,9 @@ struct MovingAiMapOptions {
 
 // Throws UsageError for a non-positive or non-finite resolution, and
 // InputError (file, line, field) for a missing or duplicated header line, a
-// type other than octile, an impossible size, a row of the wrong length, an
-// unknown character, too few rows or content after the last row.
+// type other than octile, an impossible size, a row of the wrong length (not
+// counting trailing spaces), an unknown character, too few rows or content
+// after the last row.
 OccupancyGrid LoadMovingAiMap(const std::string& path, const MovingAiMapOptions& options = {});
 
 }  // namespace rc

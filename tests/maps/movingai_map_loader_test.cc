@@ -51,6 +51,18 @@ TEST(MovingAiMapLoader, AcceptsWindowsLineEndingsAndWidthBeforeHeight) {
   EXPECT_EQ(g.At(1, 1), CellState::kFree);
 }
 
+// Editors and generators leave spaces or tabs after a row, as they leave
+// CRLF; the row's cells are still exactly `width` characters.
+TEST(MovingAiMapLoader, AcceptsTrailingSpacesAfterARowAndAByteOrderMark) {
+  test::TempDir dir;
+  const auto path = dir.Write("m.map", "\xEF\xBB\xBFtype octile\nheight 3\nwidth 4\nmap \n.@.. \n..T.\t\r\nG.SW  \t\n");
+  const OccupancyGrid g = LoadMovingAiMap(path);
+  EXPECT_EQ(g.At(1, 0), CellState::kOccupied);
+  EXPECT_EQ(g.At(2, 1), CellState::kOccupied);
+  EXPECT_EQ(g.At(3, 2), CellState::kOccupied);
+  EXPECT_EQ(g.CountCells(CellState::kFree), 8u);
+}
+
 TEST(MovingAiMapLoader, NonPositiveResolutionIsAUsageError) {
   test::TempDir dir;
   const auto path = dir.Write("m.map", kHeader + "....\n....\n....\n");
@@ -66,7 +78,8 @@ using test::MalformedCase;
 const std::vector<MalformedCase> kMovingAiMalformedCases = {
     MalformedCase{"short_row", kHeader + "....\n...\n....\n", 6, "map row 1", "has 3 characters, expected width 4"},
     MalformedCase{"long_row", kHeader + ".....\n", 5, "map row 0", "has 5 characters"},
-    MalformedCase{"trailing_space", kHeader + "....\n.... \n", 6, "map row 1", "has 5"},
+    MalformedCase{"space_before_row", kHeader + "....\n ....\n", 6, "map row 1", "has 5"},
+    MalformedCase{"tab_inside_row", kHeader + "....\n..\t..\n", 6, "map row 1", "has 5"},
     MalformedCase{"too_few_rows", kHeader + "....\n....\n", 7, "map row 2", "file ends after 2 of 3 rows"},
     MalformedCase{"too_many_rows", kHeader + "....\n....\n....\n....\n", 8, "trailing data",
                   "content after the last of 3 map rows"},
