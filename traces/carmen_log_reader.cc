@@ -61,6 +61,16 @@ LaserRecord ParseFlaser(const LineReader& reader, const Fields& f) {
     if (i < 2 + n) return RangeFieldName(i - 2);
     return NameOrPosition(kTail, 9, i - 2 - n, i);
   };
+  // A num_readings that disagrees with the ranges shifts the 9 trailing
+  // fields, so a field-by-field check would blame one of them
+  // (logger_timestamp). A line that still ends in a whole trailer (its host
+  // name, second to last, is not a number) holds f.size() - 11 ranges: the
+  // count is what is wrong. A line cut off mid-record has a number there and
+  // is reported below by its first missing field.
+  if (f.size() != n + 11 && f.size() >= 11 && !LooksNumeric(f[f.size() - 2]))
+    reader.Fail("num_readings", "says " + std::to_string(n) + " readings, but the line holds " +
+                                    std::to_string(f.size() - 11) + " values before its 9 trailing fields (" +
+                                    kFlaserLayout + ")");
   RequireFieldCount(reader, f.size(), n + 11, name_of, kFlaserLayout);
   LaserRecord record;
   record.kind = "FLASER";

@@ -38,6 +38,8 @@
 // ROBOTLASER2) are skipped: MCL here uses one laser.
 // A log may hold FLASER or ROBOTLASER1 records, not both: they would be two
 // copies of the front laser, and picking one silently could hide a mismatch.
+// A FLASER whose num_readings disagrees with the ranges it carries is blamed
+// on num_readings (the line's length decides, read from its trailer).
 #include <fstream>
 #include <memory>
 #include <optional>

@@ -211,12 +211,25 @@ TEST(CarmenLogReaderBadInput, TruncatedLine) {
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 2, "odom_y");
 }
 
+// The count is wrong, not the trailer it shifts: the line's length, read
+// from its host name, says how many ranges it holds.
 TEST(CarmenLogReaderBadInput, FewerRangesThanDeclared) {
   TempDir dir;
   Flaser l;
   l.ranges.pop_back();  // declares 180, carries 179
   const std::string path = dir.Write("179.clf", l.Text());
-  ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "logger_timestamp");
+  ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "num_readings");
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadCarmenLog(path); }, 1, "num_readings",
+                                     "says 180 readings, but the line holds 179"));
+}
+
+TEST(CarmenLogReaderBadInput, MoreRangesThanDeclared) {
+  TempDir dir;
+  Flaser l = WithBeams(181);
+  l.declared_beams = 180;
+  const std::string path = dir.Write("181.clf", Flaser().Text() + l.Text());
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadCarmenLog(path); }, 2, "num_readings",
+                                     "says 180 readings, but the line holds 181"));
 }
 
 TEST(CarmenLogReaderBadInput, BeamCountChangesBetweenRecords) {
@@ -241,6 +254,14 @@ TEST(CarmenLogReaderBadInput, NonNumericBeamCount) {
   f[1] = "many";
   const std::string path = dir.Write("n.clf", Join(f));
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "num_readings");
+}
+
+TEST(CarmenLogReader, AByteOrderMarkBeforeTheFirstMessageIsSkipped) {
+  TempDir dir;
+  for (const std::string& first : {kHeader, kOdom, Flaser().Text()}) {
+    const std::string path = dir.Write("bom.clf", "\xEF\xBB\xBF" + first + Flaser().Text());
+    EXPECT_EQ(ReadCarmenLog(path).scans.size(), first == kHeader || first == kOdom ? 1u : 2u) << first;
+  }
 }
 
 TEST(CarmenLogReaderBadInput, EmptyTrace) {
