@@ -73,6 +73,7 @@ std::vector<RobotObb> ReadObbCsv(std::istream& in, const std::string& file_name)
       }
     out.push_back(r);
   }
+  if (out.empty()) throw InputError(file_name, 0, "OBB row", "holds no OBB row (17 columns: pos, joint, ...)");
   return out;
 }
 
@@ -104,6 +105,7 @@ std::vector<Aabbd> ReadBoxCsv(std::istream& in, const std::string& file_name) {
     }
     out.push_back(box);
   }
+  if (out.empty()) throw InputError(file_name, 0, "box row", "holds no box (no 'cx,cy,cz,hx,hy,hz' row)");
   return out;
 }
 

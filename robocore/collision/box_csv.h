@@ -19,7 +19,10 @@
 // line (a first line whose first field is not a number, with 6 columns).
 // Half extents must be >= 0.
 //
-// Blank lines are skipped in both.
+// Blank lines and a leading UTF-8 byte-order mark are skipped in both. A
+// file with no data row (empty, or a header alone) is an InputError (line 0,
+// field "OBB row" or "box row"): zero queries or an empty scene would run and
+// report numbers for nothing. So is a directory given as the file.
 #include <istream>
 #include <string>
 #include <vector>

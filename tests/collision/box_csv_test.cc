@@ -7,6 +7,7 @@
 #include "common/input_error.h"
 #include "robocore/collision/box_csv.h"
 #include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "support/test_data.h"
 
 namespace rc {
@@ -78,6 +79,45 @@ TEST(ObbCsv, BadInputNamesFileLineAndField) {
   EXPECT_EQ(e.line(), 1);
   EXPECT_EQ(e.field(), "columns");
   EXPECT_THROW(ReadObbCsv("/nonexistent/obbs.csv"), InputError);
+}
+
+// A data row behind a byte-order mark was taken for the optional header and
+// dropped; and a file without rows ran zero queries or an empty scene.
+TEST(ObbCsv, AByteOrderMarkIsSkippedAndAFileWithoutRowsRefused) {
+  std::istringstream bom("\xEF\xBB\xBF" + kHeader + kRow);
+  EXPECT_EQ(ReadObbCsv(bom, "obbs.csv").size(), 1u);
+  for (const std::string& text : {std::string(), kHeader, "\n" + kHeader + "\n"}) {
+    const InputError e = ObbError(text);
+    EXPECT_EQ(e.line(), 0) << text;
+    EXPECT_EQ(e.field(), "OBB row") << text;
+  }
+  test::TempDir dir;
+  const std::string folder = dir.path().string();
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadObbCsv(folder); }, 0, "", "is a directory, not a file"));
+}
+
+TEST(BoxCsv, AByteOrderMarkIsSkippedAndAFileWithoutBoxesRefused) {
+  std::istringstream no_header(
+      "\xEF\xBB\xBF"
+      "1,2,3,0.5,1,1\n");
+  ASSERT_EQ(ReadBoxCsv(no_header, "b.csv").size(), 1u);  // a box, not a header
+  std::istringstream with_header(
+      "\xEF\xBB\xBF"
+      "cx,cy,cz,hx,hy,hz\n1,2,3,0.5,1,1\n");
+  EXPECT_EQ(ReadBoxCsv(with_header, "b.csv").size(), 1u);
+  for (const char* text : {"", "\n", "cx,cy,cz,hx,hy,hz\n"}) {
+    test::ExpectInputError(
+        [&] {
+          std::istringstream in(text);
+          ReadBoxCsv(in, "empty.csv");
+        },
+        "empty.csv", 0, "box row");
+  }
+  test::TempDir dir;
+  const std::string folder = dir.path().string();
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadBoxCsv(folder); }, 0, "", "is a directory, not a file"));
+  std::istringstream hex("1,2,0x3,0.5,1,1\n");  // a box row, refused for its hex number
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadBoxCsv(hex, "hex.csv"); }, 1, "cz", "hexadecimal"));
 }
 
 TEST(BoxCsv, OptionalHeaderRoundTripAndErrors) {

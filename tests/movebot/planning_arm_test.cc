@@ -12,6 +12,7 @@
 #include "common/input_error.h"
 #include "robocore/collision/exact_overlap_reference.h"
 #include "support/input_error_expectations.h"
+#include "support/temp_dir.h"
 #include "support/test_data.h"
 #include "workloads/movebot/arm_scene.h"
 #include "workloads/movebot/locobot_arm.h"
@@ -88,12 +89,33 @@ void ExpectInputError(const std::string& text, long line, const std::string& fie
 }
 
 TEST(ObstacleFile, MalformedLinesNameLineAndField) {
-  ExpectInputError("# c\n0, 0, 0, 1, 2, 3, 0.2, 0.4\n", 2, "");
+  ExpectInputError("# c\n0, 0, 0, 1, 2, 3, 0.2, 0.4\n", 2, "dimZ");         // the first missing field
+  ExpectInputError("0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6, 7\n", 1, "field 10");  // the first extra one
+  ExpectInputError("0, 0, 0, 0x1p0, 2, 3, 0.2, 0.4, 0.6\n", 1, "x");        // hexadecimal
   ExpectInputError("0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6\n0, 0, 0, x, 2, 3, 0.2, 0.4, 0.6\n", 2, "x");
   ExpectInputError("0, 0, 0, 1, 2, 3, 0.2, -0.4, 0.6\n", 1, "dimY");
   ExpectInputError("0, 0, nan, 1, 2, 3, 0.2, 0.4, 0.6\n", 1, "yaw");
   ExpectInputError("0, 0, 0, 1, 2, 3, 0.2, 0.4, \n", 1, "dimZ");
   EXPECT_THROW(ReadObstacleFile("/nonexistent/obs.txt"), InputError);
+}
+
+// A file with no obstacle would plan in an empty scene and exit 0: more
+// likely a wrong or truncated file than an intended empty scene.
+TEST(ObstacleFile, AFileWithoutObstaclesIsRefused) {
+  for (const char* text : {"", "\n\n", "# roll, pitch, yaw, x, y, z, dimX, dimY, dimZ\n"})
+    ExpectInputError(text, 0, "obstacles");
+  test::TempDir dir;
+  const std::string folder = dir.path().string();
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadObstacleFile(folder); }, 0, "", "is a directory, not a file"));
+}
+
+TEST(ObstacleFile, AByteOrderMarkIsSkipped) {
+  std::istringstream in(
+      "\xEF\xBB\xBF"
+      "0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6\n");
+  ASSERT_EQ(ReadObstacleFile(in, "obs.txt").size(), 1u);
+  std::istringstream comment("\xEF\xBB\xBF# header\n0, 0, 0, 1, 2, 3, 0.2, 0.4, 0.6\n");
+  ASSERT_EQ(ReadObstacleFile(comment, "obs.txt").size(), 1u);
 }
 
 TEST(ObstacleFile, SharedLocobotSceneIsAxisAligned) {

@@ -24,9 +24,11 @@ std::vector<Obstacle> ReadObstacleFile(std::istream& in, const std::string& file
     const std::size_t first = line.find_first_not_of(" \t");
     if (first == std::string::npos || line[first] == '#') continue;
     const auto fields = SplitFields(line, /*comma_separated=*/true);
+    // A short line names its first missing field, a long one its first extra.
     if (fields.size() != 9)
-      reader.Fail("", "expected 9 comma-separated fields (roll, pitch, yaw, x, y, z, dimX, dimY, dimZ), found " +
-                          std::to_string(fields.size()));
+      reader.Fail(fields.size() < 9 ? kFields[fields.size()] : "field 10",
+                  "expected 9 comma-separated fields (roll, pitch, yaw, x, y, z, dimX, dimY, dimZ), found " +
+                      std::to_string(fields.size()));
     double v[9];
     for (int k = 0; k < 9; ++k) v[k] = reader.ParseDouble(fields[k], kFields[k]);
     for (int k = 6; k < 9; ++k)
@@ -40,6 +42,10 @@ std::vector<Obstacle> ReadObstacleFile(std::istream& in, const std::string& file
     o.box.half = Eigen::Vector3d(v[6], v[7], v[8]) / 2;
     out.push_back(o);
   }
+  if (out.empty())
+    throw InputError(file_name, 0, "obstacles",
+                     "holds no obstacle (no 'roll, pitch, yaw, x, y, z, dimX, dimY, dimZ' line); an empty file is "
+                     "more likely a mistake than an empty scene");
   return out;
 }
 
