@@ -2,11 +2,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "common/input_error.h"
+#include "common/text_fields.h"
 #include "maps/grid_size_limits.h"
 #include "maps/image_codec.h"
+#include "maps/image_pnm_check.h"
 #include "maps/image_signature.h"
 
 namespace rc {
@@ -18,10 +21,6 @@ std::string Text(double v) {
   std::ostringstream out;
   out << v;
   return out.str();
-}
-
-std::string PixelField(int row, int column) {
-  return "pixel (row " + std::to_string(row) + ", column " + std::to_string(column) + ")";
 }
 
 // Raw mode: the mean must be an exact occupancy percentage or 255.
@@ -46,6 +45,10 @@ CellClass ClassifyPixelMeanClass(double v, const PixelThresholds& t) {
 }
 
 }  // namespace
+
+std::string PixelField(int row, int column) {
+  return "pixel (row " + std::to_string(row) + ", column " + std::to_string(column) + ")";
+}
 
 std::string ToString(ImageMapMode mode) {
   switch (mode) {
@@ -77,14 +80,19 @@ CellState ClassifyPixelMean(double v, const PixelThresholds& t) { return StateOf
 OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, const PixelThresholds& thresholds,
                             ImageMapMode mode, CellClassCounts* counts) {
   // Checked first: OpenCV would also print its own warning for a missing file.
+  RejectDirectory(image_path);
   std::ifstream file(image_path, std::ios::binary);
   if (!file) throw InputError(image_path, 0, "", "cannot open image file");
   std::string head(8, '\0');
   file.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(file.gcount()));
-  if (!MapImageFormatOf(head))
+  const std::optional<std::string> format = MapImageFormatOf(head);
+  if (!format)
     throw InputError(image_path, 0, "",
                      std::string("not a ") + kMapImageFormats + " image (its first bytes match none of them)");
+  // OpenCV misreads some malformed PNMs and reports none of them well
+  // (image_pnm_check.h), so a PNM decodes only once it has passed this.
+  if (*format == "PNM") CheckPnmImage(image_path);
   // A corrupt file can make a decoder throw (cv::Exception) instead of
   // returning an empty image.
   cv::Mat image;

@@ -30,7 +30,8 @@
 // pixel, whose outer corner is the ROS map origin.
 //
 // Accepted images: anything OpenCV decodes to 8 bits per channel with 1, 3
-// or 4 channels (grey, BGR, BGRA; grey+alpha PNGs decode as BGRA). 16-bit
+// or 4 channels (grey, BGR, BGRA; grey+alpha PNGs decode as BGRA); a PNM
+// only once image_pnm_check.h has found it well formed. 16-bit
 // images are rejected rather than rescaled. Palette PNGs decode to their
 // colours; map_server (SDL) would read the palette index instead.
 #include <string>
@@ -58,11 +59,17 @@ bool CheckPixelThresholds(const PixelThresholds& t, std::string* field, std::str
 // Classifies one pixel's channel mean v (0..255) in trinary or scale mode.
 CellState ClassifyPixelMean(double v, const PixelThresholds& t);
 
+// The field that names one pixel in an InputError: "pixel (row R, column C)",
+// 0-based, image row 0 at the top (as image viewers count).
+std::string PixelField(int row, int column);
+
 // Reads the image at image_path and classifies every pixel (see above).
-// Throws InputError(image_path, 0, ...) when the image cannot be opened, is
-// not one of the map image formats (image_signature.h), cannot be decoded,
-// or has an unsupported depth or channel count, and (raw mode)
-// naming the offending pixel's row and column. Thresholds must be valid.
+// Throws InputError(image_path, 0, ...) when the image cannot be opened or
+// is a directory, is not one of the map image formats (image_signature.h),
+// cannot be decoded, or has an unsupported depth or channel count; a PNM's
+// malformed header or raster is located by line and field
+// (image_pnm_check.h); raw mode names the offending pixel's row and column.
+// Thresholds must be valid.
 // Adds each cell's class to *counts when given (raw 255 is never observed;
 // every other unknown pixel lies between the thresholds).
 OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, const PixelThresholds& thresholds,

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <vector>
+
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -99,6 +102,76 @@ TEST(ImageMapLoader, OtherImageFormatsAreRefusedBeforeDecoding) {
   EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(path, o); }, 0, "", "its first bytes match none of them"));
   for (const char* pgm : {"P5\n2 1\n255\n\x01\x02", "P2 2 1 255 0 255\n"})
     EXPECT_NO_THROW(LoadImageMap(dir.Write("ok.pgm", pgm), o)) << pgm;
+}
+
+TEST(ImageMapLoader, ADirectoryIsAnInputErrorNamingIt) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  const std::string folder = dir.Path("walls.pgm");
+  std::filesystem::create_directory(folder);
+  test::ExpectInputError([&] { LoadImageMap(folder, o); }, folder, 0, "");
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(folder, o); }, 0, "", "is a directory, not a file"));
+}
+
+// Review findings: OpenCV clamped a plain sample above maxval (a P2 with
+// maxval 100 and samples of 254 loaded as all free), reported a bad header
+// or a short raster only as "cannot decode", and printed its own message on
+// stderr first. Each PNM defect is now an InputError at its line and field.
+const std::vector<test::MalformedCase> kMalformedPnms = {
+    {"p2_sample_above_maxval", "P2\n2 1\n100\n0 254\n", 4, "pixel (row 0, column 1)",
+     "value 254 is above the header's maxval 100"},
+    {"p3_sample_above_maxval", "P3\n1 2\n200\n0 0 0\n0 0 201\n", 5, "pixel (row 1, column 0)", "above"},
+    {"line_counts_comments", "P2\n# a\n# b\n2 1\n100\n0 101\n", 6, "pixel (row 0, column 1)", "above"},
+    {"p2_too_few_values", "P2\n3 2\n255\n0 0 0\n0\n", 0, "pixels", "4 of 6 values present"},
+    {"p2_too_many_values", "P2\n2 1\n255\n0 0\n0\n", 5, "pixels", "more than the 2 values of 2 x 1 pixels"},
+    {"p2_no_line_break_at_the_end", "P2\n2 1\n255\n0\n255", 5, "pixels", "ends right after the last value"},
+    {"p2_sample_not_a_number", "P2\n2 1\n255\n0 x\n", 4, "pixel (row 0, column 1)", "'x' is not a whole number"},
+    {"p2_negative_sample", "P2\n2 1\n255\n0 -1\n", 4, "pixel (row 0, column 1)", "'-1' is not a whole number"},
+    {"p1_digit_not_a_bit", "P1\n3 1\n102\n", 3, "pixel (row 0, column 2)", "'2' is not 0 or 1"},
+    {"p5_truncated", "P5\n3 2\n255\n\x01\x02\x03", 0, "pixels", "3 of 6 raster bytes present"},
+    {"p5_header_only", "P5\n3 2\n255", 0, "pixels", "0 of 6 raster bytes present"},
+    {"p4_truncated", std::string("P4\n9 2\n\0\0\0", 10), 0, "pixels", "3 of 4 raster bytes present"},
+    {"p6_truncated", "P6\n1 1\n255\n\x01\x02", 0, "pixels", "2 of 3 raster bytes present"},
+    {"p5_trailing_bytes", "P5\n2 1\n255\n\x01\x02\x03", 0, "pixels", "1 byte follows the raster of 2 x 1 pixels"},
+    {"p5_crlf_header", "P5\r\n2 1\r\n255\r\n\x01\x02", 0, "pixels", "the header ends in CR LF"},
+    {"maxval_zero", "P2\n20 20\n0\n", 3, "maxval", "must be in [1, 65535], got 0"},
+    {"maxval_above_netpbm", "P2\n20 20\n70000\n", 3, "maxval", "must be in [1, 65535], got 70000"},
+    {"maxval_sixteen_bit", "P5\n1 1\n1000\n\x01\x02", 3, "maxval", "16-bit samples"},
+    {"binary_maxval_below_255", "P5\n1 1\n100\n\x01", 3, "maxval", "save it with maxval 255"},
+    {"width_zero", "P2\n0 20\n255\n", 2, "width", "got 0"},
+    {"width_negative", "P2\n-5 20\n255\n", 2, "width", "'-5' is not a whole number"},
+    {"height_missing", "P2\n5", 2, "height", "the file ends before the height"},
+    {"height_huge", "P2\n5 99999999999999999999\n255\n", 2, "height", "must be in [1, 100000] pixels"},
+    {"too_many_cells", "P5\n100000 100000\n255\n", 2, "width x height", "exceeds the limit"},
+    {"maxval_glued_to_raster", "P5\n1 1\n255\x01", 3, "maxval", "'255?' is not a whole number"},
+};
+
+TEST(ImageMapLoader, MalformedPnmsAreInputErrorsAtTheirLineAndField) {
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  testing::internal::CaptureStderr();
+  test::ExpectEveryCaseRefused(kMalformedPnms, "m.pgm", [&](const std::string& path) { LoadImageMap(path, o); });
+  // None reached OpenCV's decoder, which prints its own message first.
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(ImageMapLoader, WellFormedPnmsOfEveryTypeLoad) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  auto picture = [&](const std::string& content) {
+    return test::Picture(LoadImageMap(dir.Write("m.pnm", content), o));
+  };
+  // Comments anywhere in the header; a plain raster ends in white space.
+  EXPECT_EQ(picture("P2\n# made by hand\n3 1 # size\n255\n0 255 128 "), "#.?\n");
+  // A plain maxval below 255 scales samples by 255 / maxval, as map_server does.
+  EXPECT_EQ(picture("P2\n3 1\n100\n0 50 100\n"), "#?.\n");
+  EXPECT_EQ(picture("P1\n3 1\n100\n"), "#..\n");  // 1 is black
+  EXPECT_EQ(picture(std::string("P4\n3 1\n\x80", 8)), "#..\n");
+  EXPECT_EQ(picture("P3\n2 1\n255\n0 0 0 255 255 255\n"), "#.\n");
+  EXPECT_EQ(picture(std::string("P6\n2 1\n255\n\xff\xff\xff\0\0\0", 17)), ".#\n");
+  EXPECT_EQ(picture(std::string("P5\n2 2\n255\n\0\xff\xff\0", 15)), "#.\n.#\n");
 }
 
 TEST(ImageMapLoader, SixteenBitImagesAreRejectedNotRescaled) {
