@@ -12,6 +12,7 @@
 
 #include "common/atomic_file.h"
 #include "common/input_error.h"
+#include "common/text_fields.h"
 
 namespace rc {
 namespace {
@@ -162,6 +163,9 @@ std::uint8_t SavedGrey(CellState s) {
 }  // namespace
 
 RosMap LoadRosMap(const std::string& yaml_path) {
+  // yaml-cpp would open a directory and fail on its first read with a
+  // std::ios_base::failure that names no file.
+  RejectDirectory(yaml_path);
   YAML::Node root;
   try {
     root = YAML::LoadFile(yaml_path);
@@ -198,7 +202,13 @@ RosMap LoadRosMap(const std::string& yaml_path) {
                      "image file '" + meta.image_path + "' does not exist or cannot be opened");
 
   RosMap map;
-  map.grid = ReadImageGrid(meta.image_path, meta.resolution_m, meta.thresholds, meta.mode, &map.cell_classes);
+  try {
+    map.grid = ReadImageGrid(meta.image_path, meta.resolution_m, meta.thresholds, meta.mode, &map.cell_classes);
+  } catch (const InputError& e) {
+    // The image's own error (its file, line and field) behind the YAML key
+    // that named it: the user ran the YAML and may not know the image.
+    yaml.FailKey("image", e.what());
+  }
   map.metadata = std::move(meta);
   return map;
 }

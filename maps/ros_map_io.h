@@ -50,7 +50,10 @@ struct RosMap {
 // resolution, an origin that is not three numbers, invalid thresholds,
 // negate other than 0/1/false/true, an unknown mode, negate with raw mode,
 // and an image file that does not exist. An image that exists but cannot be
-// decoded raises InputError naming the image file.
+// read (ReadImageGrid's errors, image_occupancy.h) raises InputError at the
+// YAML's image key whose message carries the image's own error, e.g.
+// "map.yaml:1: field 'image': map.pgm: field 'pixels': 20 of 400 values
+// present". A directory given as either file is an InputError too.
 RosMap LoadRosMap(const std::string& yaml_path);
 
 struct RosMapSaveOptions {
