@@ -41,7 +41,7 @@ def draw(rows, title="", clock_hz=CLOCK_HZ):
 
     npr = [float(r["nodes_per_ray"]) if r["nodes_per_ray"] else math.nan for r in rows]
     bottom.plot(it, npr, ".", markersize=3, label="nodes per ray")
-    thresholds = [float(r["threshold"]) for r in rows if r.get("threshold")]
+    thresholds = [float(r["threshold_nodes_per_ray"]) for r in rows if r.get("threshold_nodes_per_ray")]
     if thresholds and math.isfinite(thresholds[0]):
         bottom.axhline(thresholds[0], color="tab:red", linestyle="--", label=f"threshold {thresholds[0]:.0f}")
     elif thresholds:

@@ -103,7 +103,7 @@ TEST(MrptEngine, TimelineHasOurColumnsWithKernelWorkEmpty) {
   std::string header, first;
   std::getline(in, header);
   std::getline(in, first);
-  EXPECT_EQ(header.rfind("iteration,time_s,est_x_m,est_y_m,est_theta_rad,ess,rays,nodes,nodes_per_ray,wall_ms,", 0), 0u)
+  EXPECT_EQ(header.rfind("iteration,time_s,est_x_m,est_y_m,est_theta_rad,ess,rays,nodes,nodes_per_ray,wall_s,", 0), 0u)
       << header;
   EXPECT_NE(header.find("err_xy_m"), std::string::npos);
   EXPECT_EQ(header.find("cycles_"), std::string::npos);  // no modelled cost for MRPT

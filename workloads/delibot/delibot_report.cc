@@ -41,7 +41,7 @@ void DelibotTimeline::Open(const DelibotRow& first) {
                                       "rays",
                                       "nodes",
                                       "nodes_per_ray",
-                                      "wall_ms",
+                                      "wall_s",
                                       "sensor_updated",
                                       "log_mean_likelihood_nats",
                                       "resampled",
@@ -67,7 +67,7 @@ void DelibotTimeline::Open(const DelibotRow& first) {
     if (first.pricing.priced && first.pricing.costs.size() != backends_.size())
       throw std::logic_error("a priced row holds " + std::to_string(first.pricing.costs.size()) +
                              " backend costs for " + std::to_string(backends_.size()) + " backends");
-    for (const char* c : {"backend", "nodes_per_ray_prev", "threshold", "switched"}) columns.push_back(c);
+    for (const char* c : {"backend", "nodes_per_ray_prev", "threshold_nodes_per_ray", "switched"}) columns.push_back(c);
     for (const auto& b : backends_) columns.push_back("cycles_" + ColumnSafe(b));
     for (const char* c : {"simt_efficiency", "energy_j", "cum_cycles_policy"}) columns.push_back(c);
     for (const auto& b : backends_) columns.push_back("cum_cycles_" + ColumnSafe(b));
@@ -89,7 +89,7 @@ void DelibotTimeline::Add(const DelibotRow& r) {
                                 work_counted_ ? CsvCell(r.rays) : CsvCell::Empty(),
                                 work_counted_ ? CsvCell(r.nodes) : CsvCell::Empty(),
                                 MaybeNumber(work_counted_ && r.rays > 0, r.NodesPerRay()),
-                                r.wall_s * 1e3,
+                                r.wall_s,
                                 static_cast<int>(r.sensor_updated),
                                 MaybeNumber(std::isfinite(r.log_mean_likelihood), r.log_mean_likelihood),
                                 static_cast<int>(r.resampled),

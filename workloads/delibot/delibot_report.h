@@ -21,11 +21,11 @@ struct DelibotProvenance {
 };
 
 // Columns: iteration, time_s, est_x_m, est_y_m, est_theta_rad, ess, rays,
-// nodes, nodes_per_ray, wall_ms, sensor_updated, log_mean_likelihood_nats,
+// nodes, nodes_per_ray, wall_s, sensor_updated, log_mean_likelihood_nats,
 // resampled, injected, injection_rejected, hypotheses_alive, particles,
 // spread_m, mode_weight, consistency; with ground truth also err_xy_m,
 // err_theta_rad; with backend pricing also backend, nodes_per_ray_prev,
-// threshold, switched, cycles_<backend> for every backend, simt_efficiency,
+// threshold_nodes_per_ray, switched, cycles_<backend> for every backend, simt_efficiency,
 // energy_j (the chosen backend's), cum_cycles_policy, cum_cycles_<backend>,
 // cum_cycles_oracle and oracle_backend.
 //
