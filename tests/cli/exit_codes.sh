@@ -62,6 +62,8 @@ code 1 "backends bad params" -- backends --backend-params bad.json
 code 2 "carribot --resolution nan" -- carribot --map wall.map --start 0,0 --goal 1,0 --resolution nan
 code 2 "delibot --map-resolution nan" -- delibot --map map.yaml --trace good.log --map-resolution nan
 code 2 "delibot --max-range inf" -- delibot --map map.yaml --trace good.log --max-range inf
+code 2 "simulate --map-format without --map" -- simulate --map-format cmu --output sim.log --records 3
+code 2 "delibot --map-resolution without --map" -- delibot --map-resolution 0.1 --max-records 2
 code 2 "delibot --initial-pose nan" -- delibot --map map.yaml --trace good.log --initial-pose nan,1,0
 code 2 "delibot --initial-pose off the map" -- delibot --map map.yaml --trace good.log --initial-pose 500,500,0
 grep -q "^rcbench: usage: --initial-pose" err.txt || { echo "FAIL --initial-pose: no usage line"; failures=$((failures + 1)); }

@@ -232,17 +232,21 @@ void AddDelibotCommand(CLI::App& app) {
       app.add_subcommand("delibot",
                          "Monte Carlo Localization with laser ray casting (DeliBot). Without --map and --trace: the "
                          "built-in demo (generated office map, simulated trace with ground truth, out/demo/).");
-  cmd->add_option(
+  CLI::Option* map = cmd->add_option(
       "--map", cli->map_path,
       "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map, an image, or MRPT .gridmap/.simplemap[.gz]");
+  // The options that describe --map mean nothing without it.
   cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image | gridmap | simplemap")
+      ->needs(map)
       ->capture_default_str();
   cmd->add_option("--map-convention", cli->map_convention,
                   "CMU/RoWild .dat values mean P(free) ('free', the default: what wean.dat holds) or P(occupied) "
-                  "('occupied')");
+                  "('occupied')")
+      ->needs(map);
   cmd->add_option(
          "--map-resolution", cli->map_resolution_m,
          "Cell size (m) for MovingAI maps (default 1), images (required) and grids built from an MRPT .simplemap")
+      ->needs(map)
       ->check(FinitePositive());
   cmd->add_option("--trace", cli->trace_path,
                   "Laser trace: CMU robotdata .log, RoWild .txt, CARMEN .clf, or MRPT .rawlog[.gz]");

@@ -30,12 +30,19 @@ void AddSimulateCommand(CLI::App& app) {
   SimulationOptions& o = cli->options;
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Simulate a laser trace (CMU .log) with ground truth through a map (default: the generated office)");
-  cmd->add_option("--map", cli->map_path, "Map file (any format rcbench reads); default: the generated office map");
+  CLI::Option* map = cmd->add_option(
+      "--map", cli->map_path,
+      "Map file: CMU .dat, RoWild .dat, ROS .yaml, MovingAI .map or an image (not MRPT's); default: the generated "
+      "office map");
+  // The options that describe --map mean nothing without it.
   cmd->add_option("--map-format", cli->map_format, "auto | cmu | rowild | ros | movingai | image")
+      ->needs(map)
       ->capture_default_str();
-  cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'");
+  cmd->add_option("--map-convention", cli->map_convention, "CMU/RoWild .dat values: 'free' (default) or 'occupied'")
+      ->needs(map);
   cmd->add_option("--map-resolution", cli->map_resolution_m,
                   "Cell size (m) for MovingAI maps (default 1) and images (required)")
+      ->needs(map)
       ->check(FinitePositive());
   AddMapThresholdOptions(*cmd, cli->map_options);
   cmd->add_option("--output", cli->output, "Trace path (CMU robotdata format)")->capture_default_str();
