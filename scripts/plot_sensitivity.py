@@ -23,6 +23,8 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt
 
+from rcbench_files import save_figure
+
 
 def read(path):
     baseline = {}
@@ -96,7 +98,7 @@ def main():
     parser.add_argument("--results", type=int, default=0, help="panels (0: every result)")
     parser.add_argument("--parameters", type=int, default=12, help="bars per panel, widest first")
     args = parser.parse_args()
-    figure(args.csv, args.results, args.parameters).savefig(args.png, dpi=110)
+    save_figure(figure(args.csv, args.results, args.parameters), args.png, dpi=110)
 
 
 if __name__ == "__main__":

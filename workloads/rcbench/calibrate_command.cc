@@ -15,14 +15,17 @@
 //   DIR/sensitivity.png  a tornado plot per result (scripts/plot_sensitivity.py)
 //   DIR/sensitivity_artifact.csv, flips_artifact.md, sensitivity_artifact.png
 //                        the same around the artifact preset's values
+// Every path is checked before the work starts, and every file written once
+// it is done, the data files before the figures, whose scripts read them
+// (backends/calibration/calibration_outputs.h).
 //
 //   rcbench calibrate --out out/calibration [--backend-params artifact|FILE.json] [--data ../shared/data]
 //                     [--sensitivity [--quick]]
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
 #include "backends/calibration/calibration.h"
+#include "backends/calibration/calibration_outputs.h"
 #include "backends/calibration/delibot_calibration.h"
 #include "backends/calibration/sensitivity.h"
 #include "common/atomic_file.h"
@@ -42,13 +45,6 @@ struct CalibrateCli {
   CalibrationOptions options;
 };
 
-// Single-quoted for /bin/sh.
-std::string ShellQuote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // A script of the source tree. The binary knows the source tree only
 // through the shipped programs' directory (robocore/programs, compiled in).
 std::string SourceScript(const std::string& name) {
@@ -56,65 +52,46 @@ std::string SourceScript(const std::string& name) {
   return (source / "scripts" / name).string();
 }
 
-template <class Write>
-void WriteFile(const std::string& path, Write write) {
-  AtomicFile file(path);
-  write(file.stream());
-  file.Commit();
-}
-
-// Runs a plot script on `input`, writing `png`; says where the figure is,
-// or how to make it when python3 or the script is not there.
-void Plot(const std::string& script, const std::string& input, const std::string& png) {
-  const std::string plot = "/usr/bin/python3 " + ShellQuote(script) + " " + ShellQuote(input) + " " + ShellQuote(png);
-  if (std::filesystem::exists(script) && std::filesystem::exists("/usr/bin/python3") &&
-      std::system((plot + " >/dev/null 2>&1").c_str()) == 0)
-    std::cout << "plot    " << png << "\n";
-  else
-    std::cout << "plot    not made here; run: " << plot << "\n";
-}
-
 // Sweeps one column's parameters, the other preset's values included as
 // variants, and sets each row's range for that column to the lowest and
 // highest value the sweep found. Every row is swept: the small batches and
 // SACT scenes re-priced per variant, the whole DeliBot runs filtered once
 // and priced under every variant as they run (DelibotRunRowsUnderVariants).
-// Writes DIR/sensitivity<suffix>.csv, flips<suffix>.md and the plot.
-void SweepColumn(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendPreset& swept,
-                 const BackendPreset& other, const std::string& suffix, bool ours_column, CalibrationReport& report) {
+// Writes nothing: the files come once both columns are swept
+// (WriteCalibrationOutputs).
+SweptColumn SweepColumn(const CalibrateCli& cli, const CalibrationWorkloads& workloads, const BackendPreset& swept,
+                        const BackendPreset& other, const std::string& suffix, bool ours_column,
+                        CalibrationReport& report) {
   SensitivityOptions options;
   options.quick = cli.quick;
   options.artifact = &other.backend;
   std::cout << "sweeping " << (cli.quick ? "the quick subset of the" : "every") << " declared parameter"
             << (cli.quick ? "s" : "") << " of the " << (ours_column ? "ours" : "artifact preset") << " column...\n";
-  const Sensitivity s = SweepParametersTogether(
-      swept.backend,
-      [&](const std::vector<BackendParameters>& sets) {
-        std::vector<std::vector<CalibrationRow>> rows = DelibotRunRowsUnderVariants(workloads, swept.kernel, sets);
-        for (std::size_t v = 0; v < sets.size(); ++v)
-          for (CalibrationRow& row :
-               CalibrateOneColumn(workloads, BackendPreset{swept.name, sets[v], swept.kernel}, false).rows)
-            rows[v].push_back(std::move(row));
-        return rows;
-      },
-      options);
-  const std::string csv = cli.out_dir + "/sensitivity" + suffix + ".csv";
-  const std::string flips = cli.out_dir + "/flips" + suffix + ".md";
-  WriteSensitivityCsv(csv, s);
-  WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, s); });
+  const MeasureAllRows measure = [&](const std::vector<BackendParameters>& sets) {
+    std::vector<std::vector<CalibrationRow>> rows = DelibotRunRowsUnderVariants(workloads, swept.kernel, sets);
+    for (std::size_t v = 0; v < sets.size(); ++v)
+      for (CalibrationRow& row :
+           CalibrateOneColumn(workloads, BackendPreset{swept.name, sets[v], swept.kernel}, false).rows)
+        rows[v].push_back(std::move(row));
+    return rows;
+  };
+  SweptColumn column{suffix, SweepParametersTogether(swept.backend, measure, options)};
+  const Sensitivity& s = column.sweep;
   std::cout << s.parameters_swept << " parameters swept, " << s.points.size() - s.results.size() << " variants priced, "
             << s.skipped.size() << " refused by the parameter checks\n";
   WriteFlipTable(std::cout, s);
-  std::cout << "sweep   " << csv << "\nflips   " << flips << "\n";
-  Plot(SourceScript("plot_sensitivity.py"), csv, cli.out_dir + "/sensitivity" + suffix + ".png");
   const std::vector<ResultRange> ranges = RangesOf(s);
   for (std::size_t i = 0; i < ranges.size(); ++i)
     for (CalibrationRow& row : report.rows)
       if (row.result == s.results[i].name)
         (ours_column ? row.ours_range : row.artifact_range) = ValueRange{ranges[i].low, ranges[i].high};
+  return column;
 }
 
 void Run(const CalibrateCli& cli) {
+  const std::vector<std::string> suffixes =
+      cli.sensitivity ? std::vector<std::string>{"", "_artifact"} : std::vector<std::string>{};
+  CheckOutputPaths(CalibrationOutputPaths(cli.out_dir, suffixes));
   const BackendPreset ours = cli.params_path.empty() ? DefaultPreset() : LoadBackendPreset(cli.params_path);
   const BackendPreset artifact = ArtifactPreset();
   std::cout << "recording workloads...\n";
@@ -122,18 +99,16 @@ void Run(const CalibrateCli& cli) {
   std::cout << "pricing (artifact preset and " << ours.name << ")...\n";
   CalibrationReport report = Calibrate(workloads, artifact, ours);
 
+  std::vector<SweptColumn> sweeps;
   if (cli.sensitivity) {
-    SweepColumn(cli, workloads, ours, artifact, "", true, report);
-    SweepColumn(cli, workloads, artifact, ours, "_artifact", false, report);
+    sweeps.push_back(SweepColumn(cli, workloads, ours, artifact, suffixes[0], true, report));
+    sweeps.push_back(SweepColumn(cli, workloads, artifact, ours, suffixes[1], false, report));
   }
-  const std::string md = cli.out_dir + "/calibration.md";
-  const std::string csv = cli.out_dir + "/calibration.csv";
-  WriteFile(md, [&](std::ostream& out) { WriteCalibrationMarkdown(out, report); });
-  WriteCalibrationCsv(csv, report);
   WriteCalibrationMarkdown(std::cout, report);
-  std::cout << "\nreport  " << md << "\ndata    " << csv << "\n";
-  Plot(cli.plot_script.empty() ? SourceScript("plot_calibration.py") : cli.plot_script, csv,
-       cli.out_dir + "/calibration.png");
+  std::cout << "\n";
+  const PlotScripts scripts{cli.plot_script.empty() ? SourceScript("plot_calibration.py") : cli.plot_script,
+                            SourceScript("plot_sensitivity.py")};
+  WriteCalibrationOutputs(cli.out_dir, report, sweeps, scripts, DrawWithPython, std::cout);
 }
 
 }  // namespace
