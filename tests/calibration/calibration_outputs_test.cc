@@ -15,23 +15,13 @@
 #include <gtest/gtest.h>
 
 #include "backends/calibration/calibration_outputs.h"
+#include "calibration/fake_measure.h"
 #include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
-// A speedup that the warp buffer depth moves across 1, and a percent change.
-std::vector<CalibrationRow> FakeMeasure(const BackendParameters& p) {
-  CalibrationRow speedup;
-  speedup.result = "speedup";
-  speedup.unit = CalibrationUnit::kSpeedup;
-  speedup.ours = 1.5 * p.robocore.unit.warp_buffer_warps / 4.0;
-  CalibrationRow change;
-  change.result = "change";
-  change.unit = CalibrationUnit::kPercentChange;
-  change.ours = p.simt.precision == SimtPrecision::kFp32 ? 10.0 : -10.0;
-  return {speedup, change};
-}
+using test::FakeMeasure;
 
 CalibrationReport FakeReport() {
   CalibrationReport report;

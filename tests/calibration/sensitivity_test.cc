@@ -10,25 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "backends/calibration/sensitivity.h"
+#include "calibration/fake_measure.h"
 #include "support/temp_dir.h"
 
 namespace rc {
 namespace {
 
-// A stand-in for pricing: a speedup of robocore's warp buffer depth over 4
-// (so x0.5 flips it below 1) and a percent change that only the SIMT
-// precision moves.
-std::vector<CalibrationRow> FakeMeasure(const BackendParameters& p) {
-  CalibrationRow speedup;
-  speedup.result = "speedup";
-  speedup.unit = CalibrationUnit::kSpeedup;
-  speedup.ours = 1.5 * p.robocore.unit.warp_buffer_warps / 4.0;
-  CalibrationRow change;
-  change.result = "change";
-  change.unit = CalibrationUnit::kPercentChange;
-  change.ours = p.simt.precision == SimtPrecision::kFp32 ? 10.0 : -10.0;
-  return {speedup, change};
-}
+using test::FakeMeasure;
 
 TEST(Sensitivity, FindsTheVariantsThatFlipAResult) {
   const Sensitivity s = SweepParameters(BackendParameters{}, FakeMeasure);
