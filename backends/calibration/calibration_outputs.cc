@@ -15,6 +15,12 @@ const char* const kPython = "/usr/bin/python3";
 
 std::string InDir(const std::string& dir, const std::string& name) { return dir + "/" + name; }
 
+// A swept column's file: DIR/<stem><suffix>.<extension>, the one place its
+// names are made (the output check and the writer both use it).
+std::string ColumnFile(const std::string& dir, const char* stem, const std::string& suffix, const char* extension) {
+  return InDir(dir, stem + suffix + "." + extension);
+}
+
 template <class Write>
 void WriteFile(const std::string& path, Write write) {
   AtomicFile file(path);
@@ -36,11 +42,8 @@ std::vector<std::string> CalibrationOutputPaths(const std::string& dir,
   std::vector<std::string> paths = {InDir(dir, "calibration.md"), InDir(dir, "calibration.csv"),
                                     InDir(dir, "calibration.png")};
   for (const std::string& s : sweep_suffixes)
-    for (const char* name : {"sensitivity%.csv", "flips%.md", "sensitivity%.png"}) {
-      std::string file = name;
-      file.replace(file.find('%'), 1, s);
-      paths.push_back(InDir(dir, file));
-    }
+    paths.insert(paths.end(), {ColumnFile(dir, "sensitivity", s, "csv"), ColumnFile(dir, "flips", s, "md"),
+                               ColumnFile(dir, "sensitivity", s, "png")});
   return paths;
 }
 
@@ -54,12 +57,12 @@ void WriteCalibrationOutputs(const std::string& dir, const CalibrationReport& re
   log << "report  " << md << "\ndata    " << csv << "\n";
   std::vector<Figure> figures;
   for (const SweptColumn& column : sweeps) {
-    const std::string sweep = InDir(dir, "sensitivity" + column.suffix + ".csv");
-    const std::string flips = InDir(dir, "flips" + column.suffix + ".md");
+    const std::string sweep = ColumnFile(dir, "sensitivity", column.suffix, "csv");
+    const std::string flips = ColumnFile(dir, "flips", column.suffix, "md");
     WriteSensitivityCsv(sweep, column.sweep);
     WriteFile(flips, [&](std::ostream& out) { WriteFlipTable(out, column.sweep); });
     log << "sweep   " << sweep << "\nflips   " << flips << "\n";
-    figures.push_back({scripts.sensitivity, sweep, InDir(dir, "sensitivity" + column.suffix + ".png")});
+    figures.push_back({scripts.sensitivity, sweep, ColumnFile(dir, "sensitivity", column.suffix, "png")});
   }
   figures.push_back({scripts.calibration, csv, InDir(dir, "calibration.png")});
   for (const Figure& figure : figures) {
