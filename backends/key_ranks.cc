@@ -6,7 +6,7 @@
 #include <immintrin.h>
 #endif
 
-#include "robocore/ray_batch_lanes.h"
+#include "common/cpu_features.h"
 
 namespace rc {
 namespace {
@@ -69,7 +69,7 @@ void RankDistinctKeysAvx512(const std::int32_t*, std::size_t, std::int32_t*) {
 #endif
 
 void RankDistinctKeys(const std::int32_t* keys, std::size_t count, std::int32_t* place) {
-  if (RayLanesSupported())
+  if (CpuHasAvx512())
     RankDistinctKeysAvx512(keys, count, place);
   else
     RankDistinctKeysPortable(keys, count, place);

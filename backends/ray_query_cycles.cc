@@ -13,7 +13,7 @@
 #include <immintrin.h>
 #endif
 
-#include "robocore/ray_batch_lanes.h"
+#include "common/cpu_features.h"
 
 namespace rc {
 
@@ -92,7 +92,7 @@ std::uint64_t SlowestRayQueryLanes(const RayQueryTerms&, std::size_t, std::size_
 #endif
 
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally) {
-  return RayLanesSupported() ? SlowestRayQueryLanes(terms, lo, hi, tally) : SlowestRayQueryScalar(terms, lo, hi, tally);
+  return CpuHasAvx512() ? SlowestRayQueryLanes(terms, lo, hi, tally) : SlowestRayQueryScalar(terms, lo, hi, tally);
 }
 
 }  // namespace rc

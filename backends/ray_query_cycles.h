@@ -38,7 +38,7 @@ struct RayPassTally {
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 
 // The same, one query at a time; and in AVX-512 lanes, only where the host
-// has them (RayLanesSupported()).
+// has them (CpuHasAvx512(), common/cpu_features.h).
 std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 std::uint64_t SlowestRayQueryLanes(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 

@@ -1,44 +1,54 @@
 #pragma once
-// Batch ray casting with rays in flight in AVX-512 lanes (the host fast
-// path of CastRayBatch for all three methods: march, dda and rm).
+// Batch ray casting with rays in flight in SIMD lanes, AVX-512 or AVX2 (the
+// host fast path of CastRayBatch for all three methods: march, dda and rm).
 //
 // Why: one ray's traversal is a chain of dependent steps (the next cell
 // depends on the comparison of two boundary times; rm's next fetch depends on
 // the distance just fetched), and its x/y step pattern defeats the branch
-// predictor. Eight rays advance together, one step each per round, every
-// per-step decision a lane mask instead of a branch, and every round's cell
-// fetches one gather. A lane whose ray ended takes the batch's next query.
+// predictor. 32 rays advance together, one step each per round, in groups
+// of one vector each (eight in AVX-512, four in AVX2), every per-step
+// decision a lane mask instead of a branch, and every group's cell fetches
+// one gather. A lane whose ray ended takes the batch's next query.
 //
 // Contract: every hit (range and node count) equals CastRay's for the same
 // query, bit for bit. The lanes run CastMarch's, CastDda's and
 // CastRayMarching's operations (ray_cast.h) on the same IEEE double values in the same order:
 // multiply, subtract, divide, floor, min/max and compares are exact in SIMD
 // as in scalar code, each select is written with the operand order of the
-// scalar ternary it replaces, and the file is compiled with
+// scalar ternary it replaces, and the files are compiled with
 // -ffp-contract=off so that no multiply-add is fused. A ray's set-up
-// (sin, cos, 1/dir) is the scalar code itself.
+// (sin, cos, 1/dir) is the scalar code itself. Both instruction sets run
+// the same operations, so they also agree with each other.
 //
-// Dispatch is at run time: on a CPU without AVX-512 (F, VL, DQ), on a
-// target other than x86-64, or for a grid too large for 32-bit gather
-// indices, CastRayBatch casts each query with CastRay instead; no global
-// -march flag is needed.
+// Dispatch is at run time: the widest instruction set the CPU runs
+// (AVX-512 F, VL, DQ; else AVX2). On a CPU with neither, on a target other
+// than x86-64, or for a grid too large for 32-bit gather indices,
+// CastRayBatch casts each query with CastRay instead; no global -march flag
+// is needed.
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "robocore/ray_batch.h"
 
 namespace rc {
 
-// Rays per group (one AVX-512 vector of doubles), and groups stepped in
-// turn: one group's round is a chain of about 130 cycles of dependent
-// latency (a gather, a divide, conversions), so several groups keep the
-// core busy; 4 measured best (docs/performance.md).
-inline constexpr int kRayLanes = 8;
-inline constexpr int kRayLaneGroups = 4;
-inline constexpr int kRaysInFlight = kRayLanes * kRayLaneGroups;
+// Rays in flight: groups of one vector each are stepped in turn, because
+// one group's round is a chain of about 130 cycles of dependent latency (a
+// gather, a divide, conversions) and several groups keep the core busy; 4
+// groups of 8 measured best in AVX-512 (docs/performance.md).
+inline constexpr int kRaysInFlight = 32;
 
-// True when this CPU can run the lanes.
+// The instruction sets the lanes are written in.
+enum class RayLaneIsa { kAvx2, kAvx512 };
+std::string_view ToString(RayLaneIsa isa);
+
+// Every instruction set of the lanes this CPU runs, narrowest first; empty
+// where it runs none (then CastRayBatch casts one query at a time).
+const std::vector<RayLaneIsa>& HostRayLaneIsas();
+
+// True when this CPU can run the lanes in some instruction set.
 bool RayLanesSupported();
 
 // True when `scene` can be cast by the lanes on this CPU: a grid whose cell
@@ -66,8 +76,8 @@ struct LaneRecording {
   // wanted.
   std::uint8_t* last_exits = nullptr;
   // A word per sector, numbered from the footprint's begin: set to 1 for
-  // every fetched node's sector (a word, not a bit, so that a group marks its
-  // eight sectors with one scatter). Null: not wanted.
+  // every fetched node's sector (a word, not a bit, so that an AVX-512 group
+  // marks its eight sectors with one scatter). Null: not wanted.
   std::uint32_t* touched = nullptr;
   std::uint64_t offset = 0;         // bytes from the footprint's begin to the fetched structure
   std::uint32_t element_bytes = 1;  // bytes per fetched node
@@ -75,10 +85,16 @@ struct LaneRecording {
   LaneNodeLog* nodes = nullptr;     // null: not wanted
 };
 
-// Casts queries [0, count) into hits [0, count) with the scene's method.
-// Requires RayLanesApply(scene). With a recording, also fills what it asks
-// for (the last exits of [0, count), bits of touched sectors).
+// Casts queries [0, count) into hits [0, count) with the scene's method,
+// in the widest instruction set this CPU runs. Requires RayLanesApply(scene).
+// With a recording, also fills what it asks for (the last exits of
+// [0, count), words of touched sectors, node indices).
 void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,
                   RayHit* hits, const LaneRecording* recording = nullptr);
+
+// The same in instruction set `isa`, which must be one of HostRayLaneIsas()
+// (tests and benchmarks compare them; std::invalid_argument otherwise).
+void CastRayLanesIn(RayLaneIsa isa, const RayCastScene& scene, const RayQuery* queries, std::size_t count,
+                    double max_range_m, RayHit* hits, const LaneRecording* recording = nullptr);
 
 }  // namespace rc

@@ -74,13 +74,13 @@ TEST_P(RecordTest, HitsNodesAddressesAndExitsMatchTheKernel) {
 }
 
 // The recorded addresses are the nodes the scalar kernel visits, in its
-// order, for a full record and for a sample's kept queries (cast in AVX-512
+// order, for a full record and for a sample's kept queries (cast in SIMD
 // lanes where the CPU has them, which log each lane's node indices).
 TEST_P(RecordTest, AddressesAreTheNodesTheScalarKernelVisits) {
   const OccupancyGrid grid = test::RoomGrid(80, 64, 0.1, 0.05, 3);
   const RayCastScene scene(grid, GetParam());
   const RayBatch batch = test::FanBatch(grid, 90, 41, 5.5, 4);  // 3690 queries: blocks of 256 on 8 SMs
-  for (const auto [sampled_sms, block_stride] : {std::pair{0, 1}, std::pair{1, 1}, std::pair{3, 1}, std::pair{1, 2}}) {
+  for (const auto& [sampled_sms, block_stride] : {std::pair{0, 1}, std::pair{1, 1}, std::pair{3, 1}, std::pair{1, 2}}) {
     RecordOptions options;
     if (sampled_sms > 0) options.sample.sampled_sms = sampled_sms;
     options.sample.block_stride = block_stride;
@@ -136,32 +136,34 @@ TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
 }
 
 // The lanes find a fetched cell's sector with a 32-bit shift where the
-// structure starts on a sector, and in 64 bits where it does not: both mark
+// structure starts on a sector, and in 64 bits where it does not (AVX-512),
+// or one lane at a time (AVX2): every instruction set this CPU runs marks
 // exactly the sectors of the cells the scalar kernel visits.
 TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
   const OccupancyGrid grid = test::RoomGrid(200, 150, 0.05, 0.01, 5);
   const RayCastScene scene(grid, GetParam());
-  if (!RayLanesApply(scene)) GTEST_SKIP() << "this host has no AVX-512 lanes";
+  if (!RayLanesApply(scene)) GTEST_SKIP() << "this host runs no lanes (neither AVX2 nor AVX-512)";
   const RayBatch batch = test::FanBatch(grid, 40, 30, 6.0, 3);
   const std::uint32_t element_bytes = GetParam() == RayCastMethod::kRayMarching ? 4 : 2;
-  for (std::uint64_t offset : {std::uint64_t{0}, std::uint64_t{4096}, std::uint64_t{8}, std::uint64_t{4100}}) {
-    std::set<std::uint64_t> expected;
-    for (std::size_t q = 0; q < batch.queries.size(); ++q)
-      for (std::uint32_t index : ScalarVisits(scene, batch, q))
-        expected.insert((offset + std::uint64_t{index} * element_bytes) / 32);
-    std::vector<std::uint32_t> touched((offset + grid.cell_count() * element_bytes) / 32 + 1, 0);
-    LaneRecording rec;
-    rec.touched = touched.data();
-    rec.offset = offset;
-    rec.element_bytes = element_bytes;
-    rec.sector_shift = 5;
-    std::vector<RayHit> hits(batch.queries.size());
-    CastRayLanes(scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, hits.data(), &rec);
-    std::set<std::uint64_t> marked;
-    for (std::size_t s = 0; s < touched.size(); ++s)
-      if (touched[s] != 0) marked.insert(s);
-    EXPECT_EQ(marked, expected) << "offset " << offset;
-  }
+  for (RayLaneIsa isa : HostRayLaneIsas())
+    for (std::uint64_t offset : {std::uint64_t{0}, std::uint64_t{4096}, std::uint64_t{8}, std::uint64_t{4100}}) {
+      std::set<std::uint64_t> expected;
+      for (std::size_t q = 0; q < batch.queries.size(); ++q)
+        for (std::uint32_t index : ScalarVisits(scene, batch, q))
+          expected.insert((offset + std::uint64_t{index} * element_bytes) / 32);
+      std::vector<std::uint32_t> touched((offset + grid.cell_count() * element_bytes) / 32 + 1, 0);
+      LaneRecording rec;
+      rec.touched = touched.data();
+      rec.offset = offset;
+      rec.element_bytes = element_bytes;
+      rec.sector_shift = 5;
+      std::vector<RayHit> hits(batch.queries.size());
+      CastRayLanesIn(isa, scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, hits.data(), &rec);
+      std::set<std::uint64_t> marked;
+      for (std::size_t s = 0; s < touched.size(); ++s)
+        if (touched[s] != 0) marked.insert(s);
+      EXPECT_EQ(marked, expected) << ToString(isa) << ", offset " << offset;
+    }
 }
 
 TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {

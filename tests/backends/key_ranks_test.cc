@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "robocore/ray_batch_lanes.h"
+#include "common/cpu_features.h"
 
 namespace rc {
 namespace {
@@ -44,7 +44,7 @@ TEST(KeyRanks, EveryFormRanksLikeASort) {
     EXPECT_EQ(got, want) << count;
     RankDistinctKeys(narrow.data(), count, got.data());
     EXPECT_EQ(got, want) << count;
-    if (RayLanesSupported()) {
+    if (CpuHasAvx512()) {
       std::fill(got.begin(), got.end(), -1);
       RankDistinctKeysAvx512(narrow.data(), count, got.data());
       EXPECT_EQ(got, want) << count;
@@ -53,7 +53,7 @@ TEST(KeyRanks, EveryFormRanksLikeASort) {
     RankDistinctKeys(wide.data(), count, wide_got.data());
     EXPECT_EQ(wide_got, SortedRanks(wide)) << count;
   }
-  if (!RayLanesSupported()) GTEST_SKIP() << "this host has no AVX-512: only the portable form was checked";
+  if (!CpuHasAvx512()) GTEST_SKIP() << "this host has no AVX-512: only the portable form was checked";
 }
 
 TEST(KeyRanks, RefusesMoreKeysThanTheLimit) {

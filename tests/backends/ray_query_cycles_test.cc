@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "robocore/ray_batch_lanes.h"
+#include "common/cpu_features.h"
 #include "robocore/section_timing.h"
 
 namespace rc {
@@ -74,21 +74,21 @@ TEST(RayQueryCycles, BothFormsGiveTheDefinitionsSlowestQueryAndPasses) {
         const std::size_t hi = std::min(q.last_exits.size(), lo + width);
         const std::uint64_t expected = Expected(q, lo, hi, want);
         EXPECT_EQ(SlowestRayQueryScalar(q.terms, lo, hi, scalar), expected) << lo;
-        if (RayLanesSupported()) {
+        if (CpuHasAvx512()) {
           EXPECT_EQ(SlowestRayQueryLanes(q.terms, lo, hi, lanes), expected) << lo;
         }
         EXPECT_EQ(SlowestRayQuery(q.terms, lo, hi, dispatched), expected) << lo;
       }
       EXPECT_GT(want.quiet, 0u);
       std::vector<const RayPassTally*> tallies = {&scalar, &dispatched};
-      if (RayLanesSupported()) tallies.push_back(&lanes);
+      if (CpuHasAvx512()) tallies.push_back(&lanes);
       for (const RayPassTally* got : tallies) {
         EXPECT_EQ(got->quiet, want.quiet);
         for (int j = 0; j < exits; ++j) EXPECT_EQ(got->exit[j], want.exit[j]) << j;
       }
     }
   }
-  if (!RayLanesSupported()) GTEST_SKIP() << "this host has no AVX-512: only the one-query-at-a-time form was checked";
+  if (!CpuHasAvx512()) GTEST_SKIP() << "this host has no AVX-512: only the one-query-at-a-time form was checked";
 }
 
 }  // namespace

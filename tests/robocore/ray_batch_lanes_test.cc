@@ -1,18 +1,23 @@
-// The AVX-512 batch kernels (ray_batch_lanes.h) against the per-query
-// kernels: every hit's range (bit for bit) and node count must be equal, for
-// every batch size (lane refill), on random, open and real maps, on the
-// geometry degeneracies of ray_cast_test.cc, and at any thread count. On a
-// CPU without AVX-512 the lane tests skip and say so; CastRayBatch then
-// takes the per-query path, which the batch tests still check.
+// The batch kernels in SIMD lanes (ray_batch_lanes.h), in every instruction
+// set this CPU runs (AVX2, AVX-512), against the per-query kernels: every
+// hit's range (bit for bit) and node count must be equal, for every batch
+// size (lane refill), on random, open and real maps, on the geometry
+// degeneracies of ray_cast_test.cc, and at any thread count. An instruction
+// set the CPU lacks is not checked here (the test log says which ran); on a
+// CPU with neither, CastRayBatch takes the per-query path, which the batch
+// tests still check.
 #include <omp.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "common/angles.h"
+#include "common/cpu_features.h"
 #include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
@@ -75,24 +80,47 @@ void ExpectHitsEqualSingleQueries(const RayCastScene& scene, const RayBatch& bat
   }
 }
 
-// Both entry points: CastRayBatch (whichever path this CPU takes) and, where
-// the CPU has AVX-512, the lanes themselves.
+// Every entry point: CastRayBatch (whichever path this CPU takes) and the
+// lanes in each instruction set the CPU runs.
 void ExpectBatchEqualsSingleQueries(const RayCastScene& scene, const RayBatch& batch, const char* what) {
   std::vector<RayHit> hits;
   CastRayBatch(scene, batch, hits);
   ExpectHitsEqualSingleQueries(scene, batch, hits, what);
   if (!RayLanesApply(scene)) return;
-  std::vector<RayHit> lane_hits(batch.queries.size());
-  CastRayLanes(scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, lane_hits.data());
-  ExpectHitsEqualSingleQueries(scene, batch, lane_hits, what);
+  for (RayLaneIsa isa : HostRayLaneIsas()) {
+    SCOPED_TRACE(std::string(ToString(isa)));
+    std::vector<RayHit> lane_hits(batch.queries.size());
+    CastRayLanesIn(isa, scene, batch.queries.data(), batch.queries.size(), batch.max_range_m, lane_hits.data());
+    ExpectHitsEqualSingleQueries(scene, batch, lane_hits, what);
+  }
 }
 
-TEST(RayBatchLanesTest, LanesRunOnThisCpu) {
-  if (!RayLanesSupported()) GTEST_SKIP() << "this CPU has no AVX-512 (F, VL, DQ): only the per-query path is tested";
+TEST(RayBatchLanesTest, TheCpuFeaturesChooseTheInstructionSets) {
+  std::vector<RayLaneIsa> expected;
+  if (CpuHasAvx2()) expected.push_back(RayLaneIsa::kAvx2);
+  if (CpuHasAvx512()) expected.push_back(RayLaneIsa::kAvx512);
+  EXPECT_EQ(HostRayLaneIsas(), expected);
+  EXPECT_EQ(RayLanesSupported(), !expected.empty());
   const OccupancyGrid g(10, 10, 0.1);
-  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kDda)));
-  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kRayMarching)));
-  EXPECT_TRUE(RayLanesApply(RayCastScene(g, RayCastMethod::kMarch)));
+  for (RayCastMethod m : {RayCastMethod::kDda, RayCastMethod::kRayMarching, RayCastMethod::kMarch})
+    EXPECT_EQ(RayLanesApply(RayCastScene(g, m)), !expected.empty());
+  std::string ran;
+  for (RayLaneIsa isa : expected) ran += " " + std::string(ToString(isa));
+  std::printf("lanes checked on this CPU:%s\n", ran.empty() ? " none (per-query path only)" : ran.c_str());
+}
+
+TEST(RayBatchLanesTest, RefusesAnInstructionSetTheCpuLacks) {
+  const OccupancyGrid g(10, 10, 0.1);
+  const RayCastScene scene(g, RayCastMethod::kDda);
+  const RayQuery q{0.5, 0.5, 0.3};
+  RayHit hit;
+  for (RayLaneIsa isa : {RayLaneIsa::kAvx2, RayLaneIsa::kAvx512}) {
+    const bool runs = (isa == RayLaneIsa::kAvx2 ? CpuHasAvx2() : CpuHasAvx512());
+    if (runs)
+      EXPECT_NO_THROW(CastRayLanesIn(isa, scene, &q, 1, 5.0, &hit));
+    else
+      EXPECT_THROW(CastRayLanesIn(isa, scene, &q, 1, 5.0, &hit), std::invalid_argument);
+  }
 }
 
 constexpr RayCastMethod kMethods[] = {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching};

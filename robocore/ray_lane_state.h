@@ -1,0 +1,197 @@
+#pragma once
+// What the lane kernels of every instruction set share (internal to
+// robocore/ray_batch_lanes*.cc): the per-lane state kept in memory between
+// rounds, a ray's set-up, the refill of lanes whose ray ended, and the
+// recording's bookkeeping. Everything here is scalar code with no target
+// attribute, so that each kernel file, compiled for its own instruction set,
+// may inline it; the vector steps live in ray_lanes_avx512.cc and
+// ray_lanes_avx2.cc, the loop that drives them in ray_lane_loop.inc.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "robocore/kernel_record.h"
+#include "robocore/ray_batch_lanes.h"
+
+namespace rc::ray_lanes {
+
+inline constexpr int kLanes = kRaysInFlight;
+using LaneMask = std::uint64_t;
+static_assert(kLanes <= 64, "LaneMask holds one bit per lane");
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Per-lane state, in memory between rounds, in lane order: a group of W
+// lanes is W consecutive entries of each array. The per-ray constants are
+// ray_cast_detail::MakeAxis's values for each axis, plus the offsets that
+// turn a cell into the boundary CastRay's Axis::BoundaryTime (exit) and
+// EntryTime use, and limits that give a zero direction component CastRay's
+// +inf exit and -inf entry: a zero inv_dir makes the formula's time +-0, and
+// max(+-0, +inf) = +inf, min(+-0, -inf) = -inf, while for step != 0
+// max(t, -inf) = min(t, +inf) = t.
+struct alignas(64) LaneState {
+  double origin_x[kLanes], origin_y[kLanes];
+  double dir_x[kLanes], dir_y[kLanes];
+  double inv_x[kLanes], inv_y[kLanes];
+  double exit_limit_x[kLanes], exit_limit_y[kLanes];
+  double entry_limit_x[kLanes], entry_limit_y[kLanes];
+  double t_enter[kLanes];
+  double exit_x[kLanes], exit_y[kLanes];  // dda: the current cell's exit times
+  double range[kLanes];                   // the hit's range if the ray ended this round
+  std::int32_t step_x[kLanes], step_y[kLanes];
+  std::int32_t exit_offset_x[kLanes], exit_offset_y[kLanes];
+  std::int32_t entry_offset_x[kLanes], entry_offset_y[kLanes];
+  std::int32_t ix[kLanes], iy[kLanes];
+  std::int32_t sample[kLanes];  // march: the index k of the next sample, at t = k r
+  std::uint32_t nodes[kLanes];
+  std::size_t query[kLanes];
+};
+
+// The scene's scalars every step reads; each kernel broadcasts them once
+// per call.
+struct LaneScene {
+  const void* cells = nullptr;   // dda, march: the grid's gather cells
+  const float* field = nullptr;  // rm: the distance field
+  double r = 0.0;                // cell size, m
+  double max_range = 0.0;        // m
+  double jump_margin = 0.0;      // rm: CastRayMarching's margin, computed as it computes it
+  std::int32_t size_x = 0, size_y = 0;
+  std::int32_t march_samples = 0;  // march: CastMarch's last sample index, floor(max_range / r)
+  std::size_t cell_count = 0;      // one past the largest cell index a lane may fetch
+};
+
+// CastMarch's last sample index.
+inline long MarchSamples(const OccupancyGrid& g, double max_range) {
+  return static_cast<long>(std::floor(max_range / g.resolution_m()));
+}
+
+inline std::uint64_t DoubleBits(double x) {
+  std::uint64_t u;
+  std::memcpy(&u, &x, sizeof u);
+  return u;
+}
+inline double BitsDouble(std::uint64_t u) {
+  double x;
+  std::memcpy(&x, &u, sizeof x);
+  return x;
+}
+// c ? a : b on doubles without a branch (a mispredicted branch per ray on
+// the sign of its direction is what this avoids).
+inline double SelectDouble(bool c, double a, double b) {
+  const std::uint64_t m = -static_cast<std::uint64_t>(c);
+  return BitsDouble((DoubleBits(a) & m) | (DoubleBits(b) & ~m));
+}
+// static_cast<int>(std::floor(x)) for |x| < 2^31, without a branch.
+inline int FloorToInt(double x) {
+  const int i = static_cast<int>(x);
+  return i - static_cast<int>(x < static_cast<double>(i));
+}
+
+// One axis of a lane's set-up: MakeAxis, the start cell and its exit time
+// (Axis::BoundaryTime), the same operations without a branch. Scalar: rays
+// end one lane at a time, and a vector set-up of one lane measured 2-6%
+// slower (its vector loads wait on the scalar stores just made).
+inline void SetUpAxisLane(int l, double o, double d, double r, double* origin, double* dir, double* inv_a,
+                          std::int32_t* step_a, std::int32_t* exit_off_a, std::int32_t* entry_off_a, double* exit_lim_a,
+                          double* entry_lim_a, std::int32_t* cell_a, double* exit_a) {
+  const bool pos = d > 0.0, neg = d < 0.0, moves = pos | neg;
+  const double inv = SelectDouble(moves, 1.0 / d, 0.0);
+  const int exit_off = static_cast<int>(pos);
+  const double exit_lim = SelectDouble(moves, -kInf, kInf);
+  const int cell = FloorToInt(o / r);
+  origin[l] = o;
+  dir[l] = d;
+  inv_a[l] = inv;
+  step_a[l] = static_cast<int>(pos) - static_cast<int>(neg);
+  exit_off_a[l] = exit_off;
+  entry_off_a[l] = 1 - exit_off;
+  exit_lim_a[l] = exit_lim;
+  entry_lim_a[l] = SelectDouble(moves, kInf, -kInf);
+  cell_a[l] = cell;
+  const double t = (static_cast<double>(cell + exit_off) * r - o) * inv;
+  exit_a[l] = t < exit_lim ? exit_lim : t;  // max_pd(limit, t)
+}
+
+// Starts query q in lane l (scalar: one ray).
+inline void StartLane(LaneState& s, int l, const RayQuery& q, std::size_t index, double r) {
+  const double dx = std::cos(q.angle_rad), dy = std::sin(q.angle_rad);
+  SetUpAxisLane(l, q.origin_x_m, dx, r, s.origin_x, s.dir_x, s.inv_x, s.step_x, s.exit_offset_x, s.entry_offset_x,
+                s.exit_limit_x, s.entry_limit_x, s.ix, s.exit_x);
+  SetUpAxisLane(l, q.origin_y_m, dy, r, s.origin_y, s.dir_y, s.inv_y, s.step_y, s.exit_offset_y, s.entry_offset_y,
+                s.exit_limit_y, s.entry_limit_y, s.iy, s.exit_y);
+  s.t_enter[l] = 0.0;
+  s.sample[l] = 0;
+  s.nodes[l] = 0;
+  s.query[l] = index;
+}
+
+// Writes the hits of the lanes in `ended` and starts the batch's next
+// queries in them; lanes left without one leave `live`.
+inline void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::size_t count, std::size_t& next,
+                   LaneMask& live, RayHit* hits, double r) {
+  while (ended != 0) {
+    const int l = __builtin_ctzll(ended);
+    ended &= ended - 1;
+    RayHit& hit = hits[s.query[l]];
+    hit.range_m = static_cast<float>(s.range[l]);
+    hit.nodes = s.nodes[l];
+    if (next == count) {
+      live &= ~(LaneMask{1} << l);
+      continue;
+    }
+    StartLane(s, l, queries[next], next, r);
+    ++next;
+  }
+}
+
+// Starts every lane: the first kLanes queries, and lanes beyond the batch on
+// a copy of its last query, not live. Returns the live mask.
+inline LaneMask StartAll(LaneState& s, const RayQuery* queries, std::size_t count, std::size_t& next, double r) {
+  LaneMask live = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    const std::size_t q = next < count ? next : count - 1;
+    if (next < count) {
+      live |= LaneMask{1} << l;
+      ++next;
+    }
+    StartLane(s, l, queries[q], q, r);
+  }
+  return live;
+}
+
+// Notes where the queries now in `lanes` begin in their lanes' logs.
+inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
+  for (; lanes != 0; lanes &= lanes - 1) {
+    const int l = __builtin_ctzll(lanes);
+    log.lane_of[s.query[l]] = static_cast<std::uint32_t>(l);
+    log.start_of[s.query[l]] = static_cast<std::uint32_t>(log.lane[l].size());
+  }
+}
+
+// Appends the fetched cells of a group (lanes first, first + 1, ...: bit i
+// of `fetch` for lane first + i, index[i] its cell) to their lanes' logs.
+inline void LogNodes(const std::int32_t* index, unsigned fetch, int first, LaneNodeLog& log) {
+  for (; fetch != 0; fetch &= fetch - 1) {
+    const int i = __builtin_ctz(fetch);
+    log.lane[first + i].push_back(static_cast<std::uint32_t>(index[i]));
+  }
+}
+
+// Each ended query's last loop pass's exit (LaneRecording::last_exits).
+inline void NoteLastExits(const LaneState& s, LaneMask ended, LaneMask stopped, std::uint8_t* last_exits) {
+  for (; ended != 0; ended &= ended - 1) {
+    const int l = __builtin_ctzll(ended);
+    last_exits[s.query[l]] = s.nodes[l] == 0 ? kNoExit : (stopped >> l) & 1 ? kRayHitReturn : kRayEndReturn;
+  }
+}
+
+// The instruction-set kernels (ray_lanes_avx512.cc, ray_lanes_avx2.cc):
+// CastRayLanes for queries [0, count), count > 0, with `scene` as the lanes
+// read it; the caller has checked that the CPU runs the instruction set.
+void CastLanesAvx512(RayCastMethod method, const LaneScene& scene, const RayQuery* queries, std::size_t count,
+                     RayHit* hits, const LaneRecording* recording);
+void CastLanesAvx2(RayCastMethod method, const LaneScene& scene, const RayQuery* queries, std::size_t count,
+                   RayHit* hits, const LaneRecording* recording);
+
+}  // namespace rc::ray_lanes
