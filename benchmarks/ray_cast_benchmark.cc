@@ -6,8 +6,12 @@
 //
 //   BM_RayCast/<method>_<order>       CastRay, one query at a time
 //   BM_RayCastBatch/<method>_<order>  CastRayBatch on one thread: 32 rays in
-//                                     flight in AVX-512 lanes where the CPU
-//                                     has them, the same hits
+//                                     flight in SIMD lanes (the widest the
+//                                     CPU runs, named in the label), the
+//                                     same hits
+//   BM_RayCastLanes/<method>_<isa>    the lanes in one instruction set
+//                                     (avx2, avx512), random order; skipped
+//                                     where the CPU lacks it
 //
 // The peer, RangeLibc (kctess5/range_libc), is not a Debian package, so it is
 // not linked here. It was built from its own sources with its own flags
@@ -39,6 +43,7 @@
 #include "maps/cmu_map_loader.h"
 #include "maps/office_map_generator.h"
 #include "robocore/ray_batch.h"
+#include "robocore/ray_batch_lanes.h"
 #include "robocore/ray_cast.h"
 
 namespace rc {
@@ -93,8 +98,13 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
   state.SetLabel(f.map_name + (grid_order ? ", grid order" : ", random order"));
 }
 
+// What CastRayBatch runs on this CPU, for the labels.
+std::string BatchPath() {
+  return RayLanesSupported() ? std::string(ToString(HostRayLaneIsas().back())) + " lanes" : "one query at a time";
+}
+
 // The same queries through the batch entry point (CastRayBatch) on one
-// thread: 32 rays in flight in AVX-512 lanes where the CPU has them
+// thread: 32 rays in flight in SIMD lanes where the CPU has them
 // (ray_batch_lanes.h), the same hits as one query at a time.
 void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_order) {
   const Fixture& f = GetFixture();
@@ -117,7 +127,34 @@ void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_or
   state.counters["queries_per_s"] = benchmark::Counter(queries, benchmark::Counter::kIsRate);
   state.counters["nodes_per_query"] = static_cast<double>(nodes) / queries;
   state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
-  state.SetLabel(f.map_name + (grid_order ? ", grid order, batch" : ", random order, batch"));
+  state.SetLabel(f.map_name + (grid_order ? ", grid order, batch, " : ", random order, batch, ") + BatchPath());
+}
+
+// The lanes in instruction set `isa` (CastRayLanesIn), random order, one
+// thread: an AVX-512 CPU also runs the AVX2 lanes, to compare the two.
+void BM_RayCastLanes(benchmark::State& state, RayCastMethod method, RayLaneIsa isa) {
+  const std::vector<RayLaneIsa>& host = HostRayLaneIsas();
+  if (std::find(host.begin(), host.end(), isa) == host.end()) {
+    state.SkipWithError(("this CPU does not run " + std::string(ToString(isa))).c_str());
+    return;
+  }
+  const Fixture& f = GetFixture();
+  const RayCastScene scene(f.grid, method);
+  std::vector<RayQuery> queries;
+  for (const auto& q : f.random_order) queries.push_back({q[0], q[1], q[2]});
+  std::vector<RayHit> hits(queries.size());
+  std::uint64_t nodes = 0;
+  for (auto _ : state) {
+    CastRayLanesIn(isa, scene, queries.data(), queries.size(), kMaxRangeM, hits.data());
+    nodes += TotalNodes(hits);
+    benchmark::DoNotOptimize(hits.data());
+  }
+  const double n = static_cast<double>(state.iterations() * queries.size());
+  state.SetItemsProcessed(static_cast<std::int64_t>(n));
+  state.counters["queries_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
+  state.counters["nodes_per_query"] = static_cast<double>(nodes) / n;
+  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  state.SetLabel(f.map_name + ", random order, " + std::string(ToString(isa)) + " lanes");
 }
 
 BENCHMARK_CAPTURE(BM_RayCast, march_random, RayCastMethod::kMarch, false)->Unit(benchmark::kMillisecond);
@@ -132,6 +169,12 @@ BENCHMARK_CAPTURE(BM_RayCastBatch, dda_random, RayCastMethod::kDda, false)->Unit
 BENCHMARK_CAPTURE(BM_RayCastBatch, dda_grid, RayCastMethod::kDda, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCastBatch, rm_random, RayCastMethod::kRayMarching, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RayCastBatch, rm_grid, RayCastMethod::kRayMarching, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastLanes, dda_avx2, RayCastMethod::kDda, RayLaneIsa::kAvx2)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastLanes, dda_avx512, RayCastMethod::kDda, RayLaneIsa::kAvx512)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastLanes, rm_avx2, RayCastMethod::kRayMarching, RayLaneIsa::kAvx2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RayCastLanes, rm_avx512, RayCastMethod::kRayMarching, RayLaneIsa::kAvx512)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace rc

@@ -23,7 +23,7 @@ struct RayBatch {
 
 // Functional execution on the host, parallel over units of queries with
 // OpenMP; the result does not depend on the thread count (each query is
-// independent). The queries run in AVX-512 lanes where the CPU has them
+// independent). The queries run in SIMD lanes (AVX-512 or AVX2) where the CPU has them
 // (ray_batch_lanes.h); every hit equals CastRay's, bit for bit, on either
 // path.
 void CastRayBatch(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits);

@@ -204,7 +204,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     prototype.element_bytes[k] = r.element_bytes;
   }
   prototype.sector_shift = sector_shift;
-  // Segments of the batch, each cast as a unit. With the AVX-512 lanes
+  // Segments of the batch, each cast as a unit. With the SIMD lanes
   // (ray_batch_lanes.h, which also give the exits, touched sectors and node
   // indices): kept blocks, or unkept ones, gathered into one contiguous
   // batch of at most kLaneSegmentQueries queries (a sample's kept blocks lie

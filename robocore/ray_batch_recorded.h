@@ -6,7 +6,7 @@
 // deterministic: every query's hit, node count and last pass's exit; the
 // addresses of the blocks the sample keeps, in a buffer per block, joined in
 // launch order; and, with a sample, the sectors the whole batch touched.
-// Where CastRayBatch's AVX-512 lanes apply (ray_batch_lanes.h), every query
+// Where CastRayBatch's SIMD lanes apply (ray_batch_lanes.h), every query
 // is cast in them, the kept ones with each lane's node indices logged;
 // elsewhere one query at a time, the kept ones with a recording visitor.
 // The record does not depend on the thread count or the path.
