@@ -67,7 +67,8 @@ class Avx2Kernel {
  public:
   static constexpr int kWidth = 4;
 
-  RC_LANES_TARGET explicit Avx2Kernel(const LaneScene& scene) : cells_(scene.cells), field_(scene.field) {
+  RC_LANES_TARGET Avx2Kernel(const LaneScene& scene, const LaneRecording* rec)
+      : cells_(scene.cells), field_(scene.field) {
     r_ = _mm256_set1_pd(scene.r);
     max_range_ = _mm256_set1_pd(scene.max_range);
     jump_margin_ = _mm256_set1_pd(scene.jump_margin);
@@ -78,6 +79,9 @@ class Avx2Kernel {
     size_y_biased_ = _mm_xor_si128(size_y_, sign_);
     byte_mask_ = _mm_set1_epi32(0xFF);
     march_samples_ = _mm_set1_epi32(scene.march_samples);
+    lane_bits_ = _mm_setr_epi32(1, 2, 4, 8);
+    // Fetches are masked to cells inside the map.
+    if (rec) sector_of_ = SectorOfCell(*rec, scene.cell_count);
   }
 
   template <RayCastMethod kMethod>
@@ -88,15 +92,31 @@ class Avx2Kernel {
   }
 
   // Marks the sectors of a group's fetched cells (a recorded batch's touched
-  // sectors) and logs their nodes, one lane at a time.
+  // sectors) and logs their nodes. Where a sector is first + (index >>
+  // shift) (SectorOfCell), every lane stores: one that did not fetch stores
+  // the first fetching lane's 1 again, so there is no branch per lane (the
+  // fetch pattern is not predictable); elsewhere one lane at a time.
   RC_LANES_TARGET void Record(const StepResult& step, unsigned fetch, int first, const LaneRecording& rec) const {
     alignas(16) std::int32_t index[kWidth];
     _mm_store_si128(reinterpret_cast<__m128i*>(index), step.index);
-    if (rec.touched)
-      for (unsigned m = fetch; m != 0; m &= m - 1) {
-        const std::uint32_t cell = static_cast<std::uint32_t>(index[__builtin_ctz(m)]);
-        rec.touched[(rec.offset + std::uint64_t{cell} * rec.element_bytes) >> rec.sector_shift] = 1;
+    if (rec.touched && fetch != 0) {
+      if (sector_of_.narrow) {
+        const __m128i sector = _mm_add_epi32(_mm_set1_epi32(sector_of_.first),
+                                             _mm_srl_epi32(step.index, _mm_cvtsi32_si128(sector_of_.index_shift)));
+        const __m128i lead =
+            _mm_castps_si128(_mm_permutevar_ps(_mm_castsi128_ps(sector), _mm_set1_epi32(__builtin_ctz(fetch))));
+        const __m128i fetched =
+            _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(static_cast<int>(fetch)), lane_bits_), lane_bits_);
+        alignas(16) std::int32_t at[kWidth];
+        _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm_blendv_epi8(lead, sector, fetched));
+        for (int i = 0; i < kWidth; ++i) rec.touched[at[i]] = 1;
+      } else {
+        for (unsigned m = fetch; m != 0; m &= m - 1) {
+          const std::uint32_t cell = static_cast<std::uint32_t>(index[__builtin_ctz(m)]);
+          rec.touched[(rec.offset + std::uint64_t{cell} * rec.element_bytes) >> rec.sector_shift] = 1;
+        }
       }
+    }
     if (rec.nodes) LogNodes(index, fetch, first, *rec.nodes);
   }
 
@@ -242,6 +262,8 @@ class Avx2Kernel {
   const float* field_;
   __m256d r_, max_range_, jump_margin_;
   __m128i sign_, size_x_biased_, size_y_, size_y_biased_, byte_mask_, march_samples_;
+  __m128i lane_bits_;  // bit i in lane i
+  SectorOfCell sector_of_;
 };
 
 #undef RC_LOAD_I
@@ -253,7 +275,7 @@ class Avx2Kernel {
 
 RC_LANES_TARGET void CastLanesAvx2(RayCastMethod method, const LaneScene& scene, const RayQuery* queries,
                                    std::size_t count, RayHit* hits, const LaneRecording* recording) {
-  const Avx2Kernel kernel(scene);
+  const Avx2Kernel kernel(scene, recording);
   RunLanes(method, kernel, scene, queries, count, hits, recording);
 }
 

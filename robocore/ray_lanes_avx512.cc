@@ -53,32 +53,6 @@ struct StepResult {
   __m256i index;
 };
 
-// How a recording finds a fetched cell's sector: the sector of byte
-// offset + index * element_bytes. Where the fetched structure starts on a
-// sector and its cells are a power of two no wider than one, that is
-// first + (index >> index_shift), in 32 bits: a shift and an add, where the
-// general form takes 64-bit multiplies and a scatter with 64-bit indices
-// (several times the cost per step).
-struct SectorOfCell {
-  bool narrow = false;
-  std::int32_t first = 0;
-  int index_shift = 0;
-
-  SectorOfCell() = default;
-  // `cells`: one past the largest index fetched.
-  SectorOfCell(const LaneRecording& rec, std::size_t cells) {
-    const std::uint64_t sector_bytes = std::uint64_t{1} << rec.sector_shift;
-    const std::uint32_t bytes = rec.element_bytes;
-    if (rec.offset % sector_bytes != 0 || bytes == 0 || (bytes & (bytes - 1)) != 0 || bytes > sector_bytes) return;
-    while ((std::uint64_t{bytes} << index_shift) < sector_bytes) ++index_shift;
-    const std::uint64_t first_sector = rec.offset >> rec.sector_shift;
-    if (first_sector + (cells >> index_shift) > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()))
-      return;
-    narrow = true;
-    first = static_cast<std::int32_t>(first_sector);
-  }
-};
-
 #define RC_LOAD_I(field) _mm256_load_si256(reinterpret_cast<const __m256i*>(s.field + base))
 #define RC_STORE_I(field, v) _mm256_store_si256(reinterpret_cast<__m256i*>(s.field + base), v)
 
