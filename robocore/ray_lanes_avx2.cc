@@ -3,10 +3,16 @@
 // operations in the same order on the same values; what AVX-512 does with a
 // mask register is done here with a vector of all-ones lanes (32-bit for
 // cells and indices, 64-bit for times) and blends, which select exactly as
-// the masked moves do. AVX2 has no scatter: a recording marks sectors one
-// lane at a time. The contract (bit-identical hits) is in
+// the masked moves do. AVX2 has no scatter: a recording marks sectors with
+// a store per lane. The contract (bit-identical hits) is in
 // ray_batch_lanes.h; the shared state and loop in ray_lane_state.h and
 // ray_lane_loop.inc.
+//
+// The three steps mirror ray_lanes_avx512.cc's line for line, so that each
+// can be read against the other and against the scalar kernel. Writing them
+// once over a small vector-traits layer would remove the mirror; that waits
+// for a host where the AVX-512 form can be run and timed, since it would
+// rewrite the AVX-512 steps too.
 #include "robocore/ray_lane_state.h"
 
 #if defined(__x86_64__)
