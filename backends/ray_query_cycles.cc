@@ -81,6 +81,61 @@ __attribute__((target("avx512f,avx512dq"))) std::uint64_t SlowestRayQueryLanes(c
   return static_cast<std::uint64_t>(_mm512_reduce_max_epu64(slowest));
 }
 
+// Four queries a step in AVX2, as the AVX-512 form but without mask
+// registers (masks are all-ones lanes), a 64-bit multiply (the quiet passes
+// are a 32 x 32-bit product: a query's nodes fit 32 bits, RayHit::nodes,
+// and a quiet pass's cycles are checked to) or an unsigned 64-bit maximum
+// (a signed one on values with the sign bit flipped).
+__attribute__((target("avx2"))) std::uint64_t SlowestRayQueryAvx2(const RayQueryTerms& t, std::size_t lo,
+                                                                  std::size_t hi, RayPassTally& tally) {
+  if (t.quiet_pass_cycles > 0xFFFFFFFFu) return SlowestRayQueryScalar(t, lo, hi, tally);
+  const __m256i once = _mm256_set1_epi64x(static_cast<long long>(t.once_cycles));
+  const __m256i quiet_cycles = _mm256_set1_epi64x(static_cast<long long>(t.quiet_pass_cycles));
+  const __m256i one = _mm256_set1_epi64x(1);
+  const __m256i sign = _mm256_set1_epi64x(static_cast<long long>(0x8000000000000000u));
+  const __m256i lane = _mm256_setr_epi64x(0, 1, 2, 3);
+  const auto* last_pass = reinterpret_cast<const long long*>(t.last_pass_cycles.data());
+  __m256i slowest = sign;  // 0, sign flipped
+  __m256i quiet = _mm256_setzero_si256();
+  std::uint64_t with_nodes = 0, exiting = 0;
+  for (std::size_t q = lo; q < hi; q += 4) {
+    const std::size_t left = hi - q;
+    const __m256i in = _mm256_cmpgt_epi64(_mm256_set1_epi64x(static_cast<long long>(left < 4 ? left : 4)), lane);
+    const auto* offsets = reinterpret_cast<const long long*>(t.fetch_offsets + q);
+    const __m256i nodes = _mm256_sub_epi64(_mm256_maskload_epi64(offsets + 1, in), _mm256_maskload_epi64(offsets, in));
+    const __m256i has = _mm256_andnot_si256(_mm256_cmpeq_epi64(nodes, _mm256_setzero_si256()), in);
+    std::uint32_t packed = 0;
+    if (left >= 4)
+      std::memcpy(&packed, t.last_exits + q, 4);
+    else
+      for (std::size_t i = 0; i < left; ++i) packed |= std::uint32_t{t.last_exits[q + i]} << (8 * i);
+    const __m256i exit = _mm256_cvtepu8_epi64(_mm_cvtsi32_si128(static_cast<int>(packed)));
+    const __m256i last = _mm256_mask_i64gather_epi64(_mm256_setzero_si256(), last_pass, exit, has, 8);
+    const __m256i before_last = _mm256_and_si256(_mm256_sub_epi64(nodes, one), has);
+    const __m256i passes = _mm256_add_epi64(_mm256_mul_epu32(before_last, quiet_cycles), last);
+    __m256i cycles =
+        _mm256_add_epi64(once, _mm256_maskload_epi64(reinterpret_cast<const long long*>(t.memory_cycles + q), in));
+    cycles = _mm256_add_epi64(cycles, _mm256_and_si256(passes, has));
+    const __m256i flipped = _mm256_xor_si256(cycles, sign);
+    const __m256i larger = _mm256_and_si256(_mm256_cmpgt_epi64(flipped, slowest), in);
+    slowest = _mm256_blendv_epi8(slowest, flipped, larger);
+    quiet = _mm256_add_epi64(quiet, before_last);
+    const __m256d has_pd = _mm256_castsi256_pd(has);
+    with_nodes += static_cast<std::uint64_t>(__builtin_popcount(_mm256_movemask_pd(has_pd)));
+    for (int j = 0; j < t.exits; ++j) {
+      const __m256i is_j = _mm256_and_si256(_mm256_cmpeq_epi64(exit, _mm256_set1_epi64x(j)), has);
+      const auto n = static_cast<std::uint64_t>(__builtin_popcount(_mm256_movemask_pd(_mm256_castsi256_pd(is_j))));
+      tally.exit[j] += n;
+      exiting += n;
+    }
+  }
+  alignas(32) std::uint64_t lanes[4], quiets[4];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), _mm256_xor_si256(slowest, sign));
+  _mm256_store_si256(reinterpret_cast<__m256i*>(quiets), quiet);
+  tally.quiet += with_nodes - exiting + quiets[0] + quiets[1] + quiets[2] + quiets[3];
+  return std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+}
+
 #pragma GCC diagnostic pop
 
 #else
@@ -89,10 +144,16 @@ std::uint64_t SlowestRayQueryLanes(const RayQueryTerms&, std::size_t, std::size_
   throw std::logic_error("SlowestRayQueryLanes: AVX-512 exists only on x86-64");
 }
 
+std::uint64_t SlowestRayQueryAvx2(const RayQueryTerms&, std::size_t, std::size_t, RayPassTally&) {
+  throw std::logic_error("SlowestRayQueryAvx2: AVX2 exists only on x86-64");
+}
+
 #endif
 
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally) {
-  return CpuHasAvx512() ? SlowestRayQueryLanes(terms, lo, hi, tally) : SlowestRayQueryScalar(terms, lo, hi, tally);
+  if (CpuHasAvx512()) return SlowestRayQueryLanes(terms, lo, hi, tally);
+  if (CpuHasAvx2()) return SlowestRayQueryAvx2(terms, lo, hi, tally);
+  return SlowestRayQueryScalar(terms, lo, hi, tally);
 }
 
 }  // namespace rc

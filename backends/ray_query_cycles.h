@@ -7,8 +7,8 @@
 // nodes makes no pass. Per warp the model needs the slowest query, and per
 // SM the passes by exit.
 //
-// Integer sums and maxima: the AVX-512 lanes (where the host has them)
-// and the one-query-at-a-time loop give the same numbers
+// Integer sums and maxima: the AVX-512 and AVX2 lanes (where the host has
+// them) and the one-query-at-a-time loop give the same numbers
 // (tests/backends/ray_query_cycles_test.cc).
 #include <array>
 #include <cstddef>
@@ -37,9 +37,11 @@ struct RayPassTally {
 // The slowest of queries [lo, hi); adds their passes to `tally`.
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 
-// The same, one query at a time; and in AVX-512 lanes, only where the host
-// has them (CpuHasAvx512(), common/cpu_features.h).
+// The same, one query at a time; in AVX-512 lanes, only where the host has
+// them (CpuHasAvx512(), common/cpu_features.h); and in AVX2 lanes, only
+// where it has AVX2 (CpuHasAvx2()). SlowestRayQuery takes the widest.
 std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 std::uint64_t SlowestRayQueryLanes(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
+std::uint64_t SlowestRayQueryAvx2(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 
 }  // namespace rc

@@ -1,5 +1,5 @@
 // Ranks of distinct keys (key_ranks.h): every form against a sort, at every
-// count up to the limit (the AVX-512 form's partial registers included).
+// count up to the limit (the SIMD forms' partial registers included).
 #include "backends/key_ranks.h"
 
 #include <algorithm>
@@ -49,11 +49,18 @@ TEST(KeyRanks, EveryFormRanksLikeASort) {
       RankDistinctKeysAvx512(narrow.data(), count, got.data());
       EXPECT_EQ(got, want) << count;
     }
+    if (CpuHasAvx2()) {
+      std::fill(got.begin(), got.end(), -1);
+      RankDistinctKeysAvx2(narrow.data(), count, got.data());
+      EXPECT_EQ(got, want) << count;
+    }
     std::vector<std::uint64_t> wide_got(count);
     RankDistinctKeys(wide.data(), count, wide_got.data());
     EXPECT_EQ(wide_got, SortedRanks(wide)) << count;
   }
-  if (!CpuHasAvx512()) GTEST_SKIP() << "this host has no AVX-512: only the portable form was checked";
+  if (!CpuHasAvx512())
+    GTEST_SKIP() << "this host has no AVX-512: the portable form" << (CpuHasAvx2() ? " and AVX2" : "")
+                 << " were checked";
 }
 
 TEST(KeyRanks, RefusesMoreKeysThanTheLimit) {

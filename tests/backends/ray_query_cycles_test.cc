@@ -1,5 +1,5 @@
 // The RT-unit model's per-query term for ray records (ray_query_cycles.h):
-// the AVX-512 lanes and the one-query-at-a-time loop against the
+// the AVX-512 and AVX2 lanes and the one-query-at-a-time loop against the
 // definition, on queries with and without nodes, every exit value, and
 // warps that fill the lanes' last step or not.
 #include "backends/ray_query_cycles.h"
@@ -69,7 +69,7 @@ TEST(RayQueryCycles, BothFormsGiveTheDefinitionsSlowestQueryAndPasses) {
     const Queries q = RandomQueries(1000, exits, 7u + static_cast<std::uint32_t>(exits));
     // Warps of 32, then ranges that leave the lanes' last step part full.
     for (std::size_t width : {std::size_t{32}, std::size_t{1}, std::size_t{7}, std::size_t{13}}) {
-      RayPassTally want, scalar, lanes, dispatched;
+      RayPassTally want, scalar, lanes, avx2, dispatched;
       for (std::size_t lo = 0; lo < q.last_exits.size(); lo += width) {
         const std::size_t hi = std::min(q.last_exits.size(), lo + width);
         const std::uint64_t expected = Expected(q, lo, hi, want);
@@ -77,18 +77,24 @@ TEST(RayQueryCycles, BothFormsGiveTheDefinitionsSlowestQueryAndPasses) {
         if (CpuHasAvx512()) {
           EXPECT_EQ(SlowestRayQueryLanes(q.terms, lo, hi, lanes), expected) << lo;
         }
+        if (CpuHasAvx2()) {
+          EXPECT_EQ(SlowestRayQueryAvx2(q.terms, lo, hi, avx2), expected) << lo;
+        }
         EXPECT_EQ(SlowestRayQuery(q.terms, lo, hi, dispatched), expected) << lo;
       }
       EXPECT_GT(want.quiet, 0u);
       std::vector<const RayPassTally*> tallies = {&scalar, &dispatched};
       if (CpuHasAvx512()) tallies.push_back(&lanes);
+      if (CpuHasAvx2()) tallies.push_back(&avx2);
       for (const RayPassTally* got : tallies) {
         EXPECT_EQ(got->quiet, want.quiet);
         for (int j = 0; j < exits; ++j) EXPECT_EQ(got->exit[j], want.exit[j]) << j;
       }
     }
   }
-  if (!CpuHasAvx512()) GTEST_SKIP() << "this host has no AVX-512: only the one-query-at-a-time form was checked";
+  if (!CpuHasAvx512())
+    GTEST_SKIP() << "this host has no AVX-512: the one-query-at-a-time form" << (CpuHasAvx2() ? " and AVX2" : "")
+                 << " were checked";
 }
 
 }  // namespace
