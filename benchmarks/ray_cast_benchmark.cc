@@ -77,6 +77,17 @@ const Fixture& GetFixture() {
   return fixture;
 }
 
+// The counters every benchmark here reports: queries (per iteration) cast
+// per second, nodes per query over all iterations, the scene's precomputed
+// memory.
+void SetCastCounters(benchmark::State& state, std::size_t queries, std::uint64_t nodes, const RayCastScene& scene) {
+  const double cast = static_cast<double>(state.iterations() * queries);
+  state.SetItemsProcessed(static_cast<std::int64_t>(cast));
+  state.counters["queries_per_s"] = benchmark::Counter(cast, benchmark::Counter::kIsRate);
+  state.counters["nodes_per_query"] = static_cast<double>(nodes) / cast;
+  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+}
+
 void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) {
   const Fixture& f = GetFixture();
   const RayCastScene scene(f.grid, method);
@@ -89,12 +100,7 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
       benchmark::DoNotOptimize(hit);
     }
   }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * queries.size()));
-  state.counters["queries_per_s"] =
-      benchmark::Counter(static_cast<double>(state.iterations() * queries.size()), benchmark::Counter::kIsRate);
-  state.counters["nodes_per_query"] =
-      static_cast<double>(nodes) / static_cast<double>(state.iterations() * queries.size());
-  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  SetCastCounters(state, queries.size(), nodes, scene);
   state.SetLabel(f.map_name + (grid_order ? ", grid order" : ", random order"));
 }
 
@@ -122,11 +128,7 @@ void BM_RayCastBatch(benchmark::State& state, RayCastMethod method, bool grid_or
     benchmark::DoNotOptimize(hits.data());
   }
   omp_set_num_threads(saved_threads);
-  const double queries = static_cast<double>(state.iterations() * batch.queries.size());
-  state.SetItemsProcessed(static_cast<std::int64_t>(queries));
-  state.counters["queries_per_s"] = benchmark::Counter(queries, benchmark::Counter::kIsRate);
-  state.counters["nodes_per_query"] = static_cast<double>(nodes) / queries;
-  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  SetCastCounters(state, batch.queries.size(), nodes, scene);
   state.SetLabel(f.map_name + (grid_order ? ", grid order, batch, " : ", random order, batch, ") + BatchPath());
 }
 
@@ -149,11 +151,7 @@ void BM_RayCastLanes(benchmark::State& state, RayCastMethod method, RayLaneIsa i
     nodes += TotalNodes(hits);
     benchmark::DoNotOptimize(hits.data());
   }
-  const double n = static_cast<double>(state.iterations() * queries.size());
-  state.SetItemsProcessed(static_cast<std::int64_t>(n));
-  state.counters["queries_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsRate);
-  state.counters["nodes_per_query"] = static_cast<double>(nodes) / n;
-  state.counters["precompute_MB"] = scene.precomputed_bytes() / 1e6;
+  SetCastCounters(state, queries.size(), nodes, scene);
   state.SetLabel(f.map_name + ", random order, " + std::string(ToString(isa)) + " lanes");
 }
 

@@ -103,9 +103,10 @@ class Avx2Kernel {
   // the first fetching lane's 1 again, so there is no branch per lane (the
   // fetch pattern is not predictable); elsewhere one lane at a time.
   RC_LANES_TARGET void Record(const StepResult& step, unsigned fetch, int first, const LaneRecording& rec) const {
+    if (fetch == 0) return;
     alignas(16) std::int32_t index[kWidth];
-    _mm_store_si128(reinterpret_cast<__m128i*>(index), step.index);
-    if (rec.touched && fetch != 0) {
+    if (rec.nodes || !sector_of_.narrow) _mm_store_si128(reinterpret_cast<__m128i*>(index), step.index);
+    if (rec.touched) {
       if (sector_of_.narrow) {
         const __m128i sector = _mm_add_epi32(_mm_set1_epi32(sector_of_.first),
                                              _mm_srl_epi32(step.index, _mm_cvtsi32_si128(sector_of_.index_shift)));
