@@ -4,8 +4,9 @@
 // rounds, a ray's set-up, the refill of lanes whose ray ended, and the
 // recording's bookkeeping. Everything here is scalar code with no target
 // attribute, so that each kernel file, compiled for its own instruction set,
-// may inline it; the vector steps live in ray_lanes_avx512.cc and
-// ray_lanes_avx2.cc, the loop that drives them in ray_lane_loop.inc.
+// may inline it; the vector steps live in ray_lane_steps.inc, over each
+// instruction set's operations (ray_lanes_avx512.cc, ray_lanes_avx2.cc),
+// the loop that drives them in ray_lane_loop.inc.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
