@@ -58,8 +58,8 @@ bool RayLanesApply(const RayCastScene& scene);
 // The index of every node each query of a call fetched, in fetch order, as
 // the lanes leave them: per lane, the queries it ran one after another.
 // Query q's are the first hits[q].nodes entries at NodesOf(q). A recording
-// that keeps addresses asks for it; the buffers keep their capacity from
-// call to call.
+// that keeps addresses asks for it. The buffers keep their size from call to
+// call; entries past a lane's last query's nodes are scratch.
 struct LaneNodeLog {
   std::vector<std::uint32_t> lane[kRaysInFlight];
   std::vector<std::uint32_t> lane_of, start_of;  // per query of the call

@@ -110,11 +110,14 @@ void CastBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, const s
     std::vector<std::uint64_t>& out = (*block_addresses)[static_cast<std::size_t>(b)];
     std::size_t fetches = 0;
     for (std::size_t i = g; i < g + static_cast<std::size_t>(hi - lo); ++i) fetches += work.hits[i].nodes;
-    out.reserve(fetches);
+    out.resize(fetches);
+    std::uint64_t* address = out.data();
     for (long i = lo; i < hi; ++i, ++g) {
       const std::uint32_t* index = work.log.NodesOf(g);
-      for (std::uint32_t k = 0; k < work.hits[g].nodes; ++k)
-        out.push_back(fetched.base + std::uint64_t{index[k]} * fetched.element_bytes);
+      const std::uint32_t nodes = work.hits[g].nodes;
+      for (std::uint32_t k = 0; k < nodes; ++k)
+        address[k] = fetched.base + std::uint64_t{index[k]} * fetched.element_bytes;
+      address += nodes;
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "robocore/kernel_record.h"
 #include "robocore/ray_batch_lanes.h"
@@ -47,6 +48,10 @@ struct alignas(64) LaneState {
   std::int32_t sample[kLanes];  // march: the index k of the next sample, at t = k r
   std::uint32_t nodes[kLanes];
   std::size_t query[kLanes];
+  // A node log's write position in each lane's buffer, and the buffer's
+  // end; there is always a slot at the position (LogNodes).
+  std::uint32_t* log_at[kLanes];
+  std::uint32_t* log_end[kLanes];
 };
 
 // The scene's scalars every step reads; each kernel broadcasts them once
@@ -161,21 +166,53 @@ inline LaneMask StartAll(LaneState& s, const RayQuery* queries, std::size_t coun
   return live;
 }
 
+// Points each lane's write position at the start of its buffer in `log`
+// (which keeps its size from call to call: entries past a lane's last
+// query's nodes are scratch), with room for at least one node.
+inline void StartNodeLog(LaneState& s, LaneNodeLog& log) {
+  constexpr std::size_t kFirstSize = 256;
+  for (int l = 0; l < kLanes; ++l) {
+    std::vector<std::uint32_t>& lane = log.lane[l];
+    if (lane.size() < kFirstSize) lane.resize(kFirstSize);
+    s.log_at[l] = lane.data();
+    s.log_end[l] = lane.data() + lane.size();
+  }
+}
+
 // Notes where the queries now in `lanes` begin in their lanes' logs.
 inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
   for (; lanes != 0; lanes &= lanes - 1) {
     const int l = __builtin_ctzll(lanes);
     log.lane_of[s.query[l]] = static_cast<std::uint32_t>(l);
-    log.start_of[s.query[l]] = static_cast<std::uint32_t>(log.lane[l].size());
+    log.start_of[s.query[l]] = static_cast<std::uint32_t>(s.log_at[l] - log.lane[l].data());
   }
 }
 
-// Appends the fetched cells of a group (lanes first, first + 1, ...: bit i
-// of `fetch` for lane first + i, index[i] its cell) to their lanes' logs.
-inline void LogNodes(const std::int32_t* index, unsigned fetch, int first, LaneNodeLog& log) {
-  for (; fetch != 0; fetch &= fetch - 1) {
-    const int i = __builtin_ctz(fetch);
-    log.lane[first + i].push_back(static_cast<std::uint32_t>(index[i]));
+// Doubles lane l's buffer, whose write position has reached its end, and
+// returns the position in the new buffer. Rare: buffers keep their size.
+[[gnu::noinline, gnu::cold]] inline std::uint32_t* GrowNodeLog(LaneState& s, int l, LaneNodeLog& log) {
+  std::vector<std::uint32_t>& lane = log.lane[l];
+  const std::size_t at = lane.size();
+  lane.resize(2 * at);
+  s.log_end[l] = lane.data() + lane.size();
+  return lane.data() + at;
+}
+
+// Appends the fetched cells of a group of kWidth lanes (lanes first, first
+// + 1, ...: bit i of `fetch` for lane first + i, index[i] its cell) to their
+// lanes' logs. Without a branch per lane (which lanes fetched does not
+// follow a pattern the predictor learns): every lane writes its cell at its
+// position, and only a lane that fetched moves on, so a lane that did not
+// leaves scratch that its next node overwrites.
+template <int kWidth>
+inline void LogNodes(LaneState& s, const std::int32_t* index, unsigned fetch, int first, LaneNodeLog& log) {
+  for (int i = 0; i < kWidth; ++i) {
+    const int l = first + i;
+    std::uint32_t* at = s.log_at[l];
+    *at = static_cast<std::uint32_t>(index[i]);
+    at += (fetch >> i) & 1u;
+    if (__builtin_expect(at == s.log_end[l], 0)) at = GrowNodeLog(s, l, log);
+    s.log_at[l] = at;
   }
 }
 

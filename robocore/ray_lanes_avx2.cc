@@ -127,7 +127,7 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
   // shift) (SectorOfCell), every lane stores: one that did not fetch stores
   // the first fetching lane's 1 again, so there is no branch per lane (the
   // fetch pattern is not predictable); elsewhere one lane at a time.
-  RC_LANES_TARGET void Record(const LaneStep<Avx2Vec>& step, unsigned fetch, int first,
+  RC_LANES_TARGET void Record(LaneState& s, const LaneStep<Avx2Vec>& step, unsigned fetch, int first,
                               const LaneRecording& rec) const {
     if (fetch == 0) return;
     alignas(16) std::int32_t index[kWidth];
@@ -150,7 +150,7 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
         }
       }
     }
-    if (rec.nodes) LogNodes(index, fetch, first, *rec.nodes);
+    if (rec.nodes) LogNodes<kWidth>(s, index, fetch, first, *rec.nodes);
   }
 
  private:

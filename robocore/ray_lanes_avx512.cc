@@ -101,7 +101,7 @@ class Avx512Kernel : public LaneSteps<Avx512Vec> {
     if (rec) sector_of_ = SectorOfCell(*rec, scene.cell_count);
   }
 
-  RC_LANES_TARGET void Record(const LaneStep<Avx512Vec>& step, unsigned fetch, int first,
+  RC_LANES_TARGET void Record(LaneState& s, const LaneStep<Avx512Vec>& step, unsigned fetch, int first,
                               const LaneRecording& rec) const {
     const __mmask8 m = static_cast<__mmask8>(fetch);
     if (rec.touched) {
@@ -119,9 +119,18 @@ class Avx512Kernel : public LaneSteps<Avx512Vec> {
       }
     }
     if (rec.nodes) {
-      alignas(32) std::int32_t index[kWidth];
-      _mm256_store_si256(reinterpret_cast<__m256i*>(index), step.index);
-      LogNodes(index, fetch, first, *rec.nodes);
+      // LogNodes in vectors: the fetching lanes' cells scattered to their
+      // lanes' write positions (absolute addresses, 64-bit), which then move.
+      auto* at_of = reinterpret_cast<long long*>(s.log_at + first);
+      __m512i at = _mm512_loadu_si512(at_of);
+      _mm512_mask_i64scatter_epi32(nullptr, m, at, step.index, 1);
+      at = _mm512_mask_add_epi64(at, m, at, _mm512_set1_epi64(sizeof(std::uint32_t)));
+      _mm512_storeu_si512(at_of, at);
+      const __mmask8 full = _mm512_cmpeq_epu64_mask(at, _mm512_loadu_si512(s.log_end + first));
+      for (unsigned f = full; __builtin_expect(f != 0, 0); f &= f - 1) {
+        const int l = first + __builtin_ctz(f);
+        s.log_at[l] = GrowNodeLog(s, l, *rec.nodes);
+      }
     }
   }
 

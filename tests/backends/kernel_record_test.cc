@@ -166,6 +166,32 @@ TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
     }
 }
 
+// Every instruction set this CPU runs logs each query's nodes as the scalar
+// kernel visits them: the lanes' buffers grow from a small first size during
+// the first call, and a second, smaller call reuses them (entries past a
+// lane's last query are scratch, not nodes).
+TEST_P(RecordTest, TheLanesLogTheNodesTheScalarKernelVisits) {
+  const OccupancyGrid grid = test::RoomGrid(200, 150, 0.05, 0.01, 6);
+  const RayCastScene scene(grid, GetParam());
+  if (!RayLanesApply(scene)) GTEST_SKIP() << "this host runs no lanes (neither AVX2 nor AVX-512)";
+  const RayBatch batch = test::FanBatch(grid, 40, 30, 6.0, 4);
+  for (RayLaneIsa isa : HostRayLaneIsas()) {
+    LaneNodeLog log;
+    for (const std::size_t count : {batch.queries.size(), batch.queries.size() / 3}) {
+      LaneRecording rec;
+      rec.nodes = &log;
+      std::vector<RayHit> hits(count);
+      CastRayLanesIn(isa, scene, batch.queries.data(), count, batch.max_range_m, hits.data(), &rec);
+      for (std::size_t q = 0; q < count; ++q) {
+        const std::vector<std::uint32_t> visits = ScalarVisits(scene, batch, q);
+        ASSERT_EQ(hits[q].nodes, visits.size()) << ToString(isa) << ", query " << q;
+        const std::vector<std::uint32_t> logged(log.NodesOf(q), log.NodesOf(q) + hits[q].nodes);
+        ASSERT_EQ(logged, visits) << ToString(isa) << ", " << count << " queries, query " << q;
+      }
+    }
+  }
+}
+
 TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
   const RayCastScene scene(grid, GetParam());
