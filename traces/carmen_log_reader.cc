@@ -3,6 +3,7 @@
 #include <cctype>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "common/text_fields.h"
@@ -83,6 +84,67 @@ LaserRecord ParseFlaser(const LineReader& reader, const Fields& f) {
   return record;
 }
 
+// A count field's value: a plain non-negative integer up to kMaxBeams.
+std::optional<std::size_t> CountIn(std::string_view token) {
+  if (token.empty() || token.size() > 6) return std::nullopt;
+  std::size_t value = 0;
+  for (char c : token) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+    value = 10 * value + static_cast<std::size_t>(c - '0');
+  }
+  if (value > static_cast<std::size_t>(kMaxBeams)) return std::nullopt;
+  return value;
+}
+
+// ROBOTLASER1 carries two counts, and one that disagrees with the values
+// present shifts every field after it, so the field-by-field checks would
+// blame num_remissions, a remission or a trailing field. A line that still
+// ends in a whole 14-field trailer (its host name, second to last, is not a
+// number) holds its ranges, num_remissions and remissions in the
+// f.size() - 23 fields after num_readings; this names the count that does
+// not fit them:
+// - the field after the n stated ranges is a count: it is taken as
+//   num_remissions (CARMEN writes ranges and remissions with decimals), so
+//   num_remissions is wrong;
+// - otherwise num_readings is, and where some other reading count fits
+//   (a count after that many ranges, then exactly that many remissions),
+//   the message gives it.
+// A line cut off mid-record has a number second to last and is reported by
+// its first missing field.
+void CheckRobotLaserCounts(const LineReader& reader, const Fields& f, std::size_t n) {
+  if (f.size() < 24 || LooksNumeric(f[f.size() - 2])) return;
+  const std::size_t values = f.size() - 23;
+  auto fits = [&](std::size_t readings) {
+    if (readings + 1 > values) return false;
+    const std::optional<std::size_t> m = CountIn(f[9 + readings]);
+    return m && readings + 1 + *m == values;
+  };
+  if (fits(n)) return;
+  const std::string trailer = " before its 14 trailing fields (" + std::string(kRobotLaserLayout) + ")";
+  if (n + 1 <= values) {
+    if (const std::optional<std::size_t> m = CountIn(f[9 + n]))
+      reader.Fail("num_remissions", "says " + std::to_string(*m) + " remissions, but the line holds " +
+                                        std::to_string(values - n - 1) + " values after it" + trailer);
+  }
+  auto distance = [n](std::size_t k) { return k > n ? k - n : n - k; };
+  std::optional<std::size_t> held;  // the fitting reading count nearest n
+  for (std::size_t k = 1; k + 1 <= values; ++k)
+    if (fits(k) && (!held || distance(k) < distance(*held))) held = k;
+  const std::string says = "says " + std::to_string(n) + " readings, but ";
+  if (held)
+    reader.Fail("num_readings", says + "the line holds " + std::to_string(*held) + " (then num_remissions " +
+                                    std::string(f[9 + *held]) + " and its remissions)" + trailer);
+  if (n + 1 > values)
+    reader.Fail("num_readings", says + "the line holds only " + std::to_string(values) +
+                                    " values for them, num_remissions and the remissions" + trailer);
+  if (LooksNumeric(f[9 + n]))
+    reader.Fail("num_readings", says + "field " + std::to_string(10 + n) + " ('" + std::string(f[9 + n]) +
+                                    "'), where num_remissions should follow them, is not a count, and no other "
+                                    "reading count fits the line" +
+                                    trailer);
+  // A word there is a corrupt num_remissions, which parsing it reports.
+}
+
 LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
   static const char* const kHead[] = {"message",       "laser_type",         "start_angle",
                                       "field_of_view", "angular_resolution", "maximum_range",
@@ -124,6 +186,7 @@ LaserRecord ParseRobotLaser(const LineReader& reader, const Fields& f) {
   reader.ParseDouble(f[6], "accuracy");
   reader.ParseInt(f[7], "remission_mode", 0, 1000);
   n = static_cast<std::size_t>(reader.ParseInt(f[8], "num_readings", 1, kMaxBeams));
+  CheckRobotLaserCounts(reader, f, n);
   if (f.size() < 10 + n) RequireFieldCount(reader, f.size(), 10 + n, name_of, kRobotLaserLayout);
   m = static_cast<std::size_t>(reader.ParseInt(f[9 + n], "num_remissions", 0, kMaxBeams));
   know_m = true;

@@ -323,5 +323,49 @@ TEST(CarmenLogReaderBadInput, RobotLaserCutInRemissions) {
   ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "remission 2");
 }
 
+// As for FLASER, a wrong count is reported as itself, not as the remission,
+// trailing field or num_remissions that it shifts: num_readings (field 9)
+// against the ranges present, num_remissions against the remissions.
+TEST(CarmenLogReaderBadInput, RobotLaserReadingCountDisagreesWithRanges) {
+  TempDir dir;
+  for (int remissions : {2, 0}) {
+    RobotLaser r;
+    r.remissions = remissions;
+    for (const char* declared : {"362", "360"}) {
+      auto f = r.Fields();
+      f[8] = declared;  // the line carries 361 ranges
+      const std::string path = dir.Write("rl_n.clf", Join(f));
+      ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "num_readings");
+      EXPECT_TRUE(test::ThrowsInputError([&] { ReadCarmenLog(path); }, 1, "num_readings",
+                                         "says " + std::string(declared) + " readings, but the line holds 361"))
+          << remissions << " remissions";
+    }
+  }
+  // More readings stated than the line has values for.
+  auto f = RobotLaser().Fields();
+  f[8] = "400";
+  const std::string path = dir.Write("rl_400.clf", Join(f));
+  ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "num_readings");
+}
+
+TEST(CarmenLogReaderBadInput, RobotLaserRemissionCountDisagreesWithRemissions) {
+  TempDir dir;
+  for (const char* declared : {"3", "1"}) {
+    auto f = RobotLaser().Fields();  // 2 remissions
+    f[9 + 361] = declared;
+    const std::string path = dir.Write("rl_m.clf", Join(f));
+    ExpectInputError([&] { ReadCarmenLog(path); }, path, 1, "num_remissions");
+    EXPECT_TRUE(test::ThrowsInputError([&] { ReadCarmenLog(path); }, 1, "num_remissions",
+                                       "says " + std::string(declared) + " remissions, but the line holds 2"));
+  }
+  RobotLaser none;
+  none.remissions = 0;
+  auto f = none.Fields();
+  f[9 + 361] = "1";
+  const std::string path = dir.Write("rl_m0.clf", Join(f));
+  EXPECT_TRUE(test::ThrowsInputError([&] { ReadCarmenLog(path); }, 1, "num_remissions",
+                                     "says 1 remissions, but the line holds 0"));
+}
+
 }  // namespace
 }  // namespace rc
