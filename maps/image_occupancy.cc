@@ -9,6 +9,7 @@
 #include "common/text_fields.h"
 #include "maps/grid_size_limits.h"
 #include "maps/image_codec.h"
+#include "maps/image_png_check.h"
 #include "maps/image_pnm_check.h"
 #include "maps/image_signature.h"
 
@@ -93,6 +94,9 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, 
   // OpenCV misreads some malformed PNMs and reports none of them well
   // (image_pnm_check.h), so a PNM decodes only once it has passed this.
   if (*format == "PNM") CheckPnmImage(image_path);
+  // libpng prints its own line on stderr for a truncated or corrupt PNG
+  // (image_png_check.h), so a PNG decodes only once its chunks are sound.
+  if (*format == "PNG") CheckPngImage(image_path);
   // A corrupt file can make a decoder throw (cv::Exception) instead of
   // returning an empty image.
   cv::Mat image;

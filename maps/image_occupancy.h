@@ -31,7 +31,8 @@
 //
 // Accepted images: anything OpenCV decodes to 8 bits per channel with 1, 3
 // or 4 channels (grey, BGR, BGRA; grey+alpha PNGs decode as BGRA); a PNM
-// only once image_pnm_check.h has found it well formed. 16-bit
+// only once image_pnm_check.h has found it well formed, a PNG once
+// image_png_check.h has found its chunks sound. 16-bit
 // images are rejected rather than rescaled. Palette PNGs decode to their
 // colours; map_server (SDL) would read the palette index instead.
 #include <string>

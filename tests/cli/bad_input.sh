@@ -134,5 +134,25 @@ awk 'BEGIN { print "robot_specifications->resolution 10"; print "global_map[0]: 
 accept default-thresholds-on-dat-map "between thresholds 3 (3.0% of all" -- carribot --map halo.dat --start 0,9 --goal 9,9
 accept thresholds-on-dat-map "free 99 (99.0%)" -- carribot --map halo.dat --start 0,9 --goal 9,9 --free-thresh 0.35
 
+# A PNG map cut short or with one byte changed: libpng printed "libpng
+# error: Read Error" (or a CRC error) on stderr before our message. Now our
+# message, naming the image and the chunk, is the only line (exit 1).
+"$RCBENCH" carribot --map halo.dat --start 0,9 --goal 9,9 --plot plot.png --quiet >/dev/null 2>&1 ||
+  { echo "carribot --plot failed"; exit 1; }
+head -c $(($(wc -c < plot.png) - 20)) plot.png > cut.png
+cp plot.png changed.png
+printf 'Z' | dd of=changed.png bs=1 seek=37 conv=notrunc 2>/dev/null  # the second chunk's type
+for case in "cut.png truncated" "changed.png CRC mismatch"; do
+  png="${case%% *}" problem="${case#* }"
+  "$RCBENCH" carribot --map "$png" --resolution 0.1 --start 0,9 --goal 9,9 --quiet >out.txt 2>err.txt
+  got=$?
+  if [ "$got" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF "$png: field '" err.txt &&
+    grep -qF "$problem" err.txt; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL corrupt-png $png: exit $got, stderr:"; cat err.txt; failures=$((failures + 1))
+  fi
+done
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]

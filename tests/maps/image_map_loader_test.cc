@@ -86,7 +86,7 @@ TEST(ImageMapLoader, MissingOrUndecodableImageIsAnInputErrorNamingIt) {
   const std::string junk = dir.Write("junk.png", "not a png");
   EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(junk, o); }, 0, "", "not a PNG, PNM (PGM/PPM/PBM), JPEG or BMP"));
   const std::string cut = dir.Write("cut.png", std::string("\x89PNG\r\n\x1a\n", 8) + "truncated");
-  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(cut, o); }, 0, "", "cannot decode"));
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(cut, o); }, 0, "IHDR", "the first chunk is 'cate', not IHDR"));
 }
 
 // A tests/fuzz finding: a DICOM file ("DICM" at byte 128) reached OpenCV's
@@ -172,6 +172,64 @@ TEST(ImageMapLoader, WellFormedPnmsOfEveryTypeLoad) {
   EXPECT_EQ(picture("P3\n2 1\n255\n0 0 0 255 255 255\n"), "#.\n");
   EXPECT_EQ(picture(std::string("P6\n2 1\n255\n\xff\xff\xff\0\0\0", 17)), ".#\n");
   EXPECT_EQ(picture(std::string("P5\n2 2\n255\n\0\xff\xff\0", 15)), "#.\n.#\n");
+}
+
+// A truncated or corrupt PNG made libpng print "libpng error: Read Error"
+// (or a CRC error) on stderr before our "cannot decode". Its chunks are now
+// checked first (maps/image_png_check.h): every prefix of a PNG and every
+// byte changed after the signature is an InputError naming the chunk, and
+// nothing else is printed.
+TEST(ImageMapLoader, TruncatedOrCorruptPngsAreInputErrorsAndLibpngStaysQuiet) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  std::vector<unsigned char> encoded;
+  ASSERT_TRUE(cv::imencode(".png", SmallImage(), encoded));
+  const std::string png(encoded.begin(), encoded.end());
+  const std::string path = dir.Path("m.png");
+  testing::internal::CaptureStderr();
+  for (std::size_t size = 8; size < png.size(); ++size) {
+    dir.Write("m.png", png.substr(0, size));
+    const InputError e = test::InputErrorFrom([&] { LoadImageMap(path, o); }, "the first " + std::to_string(size));
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+    EXPECT_EQ(e.file(), path);
+  }
+  for (std::size_t at = 8; at < png.size(); ++at) {
+    std::string corrupt = png;
+    corrupt[at] = static_cast<char>(corrupt[at] ^ 0x10);
+    dir.Write("m.png", corrupt);
+    test::InputErrorFrom([&] { LoadImageMap(path, o); }, "byte " + std::to_string(at) + " changed");
+  }
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  dir.Write("m.png", png);
+  EXPECT_EQ(test::Picture(LoadImageMap(path, o)), "#.?\n...\n");
+}
+
+TEST(ImageMapLoader, PngDefectsNameTheChunk) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  std::vector<unsigned char> encoded;
+  ASSERT_TRUE(cv::imencode(".png", SmallImage(), encoded));
+  const std::string png(encoded.begin(), encoded.end());
+  // IHDR is the 25 bytes after the signature; its data starts at byte 16.
+  ASSERT_EQ(png.substr(12, 4), "IHDR");
+  const std::size_t iend = png.rfind("IEND") - 4;
+  const std::size_t idat = png.find("IDAT") - 4;
+  ASSERT_EQ(iend + 12, png.size());
+  auto load = [&](const std::string& content) {
+    const std::string path = dir.Write("m.png", content);
+    return [&o, path] { LoadImageMap(path, o); };
+  };
+  EXPECT_TRUE(ThrowsInputError(load(png.substr(0, iend)), 0, "IEND", "truncated: the file ends after chunk "));
+  EXPECT_TRUE(ThrowsInputError(load(png.substr(0, idat + 10)), 0, "IDAT", "inside the chunk"));
+  std::string flipped = png;
+  flipped[idat + 8] = static_cast<char>(flipped[idat + 8] ^ 1);  // the first data byte
+  EXPECT_TRUE(ThrowsInputError(load(flipped), 0, "IDAT", "CRC mismatch"));
+  std::string no_idat = png.substr(0, 33) + png.substr(iend);
+  EXPECT_TRUE(ThrowsInputError(load(no_idat), 0, "IEND", "before any IDAT"));
+  // Bytes after IEND are ignored, as libpng ignores them.
+  EXPECT_EQ(test::Picture(LoadImageMap(dir.Write("m.png", png + "trailing"), o)), "#.?\n...\n");
 }
 
 TEST(ImageMapLoader, SixteenBitImagesAreRejectedNotRescaled) {
