@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -29,6 +31,13 @@ cv::Mat SmallImage() {
   image.at<std::uint8_t>(0, 0) = 0;
   image.at<std::uint8_t>(0, 2) = 128;
   return image;
+}
+
+// SmallImage as the bytes of a PNG file.
+std::string SmallPng() {
+  std::vector<unsigned char> encoded;
+  if (!cv::imencode(".png", SmallImage(), encoded)) throw std::runtime_error("OpenCV cannot encode a PNG");
+  return std::string(encoded.begin(), encoded.end());
 }
 
 TEST(ImageMapLoader, UsesTheRosOrientationAndTrinaryRule) {
@@ -183,9 +192,7 @@ TEST(ImageMapLoader, TruncatedOrCorruptPngsAreInputErrorsAndLibpngStaysQuiet) {
   test::TempDir dir;
   ImageMapOptions o;
   o.resolution_m = 0.1;
-  std::vector<unsigned char> encoded;
-  ASSERT_TRUE(cv::imencode(".png", SmallImage(), encoded));
-  const std::string png(encoded.begin(), encoded.end());
+  const std::string png = SmallPng();
   const std::string path = dir.Path("m.png");
   testing::internal::CaptureStderr();
   for (std::size_t size = 8; size < png.size(); ++size) {
@@ -209,9 +216,7 @@ TEST(ImageMapLoader, PngDefectsNameTheChunk) {
   test::TempDir dir;
   ImageMapOptions o;
   o.resolution_m = 0.1;
-  std::vector<unsigned char> encoded;
-  ASSERT_TRUE(cv::imencode(".png", SmallImage(), encoded));
-  const std::string png(encoded.begin(), encoded.end());
+  const std::string png = SmallPng();
   // IHDR is the 25 bytes after the signature; its data starts at byte 16.
   ASSERT_EQ(png.substr(12, 4), "IHDR");
   const std::size_t iend = png.rfind("IEND") - 4;
