@@ -132,21 +132,46 @@ inline void StartLane(LaneState& s, int l, const RayQuery& q, std::size_t index,
   s.query[l] = index;
 }
 
+// What a recording notes as rays end and start (RunLaneLoop with a
+// recording): each ended query's last loop pass's exit
+// (LaneRecording::last_exits; `stopped`: the lanes whose fetched cell
+// stopped them this round) and where each started query's nodes begin in
+// its lane's log. Null: not wanted.
+struct RefillNotes {
+  std::uint8_t* last_exits = nullptr;
+  LaneMask stopped = 0;
+  LaneNodeLog* log = nullptr;
+};
+
 // Writes the hits of the lanes in `ended` and starts the batch's next
-// queries in them; lanes left without one leave `live`.
+// queries in them; lanes left without one leave `live`. With kNotes, also
+// notes what `notes` asks for, in the same pass over the ended lanes.
+template <bool kNotes>
 inline void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::size_t count, std::size_t& next,
-                   LaneMask& live, RayHit* hits, double r) {
+                   LaneMask& live, RayHit* hits, double r, const RefillNotes& notes) {
   while (ended != 0) {
     const int l = __builtin_ctzll(ended);
     ended &= ended - 1;
     RayHit& hit = hits[s.query[l]];
     hit.range_m = static_cast<float>(s.range[l]);
     hit.nodes = s.nodes[l];
+    if constexpr (kNotes) {
+      if (notes.last_exits)
+        notes.last_exits[s.query[l]] = s.nodes[l] == 0            ? kNoExit
+                                       : (notes.stopped >> l) & 1 ? kRayHitReturn
+                                                                  : kRayEndReturn;
+    }
     if (next == count) {
       live &= ~(LaneMask{1} << l);
       continue;
     }
     StartLane(s, l, queries[next], next, r);
+    if constexpr (kNotes) {
+      if (notes.log) {
+        notes.log->lane_of[next] = static_cast<std::uint32_t>(l);
+        notes.log->start_of[next] = static_cast<std::uint32_t>(s.log_at[l] - notes.log->lane[l].data());
+      }
+    }
     ++next;
   }
 }
@@ -179,7 +204,8 @@ inline void StartNodeLog(LaneState& s, LaneNodeLog& log) {
   }
 }
 
-// Notes where the queries now in `lanes` begin in their lanes' logs.
+// Notes where the queries now in `lanes` begin in their lanes' logs (the
+// first ones; Refill notes those that follow).
 inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
   for (; lanes != 0; lanes &= lanes - 1) {
     const int l = __builtin_ctzll(lanes);
@@ -241,14 +267,6 @@ struct SectorOfCell {
     first = static_cast<std::int32_t>(first_sector);
   }
 };
-
-// Each ended query's last loop pass's exit (LaneRecording::last_exits).
-inline void NoteLastExits(const LaneState& s, LaneMask ended, LaneMask stopped, std::uint8_t* last_exits) {
-  for (; ended != 0; ended &= ended - 1) {
-    const int l = __builtin_ctzll(ended);
-    last_exits[s.query[l]] = s.nodes[l] == 0 ? kNoExit : (stopped >> l) & 1 ? kRayHitReturn : kRayEndReturn;
-  }
-}
 
 // The instruction-set kernels (ray_lanes_avx512.cc, ray_lanes_avx2.cc):
 // CastRayLanes for queries [0, count), count > 0, with `scene` as the lanes
