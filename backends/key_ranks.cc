@@ -95,9 +95,9 @@ void RankDistinctKeysAvx2(const std::int32_t*, std::size_t, std::int32_t*) {
 #endif
 
 void RankDistinctKeys(const std::int32_t* keys, std::size_t count, std::int32_t* place) {
-  if (CpuHasAvx512())
+  if (UseAvx512())
     RankDistinctKeysAvx512(keys, count, place);
-  else if (CpuHasAvx2())
+  else if (UseAvx2())
     RankDistinctKeysAvx2(keys, count, place);
   else
     RankDistinctKeysPortable(keys, count, place);

@@ -13,13 +13,13 @@ inline constexpr std::size_t kMaxRankedKeys = 64;  // GpuParams::warp_size's upp
 
 // place[i] = how many of keys[0, count) are smaller than keys[i]; count at
 // most kMaxRankedKeys, keys distinct. 32-bit keys take the widest SIMD
-// form the host runs (AVX-512, AVX2; common/cpu_features.h).
+// form the suite uses (AVX-512, AVX2; UseAvx512(), common/cpu_features.h).
 void RankDistinctKeys(const std::uint64_t* keys, std::size_t count, std::uint64_t* place);
 void RankDistinctKeys(const std::int32_t* keys, std::size_t count, std::int32_t* place);
 
 // The portable form of the 32-bit ranks, the AVX-512 one (only where
 // CpuHasAvx512(), common/cpu_features.h) and the AVX2 one (only where
-// CpuHasAvx2()). RankDistinctKeys takes the widest.
+// CpuHasAvx2()). RankDistinctKeys takes the widest in use.
 void RankDistinctKeysPortable(const std::int32_t* keys, std::size_t count, std::int32_t* place);
 void RankDistinctKeysAvx512(const std::int32_t* keys, std::size_t count, std::int32_t* place);
 void RankDistinctKeysAvx2(const std::int32_t* keys, std::size_t count, std::int32_t* place);

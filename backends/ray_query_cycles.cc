@@ -151,8 +151,8 @@ std::uint64_t SlowestRayQueryAvx2(const RayQueryTerms&, std::size_t, std::size_t
 #endif
 
 std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally) {
-  if (CpuHasAvx512()) return SlowestRayQueryLanes(terms, lo, hi, tally);
-  if (CpuHasAvx2()) return SlowestRayQueryAvx2(terms, lo, hi, tally);
+  if (UseAvx512()) return SlowestRayQueryLanes(terms, lo, hi, tally);
+  if (UseAvx2()) return SlowestRayQueryAvx2(terms, lo, hi, tally);
   return SlowestRayQueryScalar(terms, lo, hi, tally);
 }
 

@@ -39,7 +39,8 @@ std::uint64_t SlowestRayQuery(const RayQueryTerms& terms, std::size_t lo, std::s
 
 // The same, one query at a time; in AVX-512 lanes, only where the host has
 // them (CpuHasAvx512(), common/cpu_features.h); and in AVX2 lanes, only
-// where it has AVX2 (CpuHasAvx2()). SlowestRayQuery takes the widest.
+// where it has AVX2 (CpuHasAvx2()). SlowestRayQuery takes the widest in
+// use (UseAvx512(), UseAvx2()).
 std::uint64_t SlowestRayQueryScalar(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 std::uint64_t SlowestRayQueryLanes(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);
 std::uint64_t SlowestRayQueryAvx2(const RayQueryTerms& terms, std::size_t lo, std::size_t hi, RayPassTally& tally);

@@ -106,7 +106,7 @@ void BM_RayCast(benchmark::State& state, RayCastMethod method, bool grid_order) 
 
 // What CastRayBatch runs on this CPU, for the labels.
 std::string BatchPath() {
-  return RayLanesSupported() ? std::string(ToString(HostRayLaneIsas().back())) + " lanes" : "one query at a time";
+  return RayLanesSupported() ? std::string(ToString(RayLaneIsaInUse())) + " lanes" : "one query at a time";
 }
 
 // The same queries through the batch entry point (CastRayBatch) on one

@@ -23,7 +23,13 @@ const std::vector<RayLaneIsa>& HostRayLaneIsas() {
   return isas;
 }
 
-bool RayLanesSupported() { return !HostRayLaneIsas().empty(); }
+bool RayLanesSupported() { return UseAvx2(); }
+
+RayLaneIsa RayLaneIsaInUse() {
+  if (!RayLanesSupported())
+    throw std::logic_error("RayLaneIsaInUse: no lanes run here (check RayLanesSupported first)");
+  return UseAvx512() ? RayLaneIsa::kAvx512 : RayLaneIsa::kAvx2;
+}
 
 bool RayLanesApply(const RayCastScene& scene) {
   if (!RayLanesSupported()) return false;
@@ -34,8 +40,8 @@ bool RayLanesApply(const RayCastScene& scene) {
 
 void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,
                   RayHit* hits, const LaneRecording* recording) {
-  if (!RayLanesSupported()) throw std::logic_error("CastRayLanes: this CPU runs no lanes (check RayLanesApply first)");
-  CastRayLanesIn(HostRayLaneIsas().back(), scene, queries, count, max_range_m, hits, recording);
+  if (!RayLanesSupported()) throw std::logic_error("CastRayLanes: no lanes run here (check RayLanesApply first)");
+  CastRayLanesIn(RayLaneIsaInUse(), scene, queries, count, max_range_m, hits, recording);
 }
 
 void CastRayLanesIn(RayLaneIsa isa, const RayCastScene& scene, const RayQuery* queries, std::size_t count,

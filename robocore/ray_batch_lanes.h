@@ -20,11 +20,12 @@
 // (sin, cos, 1/dir) is the scalar code itself. Both instruction sets run
 // the same operations, so they also agree with each other.
 //
-// Dispatch is at run time: the widest instruction set the CPU runs
-// (AVX-512 F, VL, DQ; else AVX2). On a CPU with neither, on a target other
-// than x86-64, or for a grid too large for 32-bit gather indices,
-// CastRayBatch casts each query with CastRay instead; no global -march flag
-// is needed.
+// Dispatch is at run time: the widest instruction set the suite uses
+// (AVX-512 F, VL, DQ; else AVX2; common/cpu_features.h, which `rcbench
+// --simd` may lower). On a CPU with neither, with `--simd scalar`, on a
+// target other than x86-64, or for a grid too large for 32-bit gather
+// indices, CastRayBatch casts each query with CastRay instead; no global
+// -march flag is needed.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -48,11 +49,15 @@ std::string_view ToString(RayLaneIsa isa);
 // where it runs none (then CastRayBatch casts one query at a time).
 const std::vector<RayLaneIsa>& HostRayLaneIsas();
 
-// True when this CPU can run the lanes in some instruction set.
+// True when the lanes run in some instruction set: the CPU runs one and
+// the suite uses it (UseAvx2(), common/cpu_features.h).
 bool RayLanesSupported();
 
-// True when `scene` can be cast by the lanes on this CPU: a grid whose cell
-// indices fit a 32-bit gather.
+// The instruction set CastRayLanes runs. Requires RayLanesSupported().
+RayLaneIsa RayLaneIsaInUse();
+
+// True when `scene` can be cast by the lanes here: RayLanesSupported(), and
+// a grid whose cell indices fit a 32-bit gather.
 bool RayLanesApply(const RayCastScene& scene);
 
 // The index of every node each query of a call fetched, in fetch order, as
@@ -86,7 +91,7 @@ struct LaneRecording {
 };
 
 // Casts queries [0, count) into hits [0, count) with the scene's method,
-// in the widest instruction set this CPU runs. Requires RayLanesApply(scene).
+// in RayLaneIsaInUse(). Requires RayLanesApply(scene).
 // With a recording, also fills what it asks for (the last exits of
 // [0, count), words of touched sectors, node indices).
 void CastRayLanes(const RayCastScene& scene, const RayQuery* queries, std::size_t count, double max_range_m,

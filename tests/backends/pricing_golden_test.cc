@@ -26,6 +26,7 @@
 #include "maps/cmu_map_loader.h"
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/shipped_programs.h"
+#include "support/simd_levels.h"
 #include "support/test_data.h"
 #include "test_scenes.h"
 
@@ -120,11 +121,20 @@ struct GoldenCase {
   std::vector<std::string> expected;  // one fingerprint per modelled backend
 };
 
-void Check(const GoldenCase& golden, const KernelRecord& record, const BackendParameters& params = {}) {
-  const std::vector<std::string> actual = PriceEveryBackend(record, params);
-  if (std::getenv("RC_PRINT_PRICING_GOLDEN")) PrintAsLiterals(golden.name, actual);
-  ASSERT_EQ(actual.size(), golden.expected.size()) << golden.name;
-  for (std::size_t i = 0; i < actual.size(); ++i) EXPECT_EQ(actual[i], golden.expected[i]) << golden.name;
+// Records (make_record()) and prices on every SIMD path this CPU has: the
+// record's casts and the models' per-query terms and ranks each run in
+// scalar code, AVX2 and AVX-512 where the CPU runs them, and every path
+// must give the golden numbers.
+template <class MakeRecord>
+void Check(const GoldenCase& golden, MakeRecord make_record, const BackendParameters& params = {}) {
+  for (SimdLevel level : test::SimdLevelsThisCpuRuns()) {
+    const test::ScopedSimdLimit limit(level);
+    const std::vector<std::string> actual = PriceEveryBackend(make_record(), params);
+    if (std::getenv("RC_PRINT_PRICING_GOLDEN") && level == CpuSimdLevel()) PrintAsLiterals(golden.name, actual);
+    ASSERT_EQ(actual.size(), golden.expected.size()) << golden.name << ", " << ToString(level);
+    for (std::size_t i = 0; i < actual.size(); ++i)
+      EXPECT_EQ(actual[i], golden.expected[i]) << golden.name << ", " << ToString(level);
+  }
 }
 
 // The expected fingerprints below are pasted as RC_PRINT_PRICING_GOLDEN=1
@@ -159,7 +169,7 @@ TEST(PricingGolden, DdaOnAGridLargerThanTheL1) {
     " ops=307084,150842,150842,10800,748770,312484,5400,0,0,0,0,0,0,156242,441726,0,0,150802,"
     "5400,296244,150802, pred=0 hops=1977066 ctrl=0 push=150802 wi=0 ti=0 bound=latency (warp"
     " buffer) l1=lru (fully associative) l2=cold (footprint fits: compulsory misses only)",
-  }}, RayRecord(400, 300, RayCastMethod::kDda, 60, 90, 71));
+  }}, [] { return RayRecord(400, 300, RayCastMethod::kDda, 60, 90, 71); });
 }
 
 TEST(PricingGolden, MarchWithASetAssociativeL2) {
@@ -192,7 +202,7 @@ TEST(PricingGolden, MarchWithASetAssociativeL2) {
     " ops=139800,5120,2560,5120,276989,147480,0,0,0,0,0,0,0,5120,204580,0,0,69849,2560,137189"
     ",69849, pred=0 hops=577018 ctrl=0 push=69849 wi=0 ti=0 bound=latency (warp buffer)"
     " l1=lru (fully associative) l2=lru (set associative)",
-  }}, RayRecord(400, 300, RayCastMethod::kMarch, 40, 64, 72), small_l2);
+  }}, [] { return RayRecord(400, 300, RayCastMethod::kMarch, 40, 64, 72); }, small_l2);
 }
 
 TEST(PricingGolden, RmOnAGridThatFitsTheL1) {
@@ -227,7 +237,7 @@ TEST(PricingGolden, RmOnAGridThatFitsTheL1) {
     "50,79915,41082, pred=0 hops=1203238 ctrl=0 push=41082 wi=0 ti=0 bound=latency (warp"
     " buffer) l1=cold (footprint fits: compulsory misses only) l2=cold (footprint fits:"
     " compulsory misses only)",
-  }}, RayRecord(120, 100, RayCastMethod::kRayMarching, 50, 45, 73));
+  }}, [] { return RayRecord(120, 100, RayCastMethod::kRayMarching, 50, 45, 73); });
 }
 
 // Enough warps per SM that throughput bounds (issue, OP units) can win.
@@ -263,7 +273,7 @@ TEST(PricingGolden, MarchManyRaysOnAGridThatFitsTheL1) {
     "000,1855658,945494, pred=0 hops=7819972 ctrl=0 push=945494 wi=0 ti=0 bound=latency (warp"
     " buffer) l1=cold (footprint fits: compulsory misses only) l2=cold (footprint fits:"
     " compulsory misses only)",
-  }}, RayRecord(250, 250, RayCastMethod::kMarch, 200, 180, 74));
+  }}, [] { return RayRecord(250, 250, RayCastMethod::kMarch, 200, 180, 74); });
 }
 
 // The pricing benchmark's workload (benchmarks/backend_pricing_benchmark.cc):
@@ -377,10 +387,12 @@ TEST(PricingGolden, WeanDeliBotUpdate) {
   const RayCastMethod methods[] = {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching};
   for (int m = 0; m < 3; ++m) {
     const RayCastScene scene(grid, methods[m]);
-    std::vector<RayHit> hits;
-    KernelRecord record;
-    CastRayBatchRecorded(scene, batch, hits, record);
-    Check({std::string("wean ") + ToString(methods[m]), expected[m]}, record);
+    Check({std::string("wean ") + ToString(methods[m]), expected[m]}, [&] {
+      std::vector<RayHit> hits;
+      KernelRecord record;
+      CastRayBatchRecorded(scene, batch, hits, record);
+      return record;
+    });
   }
 }
 
@@ -411,7 +423,7 @@ TEST(PricingGolden, SactWideNodesEveryExit) {
     " ops=0,0,0,0,0,0,0,0,0,0,5017,25494,17223,0,0,0,0,316,0,0,5017, pred=0 hops=316"
     " ctrl=42717 push=316 wi=0 ti=0 bound=latency (warp buffer) l1=lru (fully associative)"
     " l2=cold (footprint fits: compulsory misses only)",
-  }}, SactRecord());
+  }}, SactRecord);
   BackendParameters small;
   small.gpu.l1_bytes = 4096;
   small.gpu.l2_bytes = 65536;
@@ -441,7 +453,7 @@ TEST(PricingGolden, SactWideNodesEveryExit) {
     " ops=0,0,0,0,0,0,0,0,0,0,5017,25494,17223,0,0,0,0,316,0,0,5017, pred=0 hops=316"
     " ctrl=42717 push=316 wi=0 ti=0 bound=DRAM bandwidth l1=lru (fully associative) l2=lru"
     " (set associative)",
-  }}, SactRecord(), small);
+  }}, SactRecord, small);
 }
 
 // clang-format on

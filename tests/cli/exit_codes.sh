@@ -35,6 +35,12 @@ for sub in delibot carribot simulate make-map backends collide calibrate movebot
   grep -q "Exit codes: 0 success; 1 bad input" help.txt || { echo "FAIL $sub --help lacks the exit-code table"; failures=$((failures + 1)); }
 done
 
+# --simd takes a level the CPU runs; any level it runs gives a run (the
+# same results: tests/delibot/default_settings_test.cc).
+code 2 "--simd unknown" -- --simd sse2 delibot --map map.yaml --trace good.log
+code 0 "--simd scalar" -- --simd scalar delibot --map map.yaml --trace good.log --quiet --max-records 2
+grep -q avx512 /proc/cpuinfo || code 2 "--simd above the CPU" -- --simd avx512 delibot --map map.yaml --trace good.log
+
 # A bad --backend is a usage error everywhere it exists.
 code 2 "delibot --backend" -- delibot --map map.yaml --trace good.log --backend fastest
 code 2 "carribot --backend" -- carribot --map wall.map --start 0,0 --goal 1,0 --backend fastest

@@ -12,11 +12,13 @@
 
 #include "common/allocation_budget.h"
 #include "common/atomic_file.h"
+#include "common/cpu_features.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "common/memory_cap.h"
 #include "maps/grid_size_limits.h"
 #include "support/input_error_expectations.h"
+#include "support/simd_levels.h"
 #include "support/temp_dir.h"
 
 namespace rc {
@@ -27,6 +29,31 @@ ExitCode CodeFor(const std::exception_ptr& e, std::string* message = nullptr) {
   const ExitCode code = ReportException(e, err);
   if (message) *message = err.str();
   return code;
+}
+
+// The SIMD level in use starts at the CPU's widest, may be lowered to any
+// level the CPU runs and raised back, and refuses one it does not run.
+TEST(SimdLevels, LimitLowersTheFormsInUseAndRefusesWhatTheCpuLacks) {
+  EXPECT_EQ(SimdInUse(), CpuSimdLevel());
+  EXPECT_EQ(UseAvx512(), CpuHasAvx512() && CpuHasAvx2());
+  EXPECT_EQ(UseAvx2(), CpuHasAvx2());
+  for (SimdLevel level : test::SimdLevelsThisCpuRuns()) {
+    const test::ScopedSimdLimit limit(level);
+    EXPECT_EQ(SimdInUse(), level);
+    EXPECT_EQ(UseAvx512(), level == SimdLevel::kAvx512);
+    EXPECT_EQ(UseAvx2(), level != SimdLevel::kScalar);
+  }
+  EXPECT_EQ(SimdInUse(), CpuSimdLevel());
+  if (CpuSimdLevel() != SimdLevel::kAvx512) {
+    EXPECT_THROW(LimitSimd(SimdLevel::kAvx512), std::invalid_argument);
+  }
+  SimdLevel parsed = SimdLevel::kScalar;
+  for (SimdLevel level : {SimdLevel::kScalar, SimdLevel::kAvx2, SimdLevel::kAvx512}) {
+    EXPECT_TRUE(ParseSimdLevel(ToString(level), &parsed));
+    EXPECT_EQ(parsed, level);
+  }
+  EXPECT_FALSE(ParseSimdLevel("sse2", &parsed));
+  EXPECT_FALSE(ParseSimdLevel("AVX2", &parsed));
 }
 
 TEST(ExitCodes, OneTableForEveryError) {

@@ -15,6 +15,7 @@
 
 #include "delibot/same_rows.h"
 #include "maps/office_map_generator.h"
+#include "support/simd_levels.h"
 #include "synthetic_world.h"
 #include "workloads/delibot/delibot_defaults.h"
 #include "workloads/delibot/monte_carlo_localizer.h"
@@ -369,6 +370,41 @@ TEST(DefaultSettingsTest, SameSeedSameTimelineAtAnyThreadCount) {
   bool tracked = false;
   for (const DelibotRow& row : one.rows) tracked = tracked || row.NodesPerRay() > 1.5;
   EXPECT_TRUE(tracked) << "both stages must be covered";
+}
+
+// Every SIMD path (scalar, AVX2, AVX-512 where the CPU runs them; rcbench
+// --simd) gives the same timeline, priced cycles and energy included: the
+// casts, the recording and the cost models' SIMD forms agree bit for bit.
+TEST(DefaultSettingsTest, SameSeedSameTimelineOnEverySimdPath) {
+  const Demo demo = MakeDemo(12);
+  DelibotSettings s = DefaultDelibotSettings();
+  s.mcl.initial_particle_count = 20000;
+  s.price_backends = true;
+  const DelibotResult widest = RunDelibot(demo.grid, demo.trace, &demo.truth, s);
+  long priced = 0;
+  for (const DelibotRow& row : widest.rows) priced += row.priced;
+  EXPECT_GT(priced, 0) << "the beam model's updates must be priced";
+  for (SimdLevel level : test::SimdLevelsThisCpuRuns()) {
+    if (level == CpuSimdLevel()) continue;
+    SCOPED_TRACE(std::string(ToString(level)));
+    const test::ScopedSimdLimit limit(level);
+    const DelibotResult other = RunDelibot(demo.grid, demo.trace, &demo.truth, s);
+    test::ExpectSameRows(widest, other);
+    ASSERT_EQ(widest.rows.size(), other.rows.size());
+    for (std::size_t i = 0; i < widest.rows.size(); ++i) {
+      const LedgerIteration& a = widest.rows[i].pricing;
+      const LedgerIteration& b = other.rows[i].pricing;
+      ASSERT_EQ(widest.rows[i].priced, other.rows[i].priced) << i;
+      EXPECT_EQ(a.backend, b.backend) << i;
+      EXPECT_EQ(a.chosen_cycles, b.chosen_cycles) << i;
+      EXPECT_EQ(a.chosen_energy_j, b.chosen_energy_j) << i;
+      ASSERT_EQ(a.costs.size(), b.costs.size()) << i;
+      for (std::size_t k = 0; k < a.costs.size(); ++k) {
+        EXPECT_EQ(a.costs[k].cycles, b.costs[k].cycles) << i << " " << a.costs[k].backend;
+        EXPECT_EQ(a.costs[k].energy_joules, b.costs[k].energy_joules) << i << " " << a.costs[k].backend;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "robocore/ray_batch.h"
 #include "robocore/ray_batch_lanes.h"
 #include "support/random_grid.h"
+#include "support/simd_levels.h"
 #include "support/test_data.h"
 
 namespace rc {
@@ -124,6 +125,33 @@ TEST(RayBatchLanesTest, RefusesAnInstructionSetTheCpuLacks) {
 }
 
 constexpr RayCastMethod kMethods[] = {RayCastMethod::kMarch, RayCastMethod::kDda, RayCastMethod::kRayMarching};
+
+// A lowered SIMD level (rcbench --simd) picks the lanes CastRayBatch runs,
+// or none (one query at a time), and every level gives the same hits.
+TEST(RayBatchLanesTest, TheSimdLevelInUsePicksTheLanes) {
+  const OccupancyGrid g = test::RandomGrid(90, 70, 0.1, 0.05, 4);
+  const RayBatch batch = FreeBatch(g, 3000, 8.0, 9);
+  for (RayCastMethod m : kMethods) {
+    const RayCastScene scene(g, m);
+    std::vector<RayHit> widest;
+    CastRayBatch(scene, batch, widest);
+    for (SimdLevel level : test::SimdLevelsThisCpuRuns()) {
+      const test::ScopedSimdLimit limit(level);
+      EXPECT_EQ(RayLanesApply(scene), level != SimdLevel::kScalar);
+      if (level != SimdLevel::kScalar) {
+        EXPECT_EQ(RayLaneIsaInUse(), level == SimdLevel::kAvx512 ? RayLaneIsa::kAvx512 : RayLaneIsa::kAvx2);
+      }
+      std::vector<RayHit> hits;
+      CastRayBatch(scene, batch, hits);
+      ASSERT_EQ(hits.size(), widest.size());
+      for (std::size_t i = 0; i < hits.size(); ++i) {
+        ASSERT_EQ(std::memcmp(&hits[i].range_m, &widest[i].range_m, sizeof(float)), 0)
+            << ToString(level) << " " << ToString(m) << " query " << i;
+        ASSERT_EQ(hits[i].nodes, widest[i].nodes) << ToString(level) << " " << ToString(m) << " query " << i;
+      }
+    }
+  }
+}
 
 TEST(RayBatchLanesTest, EqualsSingleQueriesOnRandomMaps) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed)

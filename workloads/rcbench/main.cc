@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "common/cpu_features.h"
 #include "common/exit_codes.h"
 #include "common/input_error.h"
 #include "common/memory_cap.h"
@@ -28,6 +30,20 @@ int main(int argc, char** argv) {
          },
          "Memory cap (GiB) that maps, particle sets and batches are checked against before they are allocated; "
          "default: the machine's memory")
+      ->trigger_on_parse();
+  app.add_option_function<std::string>(
+         "--simd",
+         [](const std::string& text) {
+           rc::SimdLevel level;
+           if (!rc::ParseSimdLevel(text, &level))
+             throw rc::UsageError("--simd must be scalar, avx2 or avx512, got '" + text + "'");
+           if (static_cast<int>(level) > static_cast<int>(rc::CpuSimdLevel()))
+             throw rc::UsageError("--simd " + text + ": this CPU runs up to " +
+                                  std::string(rc::ToString(rc::CpuSimdLevel())));
+           rc::LimitSimd(level);
+         },
+         "Widest SIMD code used (scalar, avx2, avx512; default: the widest this CPU runs). Results are the same "
+         "on every level; only the host time changes")
       ->trigger_on_parse();
   rc::AddDelibotCommand(app);
   rc::AddCarribotCommand(app);
