@@ -38,7 +38,11 @@ done
 # --simd takes a level the CPU runs; any level it runs gives a run (the
 # same results: tests/delibot/default_settings_test.cc).
 code 2 "--simd unknown" -- --simd sse2 delibot --map map.yaml --trace good.log
-code 0 "--simd scalar" -- --simd scalar delibot --map map.yaml --trace good.log --quiet --max-records 2
+code 0 "--simd scalar" -- --simd scalar delibot --map map.yaml --trace good.log --quiet --max-records 2 \
+  --summary simd.json
+checks=$((checks + 1))
+python3 -c 'import json, sys; sys.exit(json.load(open("simd.json"))["config"]["simd"] != "scalar")' ||
+  { echo "FAIL --simd scalar: the summary's config.simd is not scalar"; failures=$((failures + 1)); }
 grep -q avx512 /proc/cpuinfo || code 2 "--simd above the CPU" -- --simd avx512 delibot --map map.yaml --trace good.log
 
 # A bad --backend is a usage error everywhere it exists.

@@ -9,6 +9,7 @@
 #include "backends/backend.h"
 #include "backends/scheduler/scheduler_cli.h"
 #include "common/atomic_file.h"
+#include "common/cpu_features.h"
 #include "traces/csv_table.h"
 
 namespace rc {
@@ -208,6 +209,9 @@ nlohmann::json DelibotSummaryJson(const DelibotResult& result, const DelibotSett
       {"max_records", s.max_records},
       {"initialization", s.initial_pose ? "tracking" : "global"},
       {"threads", p.threads},
+      // The widest SIMD code the run used (rcbench --simd): it changes the
+      // host times only, never a result.
+      {"simd", ToString(SimdInUse())},
   };
   if (s.initial_pose)
     config["initial_pose"] = {
