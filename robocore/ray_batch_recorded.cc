@@ -293,12 +293,17 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
     for (std::uint64_t w = 0; w < sectors; ++w) record.touched_sectors += all[w] != 0;
   }
 
-  record.fetch_offsets.assign(batch.queries.size() + 1, 0);
+  // Prefix sums, every entry written: resize, not assign, so that a reused
+  // record's vectors are not first filled with zeros.
+  record.fetch_offsets.resize(batch.queries.size() + 1);
+  record.fetch_offsets[0] = 0;
   for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
   record.address_sample = sample;
-  record.address_offsets.clear();
-  if (!sample.KeepsAll()) {
-    record.address_offsets.assign(batch.queries.size() + 1, 0);
+  if (sample.KeepsAll()) {
+    record.address_offsets.clear();
+  } else {
+    record.address_offsets.resize(batch.queries.size() + 1);
+    record.address_offsets[0] = 0;
     for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
       const long lo = b * block, hi = std::min(n, lo + block);
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
