@@ -1,9 +1,10 @@
 #include "maps/image_png_check.h"
 
-#include <array>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
+
+#include <zlib.h>
 
 #include "common/input_error.h"
 
@@ -13,27 +14,15 @@ namespace {
 constexpr std::uint32_t kMaxChunkLength = 0x7fffffff;  // the specification's limit (2^31 - 1)
 const std::string kSignature("\x89PNG\r\n\x1a\n", 8);
 
-// CRC-32 as the PNG specification's annex D defines it (polynomial
-// 0xEDB88320, reflected, starting at and finally inverted with 0xFFFFFFFF).
+// CRC-32 as the PNG specification's annex D defines it, which is zlib's
+// crc32 (the same polynomial, start and final inversion).
 class Crc32 {
  public:
-  void Add(const char* data, std::size_t size) {
-    static const std::array<std::uint32_t, 256> table = [] {
-      std::array<std::uint32_t, 256> t{};
-      for (std::uint32_t n = 0; n < 256; ++n) {
-        std::uint32_t c = n;
-        for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
-        t[n] = c;
-      }
-      return t;
-    }();
-    for (std::size_t i = 0; i < size; ++i)
-      crc_ = table[(crc_ ^ static_cast<std::uint8_t>(data[i])) & 0xff] ^ (crc_ >> 8);
-  }
-  std::uint32_t Value() const { return crc_ ^ 0xffffffffu; }
+  void Add(const char* data, std::size_t size) { crc_ = crc32_z(crc_, reinterpret_cast<const Bytef*>(data), size); }
+  std::uint32_t Value() const { return static_cast<std::uint32_t>(crc_); }
 
  private:
-  std::uint32_t crc_ = 0xffffffffu;
+  uLong crc_ = crc32_z(0L, Z_NULL, 0);
 };
 
 std::uint32_t BigEndian(const char* bytes) {

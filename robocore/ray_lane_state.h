@@ -132,6 +132,12 @@ inline void StartLane(LaneState& s, int l, const RayQuery& q, std::size_t index,
   s.query[l] = index;
 }
 
+// Notes where the query now in lane l begins in the lane's log.
+inline void LogStart(const LaneState& s, int l, LaneNodeLog& log) {
+  log.lane_of[s.query[l]] = static_cast<std::uint32_t>(l);
+  log.start_of[s.query[l]] = static_cast<std::uint32_t>(s.log_at[l] - log.lane[l].data());
+}
+
 // What a recording notes as rays end and start (RunLaneLoop with a
 // recording): each ended query's last loop pass's exit
 // (LaneRecording::last_exits; `stopped`: the lanes whose fetched cell
@@ -167,10 +173,7 @@ inline void Refill(LaneState& s, LaneMask ended, const RayQuery* queries, std::s
     }
     StartLane(s, l, queries[next], next, r);
     if constexpr (kNotes) {
-      if (notes.log) {
-        notes.log->lane_of[next] = static_cast<std::uint32_t>(l);
-        notes.log->start_of[next] = static_cast<std::uint32_t>(s.log_at[l] - notes.log->lane[l].data());
-      }
+      if (notes.log) LogStart(s, l, *notes.log);
     }
     ++next;
   }
@@ -207,11 +210,7 @@ inline void StartNodeLog(LaneState& s, LaneNodeLog& log) {
 // Notes where the queries now in `lanes` begin in their lanes' logs (the
 // first ones; Refill notes those that follow).
 inline void LogStarts(const LaneState& s, LaneMask lanes, LaneNodeLog& log) {
-  for (; lanes != 0; lanes &= lanes - 1) {
-    const int l = __builtin_ctzll(lanes);
-    log.lane_of[s.query[l]] = static_cast<std::uint32_t>(l);
-    log.start_of[s.query[l]] = static_cast<std::uint32_t>(s.log_at[l] - log.lane[l].data());
-  }
+  for (; lanes != 0; lanes &= lanes - 1) LogStart(s, __builtin_ctzll(lanes), log);
 }
 
 // Doubles lane l's buffer, whose write position has reached its end, and

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -37,10 +38,11 @@ int main(int argc, char** argv) {
            rc::SimdLevel level;
            if (!rc::ParseSimdLevel(text, &level))
              throw rc::UsageError("--simd must be scalar, avx2 or avx512, got '" + text + "'");
-           if (static_cast<int>(level) > static_cast<int>(rc::CpuSimdLevel()))
-             throw rc::UsageError("--simd " + text + ": this CPU runs up to " +
-                                  std::string(rc::ToString(rc::CpuSimdLevel())));
-           rc::LimitSimd(level);
+           try {
+             rc::LimitSimd(level);
+           } catch (const std::invalid_argument& e) {  // a level this CPU does not run
+             throw rc::UsageError("--simd " + text + ": " + e.what());
+           }
          },
          "Widest SIMD code used (scalar, avx2, avx512; default: the widest this CPU runs). Results are the same "
          "on every level; only the host time changes")
