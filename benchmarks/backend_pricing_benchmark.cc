@@ -14,8 +14,12 @@
 //                               CastRayBatchRecorded (kernel + record);
 //                               sampled 0 keeps every address, 1 one SM's
 //                               of 8 (the CLI's default sample)
-//   BM_PriceAll/<method>        the five modelled backends on one record,
-//                               sharing the memory replay (PriceAll)
+//   BM_PriceAll/<method>/<sampled>
+//                               the five modelled backends on one record,
+//                               sharing the memory replay (PriceAll);
+//                               sampled 0 keeps every address, 1 the CLI's
+//                               default sample (kReplaySms SMs, every
+//                               kReplayBlockStride-th block of each)
 //   BM_Price/<backend>/<method> one backend alone
 //   BM_Overhead/<method>        the ratio itself, measured in one run: each
 //                               iteration times the kernel, then PriceAll
@@ -34,6 +38,7 @@
 #include "common/angles.h"
 #include "common/random_stream.h"
 #include "maps/cmu_map_loader.h"
+#include "robocore/address_sample.h"
 #include "robocore/ray_batch_recorded.h"
 
 namespace rc {
@@ -50,6 +55,7 @@ struct Workload {
   std::unique_ptr<RayCastScene> scenes[3];
   RayBatch batch;
   KernelRecord records[3];
+  KernelRecord sampled_records[3];  // the CLI's default address sample
 };
 
 const Workload* LoadWorkload() {
@@ -71,6 +77,10 @@ const Workload* LoadWorkload() {
     for (int m = 0; m < 3; ++m) {
       w->scenes[m] = std::make_unique<RayCastScene>(w->grid, kMethods[m]);
       CastRayBatchRecorded(*w->scenes[m], w->batch, hits, w->records[m]);
+      RecordOptions sampled;
+      sampled.sample.sampled_sms = kReplaySms;
+      sampled.sample.block_stride = kReplayBlockStride;
+      CastRayBatchRecorded(*w->scenes[m], w->batch, hits, w->sampled_records[m], sampled);
     }
     return w;
   }();
@@ -128,9 +138,10 @@ void BM_PriceAll(benchmark::State& state) {
   const Workload* w = LoadWorkload();
   if (Skip(state, w)) return;
   const int m = static_cast<int>(state.range(0));
+  const KernelRecord& record = state.range(1) ? w->sampled_records[m] : w->records[m];
   const ModelledBackends all;
-  for (auto _ : state) benchmark::DoNotOptimize(PriceAll(all.backends, w->records[m]));
-  SetCounters(state, w->records[m]);
+  for (auto _ : state) benchmark::DoNotOptimize(PriceAll(all.backends, record));
+  SetCounters(state, record);
   state.SetLabel(ToString(kMethods[m]));
 }
 
@@ -181,7 +192,7 @@ void BM_Overhead(benchmark::State& state) {
 
 BENCHMARK(BM_Kernel)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_KernelRecorded)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_PriceAll)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PriceAll)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Overhead)->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_Price)
     ->ArgsProduct({benchmark::CreateDenseRange(0, 4, 1), {0, 1, 2}})
