@@ -3,6 +3,8 @@
 #include <cctype>
 #include <cstdint>
 #include <fstream>
+#include <stdexcept>
+#include <vector>
 
 #include <zlib.h>
 
@@ -44,6 +46,138 @@ bool DepthAllowed(int colour_type, int depth) {
     default: return false;
   }
 }
+
+// Channels per pixel of each colour type (table 11.1).
+int Channels(int colour_type) {
+  switch (colour_type) {
+    case 2: return 3;
+    case 4: return 2;
+    case 6: return 4;
+    default: return 1;  // 0 (grey), 3 (palette index)
+  }
+}
+
+// The IDAT chunks' zlib stream, inflated as the chunks are read and checked
+// against what IHDR says the image holds: the stream inflates without a
+// zlib error (its Adler-32 too), ends within the IDAT chunks, and yields
+// exactly the image's filtered scanlines, each starting with a filter type
+// of 0 to 4 (section 7.3; interlaced images scanline by scanline of each
+// Adam7 pass, section 8.2). Nothing is kept but a 64 KB window.
+class ImageData {
+ public:
+  ImageData() = default;
+  ImageData(const ImageData&) = delete;
+  ImageData& operator=(const ImageData&) = delete;
+  ~ImageData() {
+    if (started_) inflateEnd(&stream_);
+  }
+
+  // The image's scanlines from IHDR's fields.
+  void Start(std::uint32_t width, std::uint32_t height, int depth, int colour_type, bool interlaced) {
+    const std::uint64_t bits_per_pixel = static_cast<std::uint64_t>(depth) * Channels(colour_type);
+    auto add_pass = [&](int number, std::uint32_t x0, std::uint32_t y0, std::uint32_t dx, std::uint32_t dy) {
+      const std::uint64_t w = width > x0 ? (width - x0 + dx - 1) / dx : 0;
+      const std::uint64_t h = height > y0 ? (height - y0 + dy - 1) / dy : 0;
+      if (w == 0 || h == 0) return;  // an empty pass has no scanlines, not even filter bytes
+      passes_.push_back({number, h, 1 + (w * bits_per_pixel + 7) / 8});
+    };
+    if (interlaced) {
+      const std::uint32_t adam7[7][4] = {{0, 0, 8, 8}, {4, 0, 8, 8}, {0, 4, 4, 8}, {2, 0, 4, 4},
+                                         {0, 2, 2, 4}, {1, 0, 2, 2}, {0, 1, 1, 2}};
+      for (int pass = 0; pass < 7; ++pass) {
+        const auto& p = adam7[pass];
+        add_pass(pass + 1, p[0], p[1], p[2], p[3]);
+      }
+    } else {
+      add_pass(0, 0, 0, 1, 1);
+    }
+    for (const Pass& p : passes_) expected_ += p.rows * p.row_bytes;
+    if (inflateInit(&stream_) != Z_OK) throw std::runtime_error("zlib: cannot start an inflate stream");
+    started_ = true;
+  }
+
+  // One IDAT chunk's bytes; `problem` is called with what is wrong.
+  template <class Fail>
+  void Add(const char* data, std::size_t size, Fail fail) {
+    stream_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data));
+    stream_.avail_in = static_cast<uInt>(size);
+    while (stream_.avail_in > 0) {
+      if (ended_) fail("holds bytes after the end of the image data's zlib stream");
+      stream_.next_out = window_;
+      stream_.avail_out = sizeof window_;
+      const int status = inflate(&stream_, Z_NO_FLUSH);
+      Scan(sizeof window_ - stream_.avail_out, fail);
+      if (status == Z_STREAM_END) {
+        ended_ = true;
+      } else if (status == Z_BUF_ERROR) {
+        break;  // no progress possible without more input
+      } else if (status != Z_OK) {
+        fail(std::string("has image data that zlib cannot inflate (") + (stream_.msg ? stream_.msg : "error") + ")");
+      }
+    }
+  }
+
+  // At IEND: the stream ended and gave every byte of the image.
+  template <class Fail>
+  void Finish(Fail fail) {
+    if (!ended_) {
+      // Output may remain buffered inside zlib with no input left.
+      stream_.avail_in = 0;
+      for (;;) {
+        stream_.next_out = window_;
+        stream_.avail_out = sizeof window_;
+        const int status = inflate(&stream_, Z_NO_FLUSH);
+        Scan(sizeof window_ - stream_.avail_out, fail);
+        if (status == Z_STREAM_END) {
+          ended_ = true;
+          break;
+        }
+        if (status != Z_OK) break;
+      }
+    }
+    if (!ended_)
+      fail("the image data's zlib stream does not end within the IDAT chunks (" + std::to_string(inflated_) + " of " +
+           std::to_string(expected_) + " image bytes inflated)");
+    if (inflated_ != expected_)
+      fail("the image data inflates to " + std::to_string(inflated_) + " bytes; IHDR's size needs " +
+           std::to_string(expected_));
+  }
+
+ private:
+  struct Pass {
+    int number;  // Adam7's 1 to 7; 0 without interlacing
+    std::uint64_t rows, row_bytes;
+  };
+
+  // The window's first `size` inflated bytes: counts them and checks the
+  // filter type at each scanline's start.
+  template <class Fail>
+  void Scan(std::size_t size, Fail fail) {
+    const std::uint64_t end = inflated_ + size;
+    if (end > expected_)
+      fail("the image data inflates to more than the " + std::to_string(expected_) + " bytes IHDR's size needs");
+    while (pass_ < passes_.size() && next_row_at_ < end) {
+      const std::uint8_t filter = window_[next_row_at_ - inflated_];
+      if (filter > 4)
+        fail("scanline " + std::to_string(row_) +
+             (passes_[pass_].number > 0 ? " of pass " + std::to_string(passes_[pass_].number) : "") +
+             " has filter type " + std::to_string(filter) + " (0 to 4 exist): the image data is corrupt");
+      next_row_at_ += passes_[pass_].row_bytes;
+      if (++row_ == passes_[pass_].rows) {
+        row_ = 0;
+        ++pass_;
+      }
+    }
+    inflated_ = end;
+  }
+
+  z_stream stream_{};
+  bool started_ = false, ended_ = false;
+  std::vector<Pass> passes_;
+  std::size_t pass_ = 0;
+  std::uint64_t row_ = 0, next_row_at_ = 0, inflated_ = 0, expected_ = 0;
+  Bytef window_[65536];
+};
 
 class PngWalker {
  public:
@@ -95,7 +229,7 @@ class PngWalker {
         if (!Read(data.data(), length)) Truncated(type, length, at);
         crc.Add(data.data(), data.size());
       } else {
-        SkipData(crc, type, length, at);
+        SkipData(crc, type, length, at, type == "IDAT" ? &image_data_ : nullptr);
       }
       char stored[4];
       if (!Read(stored, 4)) Truncated(type, length, at);
@@ -111,8 +245,12 @@ class PngWalker {
         if (colour_type == 3 && !seen_plte)
           throw InputError(path_, 0, type, "comes before PLTE in a palette image" + at);
         in_idat_run = true;
+        // The chunk's bytes went to image_data_ as they were read, but a
+        // zlib error is reported only once the chunk's CRC is known sound.
+        if (!idat_problem_.empty()) throw InputError(path_, 0, type, idat_problem_ + at);
       } else if (type == "IEND") {
         if (!in_idat_run && !idat_run_ended) throw InputError(path_, 0, type, "comes before any IDAT chunk" + at);
+        image_data_.Finish([&](const std::string& problem) { throw InputError(path_, 0, "IDAT", problem); });
         return;
       } else if (std::isupper(static_cast<unsigned char>(type[0]))) {
         throw InputError(path_, 0, type, "is a critical chunk type that PNG readers do not know" + at);
@@ -131,13 +269,24 @@ class PngWalker {
     return static_cast<std::uint64_t>(in_.gcount()) == size;
   }
 
-  void SkipData(Crc32& crc, const std::string& type, std::uint32_t length, const std::string& at) {
+  // Reads past a chunk's data, adding it to the CRC and, for IDAT, to the
+  // image data (whose first problem is kept in idat_problem_).
+  void SkipData(Crc32& crc, const std::string& type, std::uint32_t length, const std::string& at,
+                ImageData* image_data) {
     char block[65536];
     for (std::uint64_t left = length; left > 0;) {
       const std::uint64_t take = left < sizeof block ? left : sizeof block;
       const bool whole = Read(block, take);
-      crc.Add(block, static_cast<std::size_t>(in_.gcount()));
+      const auto got = static_cast<std::size_t>(in_.gcount());
+      crc.Add(block, got);
       if (!whole) Truncated(type, length, at);
+      if (image_data && idat_problem_.empty()) {
+        try {
+          image_data->Add(block, got, [](const std::string& problem) { throw ImageDataProblem{problem}; });
+        } catch (const ImageDataProblem& p) {
+          idat_problem_ = p.what;
+        }
+      }
       left -= take;
     }
   }
@@ -149,7 +298,7 @@ class PngWalker {
   }
 
   // Returns the colour type.
-  int CheckHeader(const std::string& d, const std::string& at) const {
+  int CheckHeader(const std::string& d, const std::string& at) {
     const std::uint32_t width = BigEndian(d.data()), height = BigEndian(d.data() + 4);
     const int depth = static_cast<std::uint8_t>(d[8]), colour_type = static_cast<std::uint8_t>(d[9]);
     auto fail = [&](const std::string& problem) { throw InputError(path_, 0, "IHDR", problem + at); };
@@ -159,12 +308,19 @@ class PngWalker {
       fail("bit depth " + std::to_string(depth) + " is not allowed for colour type " + std::to_string(colour_type));
     if (d[10] != 0 || d[11] != 0) fail("compression and filter method must be 0");
     if (d[12] != 0 && d[12] != 1) fail("interlace method must be 0 or 1");
+    image_data_.Start(width, height, depth, colour_type, d[12] == 1);
     return colour_type;
   }
+
+  struct ImageDataProblem {
+    std::string what;
+  };
 
   const std::string path_;
   std::ifstream in_;
   std::uint64_t offset_ = 0;
+  ImageData image_data_;
+  std::string idat_problem_;  // the image data's first problem, reported with its chunk
 };
 
 }  // namespace

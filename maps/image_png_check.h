@@ -18,9 +18,15 @@
 //   no unknown critical chunk (libpng refuses one);
 // - IEND, empty, after at least one IDAT. Bytes after IEND are ignored, as
 //   libpng does.
-// Not checked: the compressed image data itself. A file whose chunks are
-// sound but whose zlib stream is not (a crafted file; random damage fails a
-// CRC) still reaches libpng, which then prints its own line.
+// - the IDAT chunks' image data (sections 7.3, 8.2 and 10): one zlib stream
+//   that inflates without error (its Adler-32 too) and ends within them,
+//   giving exactly the filtered scanlines IHDR's size, depth, colour type
+//   and interlacing need, each starting with a filter type of 0 to 4. Sound
+//   chunks around a crafted stream would otherwise reach libpng.
+// Not checked: what the scanlines hold (every byte value is a pixel) and
+// the ancillary chunks' contents (libpng reads only those it knows and
+// ignores the rest). The data is inflated twice, here and by libpng: a few
+// milliseconds per megapixel, once per map.
 #include <string>
 
 namespace rc {

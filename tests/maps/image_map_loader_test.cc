@@ -9,6 +9,7 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <zlib.h>
 
 #include "map_test_util.h"
 #include "support/input_error_expectations.h"
@@ -235,6 +236,91 @@ TEST(ImageMapLoader, PngDefectsNameTheChunk) {
   EXPECT_TRUE(ThrowsInputError(load(no_idat), 0, "IEND", "before any IDAT"));
   // Bytes after IEND are ignored, as libpng ignores them.
   EXPECT_EQ(test::Picture(LoadImageMap(dir.Write("m.png", png + "trailing"), o)), "#.?\n...\n");
+}
+
+// A PNG chunk: length, type, data and a CRC that matches, so that the
+// image data's check, not the CRC's, has to find what is wrong.
+std::string Chunk(const std::string& type, const std::string& data) {
+  std::string out;
+  for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((data.size() >> shift) & 0xff);
+  out += type + data;
+  uLong crc = crc32_z(0L, Z_NULL, 0);
+  crc = crc32_z(crc, reinterpret_cast<const Bytef*>(type.data()), type.size());
+  crc = crc32_z(crc, reinterpret_cast<const Bytef*>(data.data()), data.size());
+  for (int shift = 24; shift >= 0; shift -= 8) out += static_cast<char>((crc >> shift) & 0xff);
+  return out;
+}
+
+std::string Deflate(const std::string& raw) {
+  std::string out(compressBound(raw.size()), '\0');
+  uLongf size = out.size();
+  if (compress(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(raw.data()), raw.size()) !=
+      Z_OK)
+    throw std::runtime_error("zlib cannot compress");
+  out.resize(size);
+  return out;
+}
+
+// An 8-bit grey PNG of `width` x `height` whose IDAT holds `idat`.
+std::string GreyPng(std::uint32_t width, std::uint32_t height, bool interlaced, const std::string& idat) {
+  std::string header;
+  for (std::uint32_t v : {width, height})
+    for (int shift = 24; shift >= 0; shift -= 8) header += static_cast<char>((v >> shift) & 0xff);
+  header += std::string("\x08\x00\x00\x00", 4) + static_cast<char>(interlaced ? 1 : 0);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + Chunk("IHDR", header) + Chunk("IDAT", idat) + Chunk("IEND", "");
+}
+
+// SmallImage's scanlines, filter type 0: rows of 3 grey bytes.
+const std::string kSmallRows = std::string("\0\x00\xff\x80\0\xff\xff\xff", 8);
+
+TEST(ImageMapLoader, PngImageDataIsInflatedAndCheckedBeforeLibpngSeesIt) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  auto load = [&](const std::string& content) {
+    const std::string path = dir.Write("m.png", content);
+    return [&o, path] { LoadImageMap(path, o); };
+  };
+  testing::internal::CaptureStderr();
+  // Sound chunks around a sound stream: read.
+  EXPECT_EQ(test::Picture(LoadImageMap(dir.Write("m.png", GreyPng(3, 2, false, Deflate(kSmallRows))), o)),
+            "#.?\n...\n");
+  // Sound chunks (their CRCs match) around bad image data.
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, "not a zlib stream")), 0, "IDAT", "cannot inflate"));
+  std::string bad_filter = kSmallRows;
+  bad_filter[4] = 7;  // the second scanline's filter type
+  EXPECT_TRUE(
+      ThrowsInputError(load(GreyPng(3, 2, false, Deflate(bad_filter))), 0, "IDAT", "scanline 1 has filter type 7"));
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, Deflate(kSmallRows.substr(0, 6)))), 0, "IDAT",
+                               "inflates to 6 bytes; IHDR's size needs 8"));
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, Deflate(kSmallRows + std::string(1, '\0')))), 0, "IDAT",
+                               "more than the 8 bytes"));
+  const std::string stream = Deflate(kSmallRows);
+  EXPECT_TRUE(
+      ThrowsInputError(load(GreyPng(3, 2, false, stream.substr(0, stream.size() - 4))), 0, "IDAT", "does not end"));
+  std::string wrong_check = stream;
+  wrong_check.back() = static_cast<char>(wrong_check.back() ^ 1);  // the Adler-32's last byte
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, wrong_check)), 0, "IDAT", "cannot inflate"));
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, stream + "x")), 0, "IDAT", "after the end"));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+// Adam7 (PNG section 8.2) splits a 3 x 2 image into passes 1 (pixel 0,0),
+// 4 (pixel 2,0), 6 (pixel 1,0) and 7 (row 1), each a scanline with its
+// filter byte; passes 2, 3 and 5 are empty and have no scanline at all.
+TEST(ImageMapLoader, InterlacedPngsAreCheckedPassByPassAndRead) {
+  test::TempDir dir;
+  ImageMapOptions o;
+  o.resolution_m = 0.1;
+  const std::string passes =
+      std::string("\0\x00", 2) + std::string("\0\x80", 2) + std::string("\0\xff", 2) + std::string("\0\xff\xff\xff", 4);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(test::Picture(LoadImageMap(dir.Write("m.png", GreyPng(3, 2, true, Deflate(passes))), o)), "#.?\n...\n");
+  std::string bad = passes;
+  bad[6] = 5;  // pass 7's filter type
+  const std::string path = dir.Write("m.png", GreyPng(3, 2, true, Deflate(bad)));
+  EXPECT_TRUE(ThrowsInputError([&] { LoadImageMap(path, o); }, 0, "IDAT", "scanline 0 of pass 7 has filter type 5"));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
 TEST(ImageMapLoader, SixteenBitImagesAreRejectedNotRescaled) {
