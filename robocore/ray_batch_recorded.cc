@@ -69,6 +69,14 @@ std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) 
   return stops ? kRayHitReturn : kRayEndReturn;
 }
 
+// The queries of one launch: `count` of them from `queries`, in launch
+// order (a whole batch, or a range of one).
+struct LaunchQueries {
+  const RayQuery* queries;
+  std::size_t count;
+  double max_range_m;
+};
+
 // A thread's buffers for CastBlocksInLanes, reused segment after segment.
 struct LaneBatchWork {
   LaneNodeLog log;
@@ -83,19 +91,18 @@ struct LaneBatchWork {
 // node addresses to its block's buffer. One batch rather than one per run
 // of adjacent blocks: the lanes drain at a batch's end, idling while its
 // last rays finish. `lane` says where to mark touched sectors.
-void CastBlocksInLanes(const RayCastScene& scene, const RayBatch& batch, const std::vector<long>& blocks, long block,
-                       const MemoryRegion& fetched, LaneRecording lane, LaneBatchWork& work, RayHit* hits,
+void CastBlocksInLanes(const RayCastScene& scene, const LaunchQueries& launch, const std::vector<long>& blocks,
+                       long block, const MemoryRegion& fetched, LaneRecording lane, LaneBatchWork& work, RayHit* hits,
                        std::uint8_t* last_exit, std::vector<std::vector<std::uint64_t>>* block_addresses) {
-  const long n = static_cast<long>(batch.queries.size());
+  const long n = static_cast<long>(launch.count);
   auto end_of = [&](long b) { return std::min(n, (b + 1) * block); };
   work.queries.clear();
-  for (long b : blocks)
-    work.queries.insert(work.queries.end(), batch.queries.begin() + b * block, batch.queries.begin() + end_of(b));
+  for (long b : blocks) work.queries.insert(work.queries.end(), launch.queries + b * block, launch.queries + end_of(b));
   work.hits.resize(work.queries.size());
   work.exits.assign(work.queries.size(), kNoExit);
   lane.last_exits = work.exits.data();
   lane.nodes = block_addresses ? &work.log : nullptr;
-  CastRayLanes(scene, work.queries.data(), work.queries.size(), batch.max_range_m, work.hits.data(), &lane);
+  CastRayLanes(scene, work.queries.data(), work.queries.size(), launch.max_range_m, work.hits.data(), &lane);
   std::size_t g = 0;  // position in the gathered batch
   for (long b : blocks) {
     const long lo = b * block, hi = end_of(b);
@@ -164,8 +171,11 @@ std::vector<MemoryRegion> RayCastRegions(const RayCastScene& scene, const Device
   return {field};
 }
 
-void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
-                          KernelRecord& record, const RecordOptions& options) {
+namespace {
+
+// CastRayBatchRecorded's launch: its queries' hits go to hits[0, count).
+void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit* hits, KernelRecord& record,
+                  const RecordOptions& options) {
   record.step_kind = StepProgramFor(scene.method());
   record.program = options.program ? options.program : ShippedStepProgram(record.step_kind);
   if (record.program->ReturnIfCount(ProgramSection::kLoop) <= kRayEndReturn)
@@ -183,12 +193,11 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   // as a whole; the buffers are joined in launch order afterwards, so the
   // record does not depend on the thread count or the schedule.
   const AddressSample& sample = options.sample;
-  const long n = static_cast<long>(batch.queries.size());
+  const long n = static_cast<long>(launch.count);
   const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);
   const long blocks = (n + block - 1) / block;
-  hits.resize(batch.queries.size());
   std::vector<std::uint8_t>& last_exit = record.last_exits;
-  last_exit.assign(batch.queries.size(), kNoExit);
+  last_exit.assign(launch.count, kNoExit);
   record.node_exits.clear();
   std::vector<std::vector<std::uint64_t>> block_addresses(static_cast<std::size_t>(blocks));
   // A sample also counts the sectors the whole batch touches: one bitset of
@@ -255,7 +264,7 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
       lane.element_bytes = fetched.element_bytes;
       lane.sector_shift = sector_shift;
       if (lanes) {
-        CastBlocksInLanes(scene, batch, seg.blocks, block, fetched, lane, lane_work, hits.data(), last_exit.data(),
+        CastBlocksInLanes(scene, launch, seg.blocks, block, fetched, lane, lane_work, hits, last_exit.data(),
                           seg.keep ? &block_addresses : nullptr);
       } else if (seg.keep) {
         RecordingVisitor recording = prototype;
@@ -263,8 +272,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
         recording.touched = mark ? mine.data() : nullptr;
         recording.out->reserve(static_cast<std::size_t>(seg.queries) * 32);
         for (long i = lo; i < lo + seg.queries; ++i) {
-          const RayQuery& q = batch.queries[i];
-          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, recording);
+          const RayQuery& q = launch.queries[i];
+          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, launch.max_range_m, recording);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
         }
       } else {
@@ -276,8 +285,8 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
         }
         marking.sector_shift = sector_shift;
         for (long i = lo; i < lo + seg.queries; ++i) {
-          const RayQuery& q = batch.queries[i];
-          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, batch.max_range_m, marking);
+          const RayQuery& q = launch.queries[i];
+          hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, launch.max_range_m, marking);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);
         }
       }
@@ -295,14 +304,14 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
 
   // Prefix sums, every entry written: resize, not assign, so that a reused
   // record's vectors are not first filled with zeros.
-  record.fetch_offsets.resize(batch.queries.size() + 1);
+  record.fetch_offsets.resize(launch.count + 1);
   record.fetch_offsets[0] = 0;
   for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
   record.address_sample = sample;
   if (sample.KeepsAll()) {
     record.address_offsets.clear();
   } else {
-    record.address_offsets.resize(batch.queries.size() + 1);
+    record.address_offsets.resize(launch.count + 1);
     record.address_offsets[0] = 0;
     for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
       const long lo = b * block, hi = std::min(n, lo + block);
@@ -319,6 +328,22 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
 #pragma omp parallel for schedule(static)
   for (long b = 0; b < blocks; ++b)
     std::copy(block_addresses[b].begin(), block_addresses[b].end(), record.fetch_addresses.begin() + block_start[b]);
+}
+
+}  // namespace
+
+void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
+                          KernelRecord& record, const RecordOptions& options) {
+  hits.resize(batch.queries.size());
+  RecordLaunch(scene, {batch.queries.data(), batch.queries.size(), batch.max_range_m}, hits.data(), record, options);
+}
+
+void CastRayBatchRecordedRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                               std::vector<RayHit>& hits, KernelRecord& record, const RecordOptions& options) {
+  if (begin > end || end > batch.queries.size() || hits.size() != batch.queries.size())
+    throw std::invalid_argument("CastRayBatchRecordedRange: the range or the hits do not fit the batch");
+  RecordLaunch(scene, {batch.queries.data() + begin, end - begin, batch.max_range_m}, hits.data() + begin, record,
+               options);
 }
 
 }  // namespace rc

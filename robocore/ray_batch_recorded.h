@@ -59,6 +59,14 @@ RecordOptions RecordOptionsFor(RayCastMethod method, const RayKernelChoices& cho
 void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
                           KernelRecord& record, const RecordOptions& options = {});
 
+// The same for queries [begin, end) of `batch` as one launch: the record's
+// query q is batch query begin + q, and the hits go to hits [begin, end)
+// (hits must already hold batch.queries.size() entries), so a caller that
+// splits a batch into launches copies neither queries nor hits. Throws
+// std::invalid_argument for a range or hits that do not fit the batch.
+void CastRayBatchRecordedRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
+                               std::vector<RayHit>& hits, KernelRecord& record, const RecordOptions& options = {});
+
 // The regions a scene's kernel fetches from, placed by `layout`: the grid
 // (layout.grid_cell_bytes per cell) for march and dda, the distance field
 // (4 bytes per cell) for rm. Throws std::invalid_argument for a cell size

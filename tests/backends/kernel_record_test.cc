@@ -210,6 +210,44 @@ TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   EXPECT_EQ(one.last_exits, two.last_exits);
 }
 
+// A range of a batch recorded as one launch is the record of a batch made
+// of those queries (sampled too: the sample's blocks count from the
+// range's first query), its hits land in place, and nothing outside the
+// range is written.
+TEST_P(RecordTest, ARangeIsRecordedAsTheLaunchOfItsQueries) {
+  const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
+  const RayCastScene scene(grid, GetParam());
+  const RayBatch batch = test::FanBatch(grid, 120, 37, 5.0, 9);
+  RecordOptions options;
+  options.sample.sampled_sms = 1;
+  options.sample.block_stride = 2;
+  const std::size_t begin = 1111, end = 3700;
+  RayBatch part;
+  part.max_range_m = batch.max_range_m;
+  part.queries.assign(batch.queries.begin() + begin, batch.queries.begin() + end);
+  std::vector<RayHit> part_hits;
+  KernelRecord want, got;
+  CastRayBatchRecorded(scene, part, part_hits, want, options);
+  std::vector<RayHit> hits(batch.queries.size(), RayHit{-1.0f, 7});
+  CastRayBatchRecordedRange(scene, batch, begin, end, hits, got, options);
+  ASSERT_NO_THROW(got.Validate());
+  EXPECT_EQ(got.fetch_offsets, want.fetch_offsets);
+  EXPECT_EQ(got.address_offsets, want.address_offsets);
+  EXPECT_EQ(got.fetch_addresses, want.fetch_addresses);
+  EXPECT_EQ(got.last_exits, want.last_exits);
+  EXPECT_EQ(got.touched_sectors, want.touched_sectors);
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const bool inside = i >= begin && i < end;
+    ASSERT_EQ(hits[i].range_m, inside ? part_hits[i - begin].range_m : -1.0f) << i;
+    ASSERT_EQ(hits[i].nodes, inside ? part_hits[i - begin].nodes : 7u) << i;
+  }
+  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, end, begin, hits, got, options), std::invalid_argument);
+  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, begin, batch.queries.size() + 1, hits, got, options),
+               std::invalid_argument);
+  hits.pop_back();
+  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, begin, end, hits, got, options), std::invalid_argument);
+}
+
 // A sampled record keeps exactly the addresses of the queries on the
 // sampled SMs (of their blocks, every block_stride-th), equal to the full
 // record's, and everything else in full.

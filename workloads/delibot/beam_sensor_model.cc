@@ -93,7 +93,7 @@ void BeamSensorModel::SelectionLogLikelihoods(const std::vector<Pose2>& particle
 }
 
 namespace {
-// Rays per work unit of the unrecorded update (whole particles, at least
+// Rays per work unit of CastAndScore (whole particles, at least
 // one). Units shrink as the update nears its end (a guided schedule): a
 // unit takes 1/(2 x threads) of the particles left, within these bounds.
 // Up to ~4096 rays (~300 microseconds) early on keeps the 32 lanes' fill
@@ -134,6 +134,38 @@ void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection&
   }
 }
 
+std::uint64_t BeamSensorModel::CastAndScore(const std::vector<Pose2>& particles, const LaserScan& scan,
+                                            const LaserGeometry& geometry, const BeamSelection& beams,
+                                            BeamCombination combination, long begin, long end,
+                                            std::vector<double>& log_likelihoods, SensorUpdateWork& work) const {
+  const int beams_per_particle = beams.Count(geometry.beam_count);
+  const long per_particle = std::max(1, beams_per_particle);
+  const long min_particles = std::max(1L, kMinRaysPerUnit / per_particle);
+  const long max_particles = std::max(min_particles, kMaxRaysPerUnit / per_particle);
+  std::atomic<long> next_particle{begin};
+  std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
+#pragma omp parallel reduction(+ : nodes)
+  {
+    const long threads = omp_get_num_threads();
+    long first_particle = next_particle.load(std::memory_order_relaxed);
+    while (first_particle < end) {
+      const long size = std::clamp((end - first_particle) / (2 * threads), min_particles, max_particles);
+      const long last_particle = std::min(end, first_particle + size);
+      // Claim [first_particle, last_particle); on a race, first_particle is
+      // reloaded and we retry.
+      if (!next_particle.compare_exchange_weak(first_particle, last_particle, std::memory_order_relaxed)) continue;
+      const std::size_t first = static_cast<std::size_t>(first_particle) * beams_per_particle;
+      const std::size_t last = static_cast<std::size_t>(last_particle) * beams_per_particle;
+      FillQueries(particles, geometry, beams, first_particle, last_particle, work.batch);
+      CastRaySlice(*scene_, work.batch, first, last, work.hits);
+      ScoreParticles(scan, beams, combination, first_particle, last_particle, work.hits, log_likelihoods);
+      for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
+      first_particle = next_particle.load(std::memory_order_relaxed);
+    }
+  }
+  return nodes;
+}
+
 void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
                             const BeamSelection& beams, BeamCombination combination,
                             std::vector<double>& log_likelihoods, SensorUpdateWork& work) {
@@ -145,85 +177,66 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
   RayBatch& batch = work.batch;
   batch.max_range_m = params_.max_range_m;
   batch.queries.resize(static_cast<std::size_t>(n) * beams_per_particle);
+  work.hits.resize(batch.queries.size());
   log_likelihoods.resize(particles.size());
-  if (work.record_kernel) {
-    // The recorded kernel needs the whole batch at once (its record's
-    // slots are placed by a prefix sum over every query).
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
-    RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
-    record_options.sample = work.record_sample;
-    const std::size_t rays = batch.queries.size();
-    const std::size_t max_rays = std::max<std::size_t>(1, work.max_rays_per_launch);
-    if (!work.price_launch || rays <= max_rays) {
-      CastRayBatchRecorded(*scene_, batch, work.hits, work.record, record_options);
-    } else {
-      // Launches of whole particles, each recorded and handed on but the
-      // last, so that only one launch's record is alive at a time. With
-      // estimate_launches, the full launches the launch sample leaves out
-      // are cast without a record (launch_sample.h).
-      const auto beams_each = static_cast<std::size_t>(std::max(1, beams_per_particle));
-      const std::size_t per_launch = std::max<std::size_t>(1, max_rays / beams_each) * beams_each;
-      const std::size_t full_launches = (rays - 1) / per_launch;  // every launch but the last
-      work.hits.resize(rays);
-      RayBatch launch;
-      launch.max_range_m = batch.max_range_m;
-      std::vector<RayHit> launch_hits;
-      EstimatedLaunches estimated;
-      for (std::size_t first = 0, index = 0; first < rays; first += per_launch, ++index) {
-        const std::size_t last = std::min(rays, first + per_launch);
-        if (index < full_launches && work.estimate_launches && !work.launch_sample.Prices(index, full_launches)) {
-          CastRayBatchRange(*scene_, batch, first, last, work.hits);
-          ++estimated.count;
-          estimated.queries += last - first;
-          for (std::size_t i = first; i < last; ++i) estimated.nodes += work.hits[i].nodes;
-          continue;
-        }
-        launch.queries.assign(batch.queries.begin() + static_cast<long>(first),
-                              batch.queries.begin() + static_cast<long>(last));
-        CastRayBatchRecorded(*scene_, launch, launch_hits, work.record, record_options);
-        std::copy(launch_hits.begin(), launch_hits.end(), work.hits.begin() + static_cast<long>(first));
-        if (last < rays) {
-          work.price_launch(work.record);
-          ++estimated.like;
-        }
-      }
-      if (estimated.count > 0) work.estimate_launches(estimated);
-    }
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
-    work.nodes = TotalNodes(work.hits);
-  } else {
-    // One parallel loop: each unit of particles fills, casts and scores its
-    // own slice of the batch, with no barrier between the three.
-    work.hits.resize(batch.queries.size());
-    const long per_particle = std::max(1, beams_per_particle);
-    const long min_particles = std::max(1L, kMinRaysPerUnit / per_particle);
-    const long max_particles = std::max(min_particles, kMaxRaysPerUnit / per_particle);
-    std::atomic<long> next_particle{0};
-    std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
-#pragma omp parallel reduction(+ : nodes)
-    {
-      const long threads = omp_get_num_threads();
-      long begin = next_particle.load(std::memory_order_relaxed);
-      while (begin < n) {
-        const long size = std::clamp((n - begin) / (2 * threads), min_particles, max_particles);
-        const long end = std::min(n, begin + size);
-        // Claim [begin, end); on a race, begin is reloaded and we retry.
-        if (!next_particle.compare_exchange_weak(begin, end, std::memory_order_relaxed)) continue;
-        const std::size_t first = static_cast<std::size_t>(begin) * beams_per_particle;
-        const std::size_t last = static_cast<std::size_t>(end) * beams_per_particle;
-        FillQueries(particles, geometry, beams, begin, end, batch);
-        CastRaySlice(*scene_, batch, first, last, work.hits);
-        ScoreParticles(scan, beams, combination, begin, end, work.hits, log_likelihoods);
-        for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
-        begin = next_particle.load(std::memory_order_relaxed);
-      }
-    }
-    work.nodes = nodes;
-  }
   work.rays = batch.queries.size();
   work.beams_scored = beams_per_particle;
+  if (!work.record_kernel) {
+    work.nodes = CastAndScore(particles, scan, geometry, beams, combination, 0, n, log_likelihoods, work);
+    return;
+  }
+  // Recorded: launch by launch, each filled, cast and scored before the
+  // next, so no pass runs over the whole batch. Without price_launch, or
+  // within the limit, the batch is one launch. Otherwise, launches of whole
+  // particles, each recorded and handed on but the last, so that only one
+  // launch's record is alive at a time; with estimate_launches, the full
+  // launches the launch sample leaves out are cast and scored unit by unit
+  // without a record, as an unrecorded update is (launch_sample.h). A
+  // launch's recorded kernel needs all its queries at once (its record's
+  // slots are placed by a prefix sum over them).
+  RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
+  record_options.sample = work.record_sample;
+  const std::size_t rays = batch.queries.size();
+  const std::size_t max_rays = std::max<std::size_t>(1, work.max_rays_per_launch);
+  const auto beams_each = static_cast<std::size_t>(std::max(1, beams_per_particle));
+  const bool split = work.price_launch && rays > max_rays;
+  const std::size_t per_launch = split ? std::max<std::size_t>(1, max_rays / beams_each) * beams_each : rays;
+  const std::size_t full_launches = split ? (rays - 1) / per_launch : 0;  // every launch but the last
+  EstimatedLaunches estimated;
+  std::uint64_t nodes = 0;
+  // At least one launch, so that an empty batch leaves an empty record.
+  for (std::size_t first = 0, index = 0; first < rays || index == 0; first += per_launch, ++index) {
+    const std::size_t last = std::min(rays, first + per_launch);
+    // The launch's particles; the last launch scores every particle left
+    // (all of them when no beam is selected).
+    const long begin = static_cast<long>(first / beams_each);
+    const long end = last == rays ? n : static_cast<long>(last / beams_each);
+    if (index < full_launches && work.estimate_launches && !work.launch_sample.Prices(index, full_launches)) {
+      const std::uint64_t launch_nodes =
+          CastAndScore(particles, scan, geometry, beams, combination, begin, end, log_likelihoods, work);
+      nodes += launch_nodes;
+      ++estimated.count;
+      estimated.queries += last - first;
+      estimated.nodes += launch_nodes;
+      continue;
+    }
+#pragma omp parallel for schedule(static)
+    for (long i = begin; i < end; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
+    CastRayBatchRecordedRange(*scene_, batch, first, last, work.hits, work.record, record_options);
+#pragma omp parallel for schedule(static) reduction(+ : nodes)
+    for (long i = begin; i < end; ++i) {
+      ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
+      for (std::size_t q = static_cast<std::size_t>(i) * beams_per_particle;
+           q < static_cast<std::size_t>(i + 1) * beams_per_particle; ++q)
+        nodes += work.hits[q].nodes;
+    }
+    if (last < rays) {
+      work.price_launch(work.record);
+      ++estimated.like;
+    }
+  }
+  if (estimated.count > 0) work.estimate_launches(estimated);
+  work.nodes = nodes;
 }
 
 }  // namespace rc

@@ -76,6 +76,12 @@ class BeamSensorModel final : public SensorModel {
   // Particles [begin, end): their queries (particle-major, beam-minor).
   void FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry, const BeamSelection& beams,
                    long begin, long end, RayBatch& batch) const;
+  // Particles [begin, end), filled, cast (without a record) and scored in
+  // units spread over the threads, each unit's queries and hits still in
+  // the core's caches between the three; returns their nodes.
+  std::uint64_t CastAndScore(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
+                             const BeamSelection& beams, BeamCombination combination, long begin, long end,
+                             std::vector<double>& log_likelihoods, SensorUpdateWork& work) const;
   // Particles [begin, end): their scan log-likelihoods from the cast hits.
   void ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination, long begin,
                       long end, const std::vector<RayHit>& hits, std::vector<double>& log_likelihoods) const;
