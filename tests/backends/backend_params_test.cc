@@ -150,9 +150,13 @@ TEST(BackendParameters, EveryParameterHasARangeHoldingItsDefault) {
     EXPECT_NE(std::string(v.spec.unit), "") << v.key;
     EXPECT_NE(std::string(v.spec.source), "") << v.key;
     const bool choice = v.spec.min == 0 && v.spec.max == 0;
-    if (!choice) EXPECT_TRUE(v.spec.Contains(std::stod(v.value))) << v.key << " = " << v.value;
+    if (!choice) {
+      EXPECT_TRUE(v.spec.Contains(std::stod(v.value))) << v.key << " = " << v.value;
+    }
     for (const std::string& alt : v.alternatives) {
-      if (!choice) EXPECT_TRUE(v.spec.Contains(std::stod(alt))) << v.key << " -> " << alt;
+      if (!choice) {
+        EXPECT_TRUE(v.spec.Contains(std::stod(alt))) << v.key << " -> " << alt;
+      }
       EXPECT_NE(alt, v.value) << v.key;
     }
   }

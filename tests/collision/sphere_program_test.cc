@@ -79,7 +79,9 @@ TEST(SphereProgram, SpheresAreConservativeAndTheFalseRateIsMeasured) {
     for (std::size_t k = 0; k < obbs.size(); ++k) {
       bool exact = false;
       for (const Aabbd& b : scene) exact = exact || ExactObbAabbOverlap(obbs[k], b).overlaps();
-      if (exact) EXPECT_TRUE(spheres.obb_collides[k]) << "spheres miss a collision: OBB " << k << ", n " << n;
+      if (exact) {
+        EXPECT_TRUE(spheres.obb_collides[k]) << "spheres miss a collision: OBB " << k << ", n " << n;
+      }
       exact_collisions += exact;
       false_collisions += spheres.obb_collides[k] && !exact;
       if (sact.outcomes[k].collides && !spheres.obb_collides[k]) {
