@@ -72,8 +72,11 @@ class ImageData {
     if (started_) inflateEnd(&stream_);
   }
 
-  // The image's scanlines from IHDR's fields.
-  void Start(std::uint32_t width, std::uint32_t height, int depth, int colour_type, bool interlaced) {
+  // The image's scanlines from IHDR's fields. Returns false, starting
+  // nothing, when their bytes would pass 2^62 (IHDR allows 2^31 - 1 by
+  // 2^31 - 1 pixels of 8 bytes, about 2^68: no real file, and beyond the
+  // counts kept here).
+  bool Start(std::uint32_t width, std::uint32_t height, int depth, int colour_type, bool interlaced) {
     const std::uint64_t bits_per_pixel = static_cast<std::uint64_t>(depth) * Channels(colour_type);
     auto add_pass = [&](int number, std::uint32_t x0, std::uint32_t y0, std::uint32_t dx, std::uint32_t dy) {
       const std::uint64_t w = width > x0 ? (width - x0 + dx - 1) / dx : 0;
@@ -91,9 +94,15 @@ class ImageData {
     } else {
       add_pass(0, 0, 0, 1, 1);
     }
-    for (const Pass& p : passes_) expected_ += p.rows * p.row_bytes;
+    constexpr std::uint64_t kMostBytes = std::uint64_t{1} << 62;
+    for (const Pass& p : passes_) {
+      if (p.row_bytes > kMostBytes / p.rows) return false;
+      expected_ += p.rows * p.row_bytes;  // each below 2^62, seven at most: no wrap
+    }
+    if (expected_ > kMostBytes) return false;
     if (inflateInit(&stream_) != Z_OK) throw std::runtime_error("zlib: cannot start an inflate stream");
     started_ = true;
+    return true;
   }
 
   // One IDAT chunk's bytes; `problem` is called with what is wrong.
@@ -308,7 +317,9 @@ class PngWalker {
       fail("bit depth " + std::to_string(depth) + " is not allowed for colour type " + std::to_string(colour_type));
     if (d[10] != 0 || d[11] != 0) fail("compression and filter method must be 0");
     if (d[12] != 0 && d[12] != 1) fail("interlace method must be 0 or 1");
-    image_data_.Start(width, height, depth, colour_type, d[12] == 1);
+    if (!image_data_.Start(width, height, depth, colour_type, d[12] == 1))
+      fail("width " + std::to_string(width) + " by height " + std::to_string(height) + " at bit depth " +
+           std::to_string(depth) + " is more than 2^62 bytes of image data");
     return colour_type;
   }
 

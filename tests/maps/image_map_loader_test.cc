@@ -261,12 +261,14 @@ std::string Deflate(const std::string& raw) {
   return out;
 }
 
-// An 8-bit grey PNG of `width` x `height` whose IDAT holds `idat`.
-std::string GreyPng(std::uint32_t width, std::uint32_t height, bool interlaced, const std::string& idat) {
+// An 8-bit grey PNG of `width` x `height` whose IDAT holds `idat` (or
+// another bit depth and colour type, IHDR's two bytes).
+std::string GreyPng(std::uint32_t width, std::uint32_t height, bool interlaced, const std::string& idat,
+                    const std::string& depth_and_colour = std::string("\x08\x00", 2)) {
   std::string header;
   for (std::uint32_t v : {width, height})
     for (int shift = 24; shift >= 0; shift -= 8) header += static_cast<char>((v >> shift) & 0xff);
-  header += std::string("\x08\x00\x00\x00", 4) + static_cast<char>(interlaced ? 1 : 0);
+  header += depth_and_colour + std::string("\x00\x00", 2) + static_cast<char>(interlaced ? 1 : 0);
   return std::string("\x89PNG\r\n\x1a\n", 8) + Chunk("IHDR", header) + Chunk("IDAT", idat) + Chunk("IEND", "");
 }
 
@@ -302,6 +304,9 @@ TEST(ImageMapLoader, PngImageDataIsInflatedAndCheckedBeforeLibpngSeesIt) {
   wrong_check.back() = static_cast<char>(wrong_check.back() ^ 1);  // the Adler-32's last byte
   EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, wrong_check)), 0, "IDAT", "cannot inflate"));
   EXPECT_TRUE(ThrowsInputError(load(GreyPng(3, 2, false, stream + "x")), 0, "IDAT", "after the end"));
+  // The largest size IHDR allows, 16-bit RGBA: about 2^68 bytes.
+  EXPECT_TRUE(ThrowsInputError(load(GreyPng(0x7fffffff, 0x7fffffff, false, stream, std::string("\x10\x06", 2))), 0,
+                               "IHDR", "more than 2^62 bytes of image data"));
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
