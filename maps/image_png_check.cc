@@ -105,44 +105,26 @@ class ImageData {
     return true;
   }
 
-  // One IDAT chunk's bytes; `problem` is called with what is wrong.
+  // One IDAT chunk's bytes; `fail` is called with what is wrong.
   template <class Fail>
   void Add(const char* data, std::size_t size, Fail fail) {
     stream_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data));
     stream_.avail_in = static_cast<uInt>(size);
     while (stream_.avail_in > 0) {
       if (ended_) fail("holds bytes after the end of the image data's zlib stream");
-      stream_.next_out = window_;
-      stream_.avail_out = sizeof window_;
-      const int status = inflate(&stream_, Z_NO_FLUSH);
-      Scan(sizeof window_ - stream_.avail_out, fail);
-      if (status == Z_STREAM_END) {
-        ended_ = true;
-      } else if (status == Z_BUF_ERROR) {
-        break;  // no progress possible without more input
-      } else if (status != Z_OK) {
+      const int status = Inflate(fail);
+      if (status == Z_BUF_ERROR) break;  // no progress possible without more input
+      if (status != Z_OK && status != Z_STREAM_END)
         fail(std::string("has image data that zlib cannot inflate (") + (stream_.msg ? stream_.msg : "error") + ")");
-      }
     }
   }
 
   // At IEND: the stream ended and gave every byte of the image.
   template <class Fail>
   void Finish(Fail fail) {
-    if (!ended_) {
-      // Output may remain buffered inside zlib with no input left.
-      stream_.avail_in = 0;
-      for (;;) {
-        stream_.next_out = window_;
-        stream_.avail_out = sizeof window_;
-        const int status = inflate(&stream_, Z_NO_FLUSH);
-        Scan(sizeof window_ - stream_.avail_out, fail);
-        if (status == Z_STREAM_END) {
-          ended_ = true;
-          break;
-        }
-        if (status != Z_OK) break;
-      }
+    // Output may remain buffered inside zlib with no input left.
+    stream_.avail_in = 0;
+    while (!ended_ && Inflate(fail) == Z_OK) {
     }
     if (!ended_)
       fail("the image data's zlib stream does not end within the IDAT chunks (" + std::to_string(inflated_) + " of " +
@@ -157,6 +139,18 @@ class ImageData {
     int number;  // Adam7's 1 to 7; 0 without interlacing
     std::uint64_t rows, row_bytes;
   };
+
+  // One call of inflate into the window, whose output Scan checks; returns
+  // zlib's status.
+  template <class Fail>
+  int Inflate(Fail fail) {
+    stream_.next_out = window_;
+    stream_.avail_out = sizeof window_;
+    const int status = inflate(&stream_, Z_NO_FLUSH);
+    Scan(sizeof window_ - stream_.avail_out, fail);
+    ended_ = ended_ || status == Z_STREAM_END;
+    return status;
+  }
 
   // The window's first `size` inflated bytes: counts them and checks the
   // filter type at each scanline's start.
