@@ -9,6 +9,7 @@
 #include "common/text_fields.h"
 #include "maps/grid_size_limits.h"
 #include "maps/image_codec.h"
+#include "maps/image_jpeg_check.h"
 #include "maps/image_png_check.h"
 #include "maps/image_pnm_check.h"
 #include "maps/image_signature.h"
@@ -97,6 +98,10 @@ OccupancyGrid ReadImageGrid(const std::string& image_path, double resolution_m, 
   // libpng prints its own line on stderr for a truncated or corrupt PNG
   // (image_png_check.h), so a PNG decodes only once its chunks are sound.
   if (*format == "PNG") CheckPngImage(image_path);
+  // libjpeg prints "Premature end of JPEG file" or "Corrupt JPEG data: ..."
+  // and fills the rest grey (image_jpeg_check.h), so a JPEG decodes here
+  // only once libjpeg has decoded it quietly without an error or warning.
+  if (*format == "JPEG") CheckJpegImage(image_path);
   // A corrupt file can make a decoder throw (cv::Exception) instead of
   // returning an empty image.
   cv::Mat image;

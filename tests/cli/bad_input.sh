@@ -154,5 +154,23 @@ for case in "cut.png truncated" "changed.png CRC mismatch"; do
   fi
 done
 
+# A JPEG map cut short: libjpeg printed "Premature end of JPEG file" and
+# filled the rest grey. Now our message, naming the image and libjpeg's stage
+# (maps/image_jpeg_check.h), is the only line (exit 1). The map: 16 x 16
+# white cells, 101 bytes written by OpenCV, less its APP0 and DHT (libjpeg
+# then uses T.81 Annex K's tables).
+printf '%s' '/9j/2wBDAAIBAQEBAQIBAQECAgICAgQDAgICAgUEBAMEBgUGBgYFBgYGBwkIBgcJBwYGCAsICQoK
+CgoKBggLDAsKDAkKCgr/wAALCAAQABABAREA/9oACAEBAAA/AP38ooor/9k=' | base64 -d > white.jpg
+accept jpeg-map "free 256 (100.0%)" -- carribot --map white.jpg --resolution 0.1 --start 0,9 --goal 9,9
+head -c 98 white.jpg > cut.jpg  # 4 of the 5 bytes of scan data, no EOI
+"$RCBENCH" carribot --map cut.jpg --resolution 0.1 --start 0,9 --goal 9,9 --quiet >out.txt 2>err.txt
+got=$?
+if [ "$got" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF "cut.jpg: field 'scan data'" err.txt &&
+  grep -qF "truncated" err.txt; then
+  passes=$((passes + 1))
+else
+  echo "FAIL truncated-jpeg cut.jpg: exit $got, stderr:"; cat err.txt; failures=$((failures + 1))
+fi
+
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
