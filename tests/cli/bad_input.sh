@@ -142,18 +142,6 @@ accept thresholds-on-dat-map "free 99 (99.0%)" -- carribot --map halo.dat --star
 head -c $(($(wc -c < plot.png) - 20)) plot.png > cut.png
 cp plot.png changed.png
 printf 'Z' | dd of=changed.png bs=1 seek=37 conv=notrunc 2>/dev/null  # the second chunk's type
-for case in "cut.png truncated" "changed.png CRC mismatch"; do
-  png="${case%% *}" problem="${case#* }"
-  "$RCBENCH" carribot --map "$png" --resolution 0.1 --start 0,9 --goal 9,9 --quiet >out.txt 2>err.txt
-  got=$?
-  if [ "$got" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF "$png: field '" err.txt &&
-    grep -qF "$problem" err.txt; then
-    passes=$((passes + 1))
-  else
-    echo "FAIL corrupt-png $png: exit $got, stderr:"; cat err.txt; failures=$((failures + 1))
-  fi
-done
-
 # A JPEG map cut short: libjpeg printed "Premature end of JPEG file" and
 # filled the rest grey. Now our message, naming the image and libjpeg's stage
 # (maps/image_jpeg_check.h), is the only line (exit 1). The map: 16 x 16
@@ -163,14 +151,20 @@ printf '%s' '/9j/2wBDAAIBAQEBAQIBAQECAgICAgQDAgICAgUEBAMEBgUGBgYFBgYGBwkIBgcJBwY
 CgoKBggLDAsKDAkKCgr/wAALCAAQABABAREA/9oACAEBAAA/AP38ooor/9k=' | base64 -d > white.jpg
 accept jpeg-map "free 256 (100.0%)" -- carribot --map white.jpg --resolution 0.1 --start 0,9 --goal 9,9
 head -c 98 white.jpg > cut.jpg  # 4 of the 5 bytes of scan data, no EOI
-"$RCBENCH" carribot --map cut.jpg --resolution 0.1 --start 0,9 --goal 9,9 --quiet >out.txt 2>err.txt
-got=$?
-if [ "$got" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF "cut.jpg: field 'scan data'" err.txt &&
-  grep -qF "truncated" err.txt; then
-  passes=$((passes + 1))
-else
-  echo "FAIL truncated-jpeg cut.jpg: exit $got, stderr:"; cat err.txt; failures=$((failures + 1))
-fi
+
+# Each corrupt image: exit 1, one line on stderr naming the image, the field
+# (its start, when given) and the problem. Cases: image|field|problem.
+for case in "cut.png||truncated" "changed.png||CRC mismatch" "cut.jpg|scan data'|truncated"; do
+  IFS='|' read -r image field problem <<< "$case"
+  "$RCBENCH" carribot --map "$image" --resolution 0.1 --start 0,9 --goal 9,9 --quiet >out.txt 2>err.txt
+  got=$?
+  if [ "$got" -eq 1 ] && [ "$(wc -l < err.txt)" -eq 1 ] && grep -qF "$image: field '$field" err.txt &&
+    grep -qF "$problem" err.txt; then
+    passes=$((passes + 1))
+  else
+    echo "FAIL corrupt-image $image: exit $got, stderr:"; cat err.txt; failures=$((failures + 1))
+  fi
+done
 
 echo "$passes passed, $failures failed"
 [ "$failures" -eq 0 ]
