@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <cstdio>  // jpeglib.h uses FILE and size_t without including their headers
 #include <cstdlib>
+#include <functional>
+#include <functional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -219,13 +221,16 @@ TEST(ImageJpegCheck, ChangedBytesLoadOrAreInputErrorsAndLibjpegStaysQuiet) {
   }
 }
 
+// A call that checks `content` written as m.jpg in `dir`.
+std::function<void()> CheckOf(const test::TempDir& dir, const std::string& content) {
+  const std::string path = dir.Write("m.jpg", content);
+  return [path] { CheckJpegImage(path); };
+}
+
 TEST(ImageJpegCheck, DefectsNameTheStageAndTheByte) {
   const test::TempDir dir;
   const std::string jpeg = Jpeg(BlockImage());
-  auto check = [&](const std::string& content) {
-    const std::string path = dir.Write("m.jpg", content);
-    return [path] { CheckJpegImage(path); };
-  };
+  auto check = [&](const std::string& content) { return CheckOf(dir, content); };
   const std::size_t dqt = FindSegment(jpeg, kDqt), sof = FindSegment(jpeg, kSof0), sos = FindSegment(jpeg, kSos);
   ASSERT_NE(dqt, std::string::npos);
   ASSERT_NE(sof, std::string::npos);
@@ -290,10 +295,7 @@ TEST(ImageJpegCheck, DefectsNameTheStageAndTheByte) {
 
 TEST(ImageJpegCheck, RestartMarkersFollowTheirInterval) {
   const test::TempDir dir;
-  auto check = [&](const std::string& content) {
-    const std::string path = dir.Write("m.jpg", content);
-    return [path] { CheckJpegImage(path); };
-  };
+  auto check = [&](const std::string& content) { return CheckOf(dir, content); };
   const std::string jpeg = Jpeg(NoiseImage(), {cv::IMWRITE_JPEG_RST_INTERVAL, 1});
   const std::size_t dri = FindSegment(jpeg, kDri), sos = FindSegment(jpeg, kSos);
   ASSERT_NE(dri, std::string::npos);
