@@ -124,9 +124,10 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
 
   // Marks the sectors of a group's fetched cells (a recorded batch's touched
   // sectors) and logs their nodes. Where a sector is first + (index >>
-  // shift) (SectorOfCell), every lane stores: one that did not fetch stores
-  // the first fetching lane's 1 again, so there is no branch per lane (the
-  // fetch pattern is not predictable); elsewhere one lane at a time.
+  // shift) (SectorOfCell), every lane stores, with no branch per lane (the
+  // fetch pattern is not predictable): a lane that did not fetch (rare: its
+  // ray ends this step without a fetch, or the lanes are draining) stores
+  // the first fetching lane's mark again. Elsewhere one lane at a time.
   RC_LANES_TARGET void Record(LaneState& s, const LaneStep<Avx2Vec>& step, unsigned fetch, int first,
                               const LaneRecording& rec) const {
     if (fetch == 0) return;
@@ -134,15 +135,24 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
     if (rec.nodes || !sector_of_.narrow) _mm_store_si128(reinterpret_cast<__m128i*>(index), step.index);
     if (rec.touched) {
       if (sector_of_.narrow) {
-        const __m128i sector = _mm_add_epi32(_mm_set1_epi32(sector_of_.first),
-                                             _mm_srl_epi32(step.index, _mm_cvtsi32_si128(sector_of_.index_shift)));
-        const __m128i lead =
-            _mm_castps_si128(_mm_permutevar_ps(_mm_castsi128_ps(sector), _mm_set1_epi32(__builtin_ctz(fetch))));
-        const __m128i fetched =
-            _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(static_cast<int>(fetch)), lane_bits_), lane_bits_);
-        alignas(16) std::int32_t at[kWidth];
-        _mm_store_si128(reinterpret_cast<__m128i*>(at), _mm_blendv_epi8(lead, sector, fetched));
-        for (int i = 0; i < kWidth; ++i) rec.touched[at[i]] = 1;
+        __m128i sector = _mm_add_epi32(_mm_set1_epi32(sector_of_.first),
+                                       _mm_srl_epi32(step.index, _mm_cvtsi32_si128(sector_of_.index_shift)));
+        if (fetch != kAllLanes) {
+          const __m128i lead =
+              _mm_castps_si128(_mm_permutevar_ps(_mm_castsi128_ps(sector), _mm_set1_epi32(__builtin_ctz(fetch))));
+          const __m128i fetched =
+              _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(static_cast<int>(fetch)), lane_bits_), lane_bits_);
+          sector = _mm_blendv_epi8(lead, sector, fetched);
+        }
+        // Two 64-bit moves out of the vector, not four 32-bit extracts:
+        // sectors are non-negative 32-bit values (SectorOfCell).
+        const std::uint64_t low = static_cast<std::uint64_t>(_mm_cvtsi128_si64(sector));
+        const std::uint64_t high = static_cast<std::uint64_t>(_mm_extract_epi64(sector, 1));
+        std::uint32_t* const touched = rec.touched;
+        touched[static_cast<std::uint32_t>(low)] = 1;
+        touched[low >> 32] = 1;
+        touched[static_cast<std::uint32_t>(high)] = 1;
+        touched[high >> 32] = 1;
       } else {
         for (unsigned m = fetch; m != 0; m &= m - 1) {
           const std::uint32_t cell = static_cast<std::uint32_t>(index[__builtin_ctz(m)]);
@@ -154,6 +164,7 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
   }
 
  private:
+  static constexpr unsigned kAllLanes = (1u << kWidth) - 1;
   __m128i lane_bits_;  // bit i in lane i
   SectorOfCell sector_of_;
 };
