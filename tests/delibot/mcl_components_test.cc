@@ -309,11 +309,7 @@ TEST(BeamModelTest, AmclCubeSumMatchesNav2sFormula) {
   EXPECT_GT(product_ll[0] - product_ll[1], ll[0] - ll[1]);
 }
 
-// A recorded batch above the launch limit runs as launches of whole
-// particles, each handed to the pricing as it is recorded: the same
-// likelihoods and hits as one launch, and launches that together are the
-// one launch's queries, node by node and exit by exit.
-// The test room's beam model (march), its fifth scan and every sixth beam,
+// The test room's beam model (rm), its fifth scan and every sixth beam,
 // for the tests of batches split into launches.
 class RoomBeamUpdate {
  public:
@@ -343,6 +339,10 @@ class RoomBeamUpdate {
   }
 };
 
+// A recorded batch above the launch limit runs as launches of whole
+// particles, each handed to the pricing as it is recorded: the same
+// likelihoods as one launch, the last launch's hits, and launches that
+// together are the one launch's queries, node by node and exit by exit.
 TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
   RoomBeamUpdate room;
   const test::SyntheticRun& run = room.run;
@@ -370,14 +370,16 @@ TEST(BeamModelTest, ABatchAboveTheLaunchLimitIsRecordedInLaunches) {
   keep(split.record);  // the last launch
 
   EXPECT_EQ(split_ll, one_ll);
-  ASSERT_EQ(split.hits.size(), one.hits.size());
-  for (std::size_t i = 0; i < one.hits.size(); ++i) {
-    ASSERT_EQ(split.hits[i].range_m, one.hits[i].range_m) << i;
-    ASSERT_EQ(split.hits[i].nodes, one.hits[i].nodes) << i;
-  }
   EXPECT_EQ(split.nodes, one.nodes);
   const std::size_t per_launch = 1000 / per_particle * per_particle;
   ASSERT_EQ(queries.size(), (one.record.query_count() + per_launch - 1) / per_launch);
+  // The work keeps the last launch's hits only: the one launch's last ones.
+  const std::size_t last_first = (queries.size() - 1) * per_launch;
+  ASSERT_EQ(split.hits.size(), one.hits.size() - last_first);
+  for (std::size_t i = 0; i < split.hits.size(); ++i) {
+    ASSERT_EQ(split.hits[i].range_m, one.hits[last_first + i].range_m) << i;
+    ASSERT_EQ(split.hits[i].nodes, one.hits[last_first + i].nodes) << i;
+  }
   for (std::size_t k = 0; k + 1 < queries.size(); ++k) EXPECT_EQ(queries[k], per_launch) << k;
   ASSERT_EQ(nodes.size(), one.record.query_count());
   for (std::size_t q = 0; q < nodes.size(); ++q) ASSERT_EQ(nodes[q], one.record.nodes(q)) << q;
@@ -435,9 +437,11 @@ TEST(BeamModelTest, ALaunchSampleRecordsOnlyThePickedLaunches) {
   room.Score(particles, split_ll, split);
 
   EXPECT_EQ(split_ll, one_ll);
-  for (std::size_t i = 0; i < one.hits.size(); ++i) {
-    ASSERT_EQ(split.hits[i].range_m, one.hits[i].range_m) << i;
-    ASSERT_EQ(split.hits[i].nodes, one.hits[i].nodes) << i;
+  // The last launch is always recorded, and the work keeps its hits only.
+  ASSERT_EQ(split.hits.size(), one.hits.size() - full * per_launch);
+  for (std::size_t i = 0; i < split.hits.size(); ++i) {
+    ASSERT_EQ(split.hits[i].range_m, one.hits[full * per_launch + i].range_m) << i;
+    ASSERT_EQ(split.hits[i].nodes, one.hits[full * per_launch + i].nodes) << i;
   }
   ASSERT_EQ(recorded_first.size(), 3u);
   EXPECT_EQ(recorded_first[0], 0u);  // launch 0, then spread over the rest
@@ -454,6 +458,38 @@ TEST(BeamModelTest, ALaunchSampleRecordsOnlyThePickedLaunches) {
   EXPECT_EQ(estimates[0].queries, queries);
   EXPECT_EQ(estimates[0].nodes, nodes);
   EXPECT_EQ(split.record.query_count(), rays - full * per_launch);  // the last launch, always recorded
+}
+
+// An update holds the queries and hits of one launch at most, never the
+// whole batch's (a dense first set casts tens of millions of rays): none
+// unrecorded, where each thread casts unit by unit through its own
+// buffers, and one launch's recorded; the likelihoods are the same.
+TEST(BeamModelTest, AnUpdateHoldsTheQueriesAndHitsOfOneLaunchAtMost) {
+  RoomBeamUpdate room;
+  const std::vector<Pose2> particles = UniformFreePoses(room.g, 700);
+  std::vector<double> one_ll;
+  room.OneLaunch(particles, one_ll);
+
+  SensorUpdateWork unrecorded;
+  std::vector<double> unrecorded_ll;
+  room.Score(particles, unrecorded_ll, unrecorded);
+  EXPECT_EQ(unrecorded_ll, one_ll);
+  EXPECT_EQ(unrecorded.rays, particles.size() * room.per_particle);
+  EXPECT_EQ(unrecorded.batch.queries.capacity(), 0u);
+  EXPECT_EQ(unrecorded.hits.capacity(), 0u);
+
+  SensorUpdateWork split;
+  split.record_kernel = true;
+  split.record_sample.sampled_sms = 1;
+  split.max_rays_per_launch = 1000;
+  split.price_launch = [](const KernelRecord&) {};
+  std::vector<double> split_ll;
+  room.Score(particles, split_ll, split);
+  EXPECT_EQ(split_ll, one_ll);
+  const std::size_t per_launch = 1000 / room.per_particle * room.per_particle;
+  ASSERT_GT(unrecorded.rays, 3 * per_launch);
+  EXPECT_LE(split.batch.queries.capacity(), per_launch);
+  EXPECT_LE(split.hits.capacity(), per_launch);
 }
 
 // The error the launch sample adds, against pricing every launch, on a

@@ -106,22 +106,22 @@ constexpr long kMinRaysPerUnit = 512;
 }  // namespace
 
 void BeamSensorModel::FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry,
-                                  const BeamSelection& beams, long begin, long end, RayBatch& batch) const {
+                                  const BeamSelection& beams, long begin, long end, RayQuery* queries) const {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   for (long i = begin; i < end; ++i) {
     const Pose2 sensor = SensorPose(particles[i], geometry);
-    for (int k = 0; k < beams_per_particle; ++k)
-      batch.queries[static_cast<std::size_t>(i) * beams_per_particle + k] = BeamQuery(sensor, geometry, beams, k);
+    RayQuery* particle_queries = queries + static_cast<std::size_t>(i - begin) * beams_per_particle;
+    for (int k = 0; k < beams_per_particle; ++k) particle_queries[k] = BeamQuery(sensor, geometry, beams, k);
   }
 }
 
 void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination,
-                                     long begin, long end, const std::vector<RayHit>& hits,
+                                     long begin, long end, const RayHit* hits,
                                      std::vector<double>& log_likelihoods) const {
   const int beams_per_particle = static_cast<int>(reading_densities_.size());
   for (long i = begin; i < end; ++i) {
     ScanLikelihood scan_likelihood(combination);
-    const RayHit* particle_hits = hits.data() + static_cast<std::size_t>(i) * beams_per_particle;
+    const RayHit* particle_hits = hits + static_cast<std::size_t>(i - begin) * beams_per_particle;
     for (int k = 0; k < beams_per_particle; ++k) {
       if (scan_likelihood.cube_sum()) {
         const double z = scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step];
@@ -137,7 +137,7 @@ void BeamSensorModel::ScoreParticles(const LaserScan& scan, const BeamSelection&
 std::uint64_t BeamSensorModel::CastAndScore(const std::vector<Pose2>& particles, const LaserScan& scan,
                                             const LaserGeometry& geometry, const BeamSelection& beams,
                                             BeamCombination combination, long begin, long end,
-                                            std::vector<double>& log_likelihoods, SensorUpdateWork& work) const {
+                                            std::vector<double>& log_likelihoods) const {
   const int beams_per_particle = beams.Count(geometry.beam_count);
   const long per_particle = std::max(1, beams_per_particle);
   const long min_particles = std::max(1L, kMinRaysPerUnit / per_particle);
@@ -146,6 +146,9 @@ std::uint64_t BeamSensorModel::CastAndScore(const std::vector<Pose2>& particles,
   std::uint64_t nodes = 0;  // an integer sum: the same at any thread count
 #pragma omp parallel reduction(+ : nodes)
   {
+    RayBatch unit;  // this thread's unit's queries, and their hits; reused unit after unit
+    unit.max_range_m = params_.max_range_m;
+    std::vector<RayHit> hits;
     const long threads = omp_get_num_threads();
     long first_particle = next_particle.load(std::memory_order_relaxed);
     while (first_particle < end) {
@@ -154,12 +157,13 @@ std::uint64_t BeamSensorModel::CastAndScore(const std::vector<Pose2>& particles,
       // Claim [first_particle, last_particle); on a race, first_particle is
       // reloaded and we retry.
       if (!next_particle.compare_exchange_weak(first_particle, last_particle, std::memory_order_relaxed)) continue;
-      const std::size_t first = static_cast<std::size_t>(first_particle) * beams_per_particle;
-      const std::size_t last = static_cast<std::size_t>(last_particle) * beams_per_particle;
-      FillQueries(particles, geometry, beams, first_particle, last_particle, work.batch);
-      CastRaySlice(*scene_, work.batch, first, last, work.hits);
-      ScoreParticles(scan, beams, combination, first_particle, last_particle, work.hits, log_likelihoods);
-      for (std::size_t i = first; i < last; ++i) nodes += work.hits[i].nodes;
+      const std::size_t count = static_cast<std::size_t>(last_particle - first_particle) * beams_per_particle;
+      unit.queries.resize(count);
+      hits.resize(count);
+      FillQueries(particles, geometry, beams, first_particle, last_particle, unit.queries.data());
+      CastRaySlice(*scene_, unit, 0, count, hits);
+      ScoreParticles(scan, beams, combination, first_particle, last_particle, hits.data(), log_likelihoods);
+      for (std::size_t i = 0; i < count; ++i) nodes += hits[i].nodes;
       first_particle = next_particle.load(std::memory_order_relaxed);
     }
   }
@@ -174,29 +178,32 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
   reading_densities_.resize(static_cast<std::size_t>(beams_per_particle));
   for (int k = 0; k < beams_per_particle; ++k)
     reading_densities_[k] = BeamReadingDensity(params_, scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step]);
+  // The queries and hits of one launch at a time (work.batch, work.hits),
+  // never of the whole batch: the first update of global localization casts
+  // tens of millions of rays.
   RayBatch& batch = work.batch;
   batch.max_range_m = params_.max_range_m;
-  batch.queries.resize(static_cast<std::size_t>(n) * beams_per_particle);
-  work.hits.resize(batch.queries.size());
+  batch.queries.clear();
+  work.hits.clear();
   log_likelihoods.resize(particles.size());
-  work.rays = batch.queries.size();
+  const std::size_t rays = static_cast<std::size_t>(n) * beams_per_particle;
+  work.rays = rays;
   work.beams_scored = beams_per_particle;
   if (!work.record_kernel) {
-    work.nodes = CastAndScore(particles, scan, geometry, beams, combination, 0, n, log_likelihoods, work);
+    work.nodes = CastAndScore(particles, scan, geometry, beams, combination, 0, n, log_likelihoods);
     return;
   }
   // Recorded: launch by launch, each filled, cast and scored before the
-  // next, so no pass runs over the whole batch. Without price_launch, or
-  // within the limit, the batch is one launch. Otherwise, launches of whole
-  // particles, each recorded and handed on but the last, so that only one
-  // launch's record is alive at a time; with estimate_launches, the full
-  // launches the launch sample leaves out are cast and scored unit by unit
-  // without a record, as an unrecorded update is (launch_sample.h). A
-  // launch's recorded kernel needs all its queries at once (its record's
-  // slots are placed by a prefix sum over them).
+  // next. Without price_launch, or within the limit, the batch is one
+  // launch. Otherwise, launches of whole particles, each recorded and
+  // handed on but the last, so that only one launch's record is alive at a
+  // time; with estimate_launches, the full launches the launch sample
+  // leaves out are cast and scored unit by unit without a record, as an
+  // unrecorded update is (launch_sample.h). A launch's recorded kernel
+  // needs all its queries at once (its record's slots are placed by a
+  // prefix sum over them).
   RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
   record_options.sample = work.record_sample;
-  const std::size_t rays = batch.queries.size();
   const std::size_t max_rays = std::max<std::size_t>(1, work.max_rays_per_launch);
   const auto beams_each = static_cast<std::size_t>(std::max(1, beams_per_particle));
   const bool split = work.price_launch && rays > max_rays;
@@ -213,22 +220,24 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     const long end = last == rays ? n : static_cast<long>(last / beams_each);
     if (index < full_launches && work.estimate_launches && !work.launch_sample.Prices(index, full_launches)) {
       const std::uint64_t launch_nodes =
-          CastAndScore(particles, scan, geometry, beams, combination, begin, end, log_likelihoods, work);
+          CastAndScore(particles, scan, geometry, beams, combination, begin, end, log_likelihoods);
       nodes += launch_nodes;
       ++estimated.count;
       estimated.queries += last - first;
       estimated.nodes += launch_nodes;
       continue;
     }
+    batch.queries.resize(last - first);
+    work.hits.resize(last - first);
+    const auto at = [&](long i) { return static_cast<std::size_t>(i - begin) * beams_per_particle; };
 #pragma omp parallel for schedule(static)
-    for (long i = begin; i < end; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch);
-    CastRayBatchRecordedRange(*scene_, batch, first, last, work.hits, work.record, record_options);
+    for (long i = begin; i < end; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch.queries.data() + at(i));
+    CastRayBatchRecordedRange(*scene_, batch, 0, last - first, work.hits, work.record, record_options);
 #pragma omp parallel for schedule(static) reduction(+ : nodes)
     for (long i = begin; i < end; ++i) {
-      ScoreParticles(scan, beams, combination, i, i + 1, work.hits, log_likelihoods);
-      for (std::size_t q = static_cast<std::size_t>(i) * beams_per_particle;
-           q < static_cast<std::size_t>(i + 1) * beams_per_particle; ++q)
-        nodes += work.hits[q].nodes;
+      const RayHit* hits = work.hits.data() + at(i);
+      ScoreParticles(scan, beams, combination, i, i + 1, hits, log_likelihoods);
+      for (int k = 0; k < beams_per_particle; ++k) nodes += hits[k].nodes;
     }
     if (last < rays) {
       work.price_launch(work.record);

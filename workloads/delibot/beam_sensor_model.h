@@ -73,18 +73,21 @@ class BeamSensorModel final : public SensorModel {
   void Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
              const BeamSelection& beams, BeamCombination combination, std::vector<double>& log_likelihoods,
              SensorUpdateWork& work);
-  // Particles [begin, end): their queries (particle-major, beam-minor).
+  // Particles [begin, end): their queries (particle-major, beam-minor),
+  // particle begin's first at queries[0].
   void FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry, const BeamSelection& beams,
-                   long begin, long end, RayBatch& batch) const;
+                   long begin, long end, RayQuery* queries) const;
   // Particles [begin, end), filled, cast (without a record) and scored in
-  // units spread over the threads, each unit's queries and hits still in
-  // the core's caches between the three; returns their nodes.
+  // units spread over the threads, each in its thread's own buffers (a
+  // unit's queries and hits, still in the core's caches between the three;
+  // nothing the size of the batch); returns their nodes.
   std::uint64_t CastAndScore(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
                              const BeamSelection& beams, BeamCombination combination, long begin, long end,
-                             std::vector<double>& log_likelihoods, SensorUpdateWork& work) const;
-  // Particles [begin, end): their scan log-likelihoods from the cast hits.
+                             std::vector<double>& log_likelihoods) const;
+  // Particles [begin, end): their scan log-likelihoods from the cast hits,
+  // particle begin's first at hits[0].
   void ScoreParticles(const LaserScan& scan, const BeamSelection& beams, BeamCombination combination, long begin,
-                      long end, const std::vector<RayHit>& hits, std::vector<double>& log_likelihoods) const;
+                      long end, const RayHit* hits, std::vector<double>& log_likelihoods) const;
 
   std::shared_ptr<const RayCastScene> scene_;
   BeamModelParams params_;
