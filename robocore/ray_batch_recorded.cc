@@ -69,15 +69,35 @@ std::uint8_t LastPassExit(const RayCastScene& scene, const LastFetchVisitor& v) 
   return stops ? kRayHitReturn : kRayEndReturn;
 }
 
-// The queries of one launch: `count` of them from `queries`, in launch
-// order (a whole batch, or a range of one).
+// The queries of one launch, in launch order: `count` of them, from
+// `queries`, or written on demand by `fill` when `queries` is null.
 struct LaunchQueries {
   const RayQuery* queries;
   std::size_t count;
   double max_range_m;
+  const QueryFiller* fill = nullptr;
+
+  // Queries [lo, hi): in place, or filled into `buffer`.
+  const RayQuery* Range(long lo, long hi, std::vector<RayQuery>& buffer) const {
+    if (queries) return queries + lo;
+    buffer.resize(static_cast<std::size_t>(hi - lo));
+    (*fill)(static_cast<std::size_t>(lo), static_cast<std::size_t>(hi), buffer.data());
+    return buffer.data();
+  }
+  // Appends queries [lo, hi) to `out`.
+  void Append(long lo, long hi, std::vector<RayQuery>& out) const {
+    const std::size_t at = out.size();
+    if (queries) {
+      out.insert(out.end(), queries + lo, queries + hi);
+      return;
+    }
+    out.resize(at + static_cast<std::size_t>(hi - lo));
+    (*fill)(static_cast<std::size_t>(lo), static_cast<std::size_t>(hi), out.data() + at);
+  }
 };
 
-// A thread's buffers for CastBlocksInLanes, reused segment after segment.
+// A thread's buffers, reused segment after segment: the lanes' node log,
+// and the queries (gathered, or filled), hits and exits of a segment.
 struct LaneBatchWork {
   LaneNodeLog log;
   std::vector<RayQuery> queries;
@@ -101,11 +121,12 @@ void CastBlocksInLanes(const RayCastScene& scene, const LaunchQueries& launch, c
     const long lo = blocks.front() * block, hi = end_of(blocks.back());
     lane.last_exits = last_exit + lo;
     lane.nodes = nullptr;
-    CastRayLanes(scene, launch.queries + lo, static_cast<std::size_t>(hi - lo), launch.max_range_m, hits + lo, &lane);
+    CastRayLanes(scene, launch.Range(lo, hi, work.queries), static_cast<std::size_t>(hi - lo), launch.max_range_m,
+                 hits + lo, &lane);
     return;
   }
   work.queries.clear();
-  for (long b : blocks) work.queries.insert(work.queries.end(), launch.queries + b * block, launch.queries + end_of(b));
+  for (long b : blocks) launch.Append(b * block, end_of(b), work.queries);
   work.hits.resize(work.queries.size());
   work.exits.assign(work.queries.size(), kNoExit);
   lane.last_exits = work.exits.data();
@@ -285,8 +306,9 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
         recording.out = &block_addresses[static_cast<std::size_t>(seg.blocks.front())];
         recording.touched = mark ? mine.data() : nullptr;
         recording.out->reserve(static_cast<std::size_t>(seg.queries) * 32);
+        const RayQuery* queries = launch.Range(lo, lo + seg.queries, lane_work.queries);
         for (long i = lo; i < lo + seg.queries; ++i) {
-          const RayQuery& q = launch.queries[i];
+          const RayQuery& q = queries[i - lo];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, launch.max_range_m, recording);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, recording);
         }
@@ -298,8 +320,9 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
           marking.element_bytes[k] = prototype.element_bytes[k];
         }
         marking.sector_shift = sector_shift;
+        const RayQuery* queries = launch.Range(lo, lo + seg.queries, lane_work.queries);
         for (long i = lo; i < lo + seg.queries; ++i) {
-          const RayQuery& q = launch.queries[i];
+          const RayQuery& q = queries[i - lo];
           hits[i] = CastRay(scene, q.origin_x_m, q.origin_y_m, q.angle_rad, launch.max_range_m, marking);
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);
         }
@@ -352,12 +375,11 @@ void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std:
   RecordLaunch(scene, {batch.queries.data(), batch.queries.size(), batch.max_range_m}, hits.data(), record, options);
 }
 
-void CastRayBatchRecordedRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
-                               std::vector<RayHit>& hits, KernelRecord& record, const RecordOptions& options) {
-  if (begin > end || end > batch.queries.size() || hits.size() != batch.queries.size())
-    throw std::invalid_argument("CastRayBatchRecordedRange: the range or the hits do not fit the batch");
-  RecordLaunch(scene, {batch.queries.data() + begin, end - begin, batch.max_range_m}, hits.data() + begin, record,
-               options);
+void CastRayBatchRecordedFilled(const RayCastScene& scene, std::size_t count, double max_range_m,
+                                const QueryFiller& fill, std::vector<RayHit>& hits, KernelRecord& record,
+                                const RecordOptions& options) {
+  if (hits.size() != count) throw std::invalid_argument("CastRayBatchRecordedFilled: hits must hold count entries");
+  RecordLaunch(scene, {nullptr, count, max_range_m, &fill}, hits.data(), record, options);
 }
 
 }  // namespace rc

@@ -12,6 +12,7 @@
 // The record does not depend on the thread count or the path.
 // Cost: about CastRayBatch, plus one 8-byte store per kept fetch; a record
 // reused across batches keeps its capacity.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -59,13 +60,20 @@ RecordOptions RecordOptionsFor(RayCastMethod method, const RayKernelChoices& cho
 void CastRayBatchRecorded(const RayCastScene& scene, const RayBatch& batch, std::vector<RayHit>& hits,
                           KernelRecord& record, const RecordOptions& options = {});
 
-// The same for queries [begin, end) of `batch` as one launch: the record's
-// query q is batch query begin + q, and the hits go to hits [begin, end)
-// (hits must already hold batch.queries.size() entries), so a caller that
-// splits a batch into launches copies neither queries nor hits. Throws
-// std::invalid_argument for a range or hits that do not fit the batch.
-void CastRayBatchRecordedRange(const RayCastScene& scene, const RayBatch& batch, std::size_t begin, std::size_t end,
-                               std::vector<RayHit>& hits, KernelRecord& record, const RecordOptions& options = {});
+// Writes queries [begin, end) of a launch to out[0, end - begin). Called
+// from several threads at once, each time for a different range; the same
+// range must always give the same queries.
+using QueryFiller = std::function<void(std::size_t begin, std::size_t end, RayQuery* out)>;
+
+// The same for a launch of `count` queries that `fill` writes segment by
+// segment as they are cast, so that they never exist all at once (a
+// beam-model launch of 2^20 rays would hold 24 MB of them); the record is
+// the one CastRayBatchRecorded gives for the batch of those queries, and
+// the hits go to hits [0, count) (hits must hold count entries). Throws
+// std::invalid_argument for hits of another size.
+void CastRayBatchRecordedFilled(const RayCastScene& scene, std::size_t count, double max_range_m,
+                                const QueryFiller& fill, std::vector<RayHit>& hits, KernelRecord& record,
+                                const RecordOptions& options = {});
 
 // The regions a scene's kernel fetches from, placed by `layout`: the grid
 // (layout.grid_cell_bytes per cell) for march and dda, the distance field

@@ -5,6 +5,8 @@
 // facade.
 #include <omp.h>
 
+#include <algorithm>
+#include <atomic>
 #include <set>
 #include <string>
 #include <tuple>
@@ -16,6 +18,7 @@
 #include "robocore/ray_batch_recorded.h"
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
+#include "support/simd_levels.h"
 #include "test_scenes.h"
 
 namespace rc {
@@ -210,42 +213,60 @@ TEST_P(RecordTest, DoesNotDependOnTheThreadCount) {
   EXPECT_EQ(one.last_exits, two.last_exits);
 }
 
-// A range of a batch recorded as one launch is the record of a batch made
-// of those queries (sampled too: the sample's blocks count from the
-// range's first query), its hits land in place, and nothing outside the
-// range is written.
-TEST_P(RecordTest, ARangeIsRecordedAsTheLaunchOfItsQueries) {
+// A launch whose queries are filled on demand, segment by segment, is
+// recorded as the batch of those queries, on every SIMD path (the lanes cast
+// adjacent unkept blocks in place and gather the rest; scalar code casts
+// segment by segment), sampled or not, at any thread count; each query is
+// filled once.
+TEST_P(RecordTest, AFilledLaunchIsRecordedAsTheBatchOfItsQueries) {
   const OccupancyGrid grid = test::RoomGrid(70, 60, 0.1, 0.05, 8);
   const RayCastScene scene(grid, GetParam());
   const RayBatch batch = test::FanBatch(grid, 120, 37, 5.0, 9);
-  RecordOptions options;
-  options.sample.sampled_sms = 1;
-  options.sample.block_stride = 2;
-  const std::size_t begin = 1111, end = 3700;
-  RayBatch part;
-  part.max_range_m = batch.max_range_m;
-  part.queries.assign(batch.queries.begin() + begin, batch.queries.begin() + end);
-  std::vector<RayHit> part_hits;
-  KernelRecord want, got;
-  CastRayBatchRecorded(scene, part, part_hits, want, options);
-  std::vector<RayHit> hits(batch.queries.size(), RayHit{-1.0f, 7});
-  CastRayBatchRecordedRange(scene, batch, begin, end, hits, got, options);
-  ASSERT_NO_THROW(got.Validate());
-  EXPECT_EQ(got.fetch_offsets, want.fetch_offsets);
-  EXPECT_EQ(got.address_offsets, want.address_offsets);
-  EXPECT_EQ(got.fetch_addresses, want.fetch_addresses);
-  EXPECT_EQ(got.last_exits, want.last_exits);
-  EXPECT_EQ(got.touched_sectors, want.touched_sectors);
-  for (std::size_t i = 0; i < hits.size(); ++i) {
-    const bool inside = i >= begin && i < end;
-    ASSERT_EQ(hits[i].range_m, inside ? part_hits[i - begin].range_m : -1.0f) << i;
-    ASSERT_EQ(hits[i].nodes, inside ? part_hits[i - begin].nodes : 7u) << i;
-  }
-  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, end, begin, hits, got, options), std::invalid_argument);
-  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, begin, batch.queries.size() + 1, hits, got, options),
-               std::invalid_argument);
-  hits.pop_back();
-  EXPECT_THROW(CastRayBatchRecordedRange(scene, batch, begin, end, hits, got, options), std::invalid_argument);
+  const int threads = omp_get_max_threads();
+  for (SimdLevel level : test::SimdLevelsThisCpuRuns())
+    for (int sampled_sms : {0, 1, 2})
+      for (int thread_count : {1, 2}) {
+        SCOPED_TRACE(std::string(ToString(level)) + ", sampled_sms " + std::to_string(sampled_sms) + ", " +
+                     std::to_string(thread_count) + " thread(s)");
+        const test::ScopedSimdLimit limit(level);
+        omp_set_num_threads(thread_count);
+        RecordOptions options;
+        options.sample.sampled_sms = sampled_sms;
+        options.sample.block_stride = 2;
+        std::vector<RayHit> want_hits;
+        KernelRecord want, got;
+        CastRayBatchRecorded(scene, batch, want_hits, want, options);
+        std::atomic<std::size_t> filled{0};
+        std::atomic<bool> outside{false};
+        const QueryFiller fill = [&](std::size_t begin, std::size_t end, RayQuery* out) {
+          if (begin > end || end > batch.queries.size()) {
+            outside = true;
+            return;
+          }
+          std::copy(batch.queries.begin() + static_cast<long>(begin), batch.queries.begin() + static_cast<long>(end),
+                    out);
+          filled += end - begin;
+        };
+        std::vector<RayHit> hits(batch.queries.size(), RayHit{-1.0f, 7});
+        CastRayBatchRecordedFilled(scene, batch.queries.size(), batch.max_range_m, fill, hits, got, options);
+        omp_set_num_threads(threads);
+        ASSERT_FALSE(outside.load());
+        EXPECT_EQ(filled.load(), batch.queries.size());
+        ASSERT_NO_THROW(got.Validate());
+        EXPECT_EQ(got.fetch_offsets, want.fetch_offsets);
+        EXPECT_EQ(got.address_offsets, want.address_offsets);
+        EXPECT_EQ(got.fetch_addresses, want.fetch_addresses);
+        EXPECT_EQ(got.last_exits, want.last_exits);
+        EXPECT_EQ(got.touched_sectors, want.touched_sectors);
+        for (std::size_t i = 0; i < hits.size(); ++i) {
+          ASSERT_EQ(hits[i].range_m, want_hits[i].range_m) << i;
+          ASSERT_EQ(hits[i].nodes, want_hits[i].nodes) << i;
+        }
+      }
+  std::vector<RayHit> short_hits(10);
+  KernelRecord record;
+  const QueryFiller none = [](std::size_t, std::size_t, RayQuery*) {};
+  EXPECT_THROW(CastRayBatchRecordedFilled(scene, 11, 5.0, none, short_hits, record), std::invalid_argument);
 }
 
 // A sampled record keeps exactly the addresses of the queries on the

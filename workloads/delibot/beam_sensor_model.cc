@@ -106,12 +106,14 @@ constexpr long kMinRaysPerUnit = 512;
 }  // namespace
 
 void BeamSensorModel::FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry,
-                                  const BeamSelection& beams, long begin, long end, RayQuery* queries) const {
-  const int beams_per_particle = beams.Count(geometry.beam_count);
-  for (long i = begin; i < end; ++i) {
+                                  const BeamSelection& beams, std::size_t begin, std::size_t end,
+                                  RayQuery* queries) const {
+  const auto per_particle = static_cast<std::size_t>(beams.Count(geometry.beam_count));
+  for (std::size_t q = begin; q < end;) {
+    const std::size_t i = q / per_particle;
     const Pose2 sensor = SensorPose(particles[i], geometry);
-    RayQuery* particle_queries = queries + static_cast<std::size_t>(i - begin) * beams_per_particle;
-    for (int k = 0; k < beams_per_particle; ++k) particle_queries[k] = BeamQuery(sensor, geometry, beams, k);
+    for (const std::size_t stop = std::min(end, (i + 1) * per_particle); q < stop; ++q)
+      *queries++ = BeamQuery(sensor, geometry, beams, static_cast<int>(q - i * per_particle));
   }
 }
 
@@ -160,7 +162,8 @@ std::uint64_t BeamSensorModel::CastAndScore(const std::vector<Pose2>& particles,
       const std::size_t count = static_cast<std::size_t>(last_particle - first_particle) * beams_per_particle;
       unit.queries.resize(count);
       hits.resize(count);
-      FillQueries(particles, geometry, beams, first_particle, last_particle, unit.queries.data());
+      FillQueries(particles, geometry, beams, static_cast<std::size_t>(first_particle) * beams_per_particle,
+                  static_cast<std::size_t>(last_particle) * beams_per_particle, unit.queries.data());
       CastRaySlice(*scene_, unit, 0, count, hits);
       ScoreParticles(scan, beams, combination, first_particle, last_particle, hits.data(), log_likelihoods);
       for (std::size_t i = 0; i < count; ++i) nodes += hits[i].nodes;
@@ -178,12 +181,9 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
   reading_densities_.resize(static_cast<std::size_t>(beams_per_particle));
   for (int k = 0; k < beams_per_particle; ++k)
     reading_densities_[k] = BeamReadingDensity(params_, scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step]);
-  // The queries and hits of one launch at a time (work.batch, work.hits),
-  // never of the whole batch: the first update of global localization casts
-  // tens of millions of rays.
-  RayBatch& batch = work.batch;
-  batch.max_range_m = params_.max_range_m;
-  batch.queries.clear();
+  // The hits of one launch at a time (work.hits), and never the whole
+  // batch's queries: the first update of global localization casts tens of
+  // millions of rays.
   work.hits.clear();
   log_likelihoods.resize(particles.size());
   const std::size_t rays = static_cast<std::size_t>(n) * beams_per_particle;
@@ -194,14 +194,13 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     return;
   }
   // Recorded: launch by launch, each filled, cast and scored before the
-  // next. Without price_launch, or within the limit, the batch is one
+  // next, its queries filled segment by segment as the recorded kernel
+  // casts them. Without price_launch, or within the limit, the batch is one
   // launch. Otherwise, launches of whole particles, each recorded and
   // handed on but the last, so that only one launch's record is alive at a
   // time; with estimate_launches, the full launches the launch sample
   // leaves out are cast and scored unit by unit without a record, as an
-  // unrecorded update is (launch_sample.h). A launch's recorded kernel
-  // needs all its queries at once (its record's slots are placed by a
-  // prefix sum over them).
+  // unrecorded update is (launch_sample.h).
   RecordOptions record_options = RecordOptionsFor(scene_->method(), work.record_choices);
   record_options.sample = work.record_sample;
   const std::size_t max_rays = std::max<std::size_t>(1, work.max_rays_per_launch);
@@ -227,15 +226,15 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
       estimated.nodes += launch_nodes;
       continue;
     }
-    batch.queries.resize(last - first);
     work.hits.resize(last - first);
-    const auto at = [&](long i) { return static_cast<std::size_t>(i - begin) * beams_per_particle; };
-#pragma omp parallel for schedule(static)
-    for (long i = begin; i < end; ++i) FillQueries(particles, geometry, beams, i, i + 1, batch.queries.data() + at(i));
-    CastRayBatchRecordedRange(*scene_, batch, 0, last - first, work.hits, work.record, record_options);
+    const QueryFiller fill = [&](std::size_t b, std::size_t e, RayQuery* out) {
+      FillQueries(particles, geometry, beams, first + b, first + e, out);
+    };
+    CastRayBatchRecordedFilled(*scene_, last - first, params_.max_range_m, fill, work.hits, work.record,
+                               record_options);
 #pragma omp parallel for schedule(static) reduction(+ : nodes)
     for (long i = begin; i < end; ++i) {
-      const RayHit* hits = work.hits.data() + at(i);
+      const RayHit* hits = work.hits.data() + static_cast<std::size_t>(i - begin) * beams_per_particle;
       ScoreParticles(scan, beams, combination, i, i + 1, hits, log_likelihoods);
       for (int k = 0; k < beams_per_particle; ++k) nodes += hits[k].nodes;
     }

@@ -73,10 +73,11 @@ class BeamSensorModel final : public SensorModel {
   void Score(const std::vector<Pose2>& particles, const LaserScan& scan, const LaserGeometry& geometry,
              const BeamSelection& beams, BeamCombination combination, std::vector<double>& log_likelihoods,
              SensorUpdateWork& work);
-  // Particles [begin, end): their queries (particle-major, beam-minor),
-  // particle begin's first at queries[0].
+  // Queries [begin, end) of the particles' rays (particle-major,
+  // beam-minor: query q is beam q % beams of particle q / beams), query
+  // begin at queries[0]. A range may start or end inside a particle.
   void FillQueries(const std::vector<Pose2>& particles, const LaserGeometry& geometry, const BeamSelection& beams,
-                   long begin, long end, RayQuery* queries) const;
+                   std::size_t begin, std::size_t end, RayQuery* queries) const;
   // Particles [begin, end), filled, cast (without a record) and scored in
   // units spread over the threads, each in its thread's own buffers (a
   // unit's queries and hits, still in the core's caches between the three;

@@ -130,7 +130,6 @@ void LikelihoodFieldModel::Score(const std::vector<Pose2>& particles, const Lase
     }
     log_likelihoods[i] = scan_likelihood.Log();
   }
-  work.batch.queries.clear();
   work.hits.clear();
   work.rays = static_cast<std::uint64_t>(used_beams) * particles.size();
   work.nodes = work.rays;
@@ -195,7 +194,6 @@ std::vector<std::size_t> LikelihoodFieldModel::BestSelection(const std::vector<P
       bound = best.back();
     }
   }
-  work.batch.queries.clear();
   work.hits.clear();
   work.rays = queries;
   work.nodes = queries;

@@ -41,11 +41,10 @@ struct SensorUpdateWork {
   std::uint64_t rays = 0;   // queries issued (rays, or endpoint lookups)
   std::uint64_t nodes = 0;  // nodes (cells or distance samples) fetched
   int beams_scored = 0;     // beams that entered each particle's likelihood
-  // The queries and hits of the last update's last recorded launch (the
-  // whole update when it is one launch); empty after an unrecorded update
-  // and for models without rays. An update never holds the queries or hits
-  // of more than one launch at a time.
-  RayBatch batch;
+  // The hits of the last update's last recorded launch (the whole update
+  // when it is one launch); empty after an unrecorded update and for models
+  // without rays. An update never holds more than one launch's hits, nor
+  // all of a launch's queries at once.
   std::vector<RayHit> hits;
   // When record_kernel is set, ray-casting models also fill `record` with
   // every query's node fetches (run once), for the backends to price.
