@@ -252,9 +252,9 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   // lie apart and may cut the unkept ones into short runs, and the lanes
   // idle while a batch's last rays finish), except that a run of adjacent
   // unkept blocks of at least kInPlaceQueries queries is cast in place,
-  // with no copies (the default sample's runs are 3840 queries; in place,
-  // a 90,000-ray rm record took 5% less time). Several segments, so that
-  // two threads even out. Without the lanes: a run of at most
+  // with no copies: its drain then costs less than copying its queries,
+  // hits and exits would (docs/pricing.md, "The beam model's remaining
+  // extra"). Several segments, so that two threads even out. Without the lanes: a run of at most
   // kSegmentQueries queries of unkept blocks (scalar, with the marking
   // visitor) or one kept block (scalar, with the recording visitor).
   constexpr long kSegmentQueries = 2048;
