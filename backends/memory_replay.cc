@@ -281,6 +281,19 @@ class SmReplay {
   std::array<std::uint64_t, std::size_t{1} << kRecentBits> recent_;  // WalkCoalesced: (group, sector) per slot
 };
 
+// Per warp, whether the record's address sample kept it: KeepsWarp once
+// per block (a block is kept or not as a whole), not its divisions per warp.
+std::vector<std::uint8_t> KeptWarps(const AddressSample& sample, std::size_t warps) {
+  std::vector<std::uint8_t> kept(warps, 1);
+  const auto per_block = static_cast<std::size_t>(std::max(1, sample.warps_per_block));
+  if (sample.KeepsAll()) return kept;
+  for (std::size_t lo = 0; lo < warps; lo += per_block)
+    if (!sample.KeepsWarp(lo))
+      std::fill(kept.begin() + static_cast<long>(lo), kept.begin() + static_cast<long>(std::min(warps, lo + per_block)),
+                0);
+  return kept;
+}
+
 // The memory of the warps a sampled record did not keep, estimated from the
 // kept ones. Each unkept warp borrows from a "twin", a kept warp at the
 // same position in its SM's list of kept warps (the sampled SMs taken in
@@ -300,9 +313,10 @@ class SmReplay {
 // approximate in what the addresses decide; the error against exact
 // replay is measured in tests/backends/sampled_pricing_test.cc.
 void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
-                       const std::vector<std::vector<std::uint32_t>>& sm_warps, const std::vector<std::uint32_t>& steps,
-                       const std::vector<std::uint64_t>& units, const std::vector<int>& replayed,
-                       std::uint64_t l1_latency, bool l2_holds_footprint, MemoryProfile& profile) {
+                       const std::vector<std::vector<std::uint32_t>>& sm_warps, const std::vector<std::uint8_t>& kept,
+                       const std::vector<std::uint32_t>& steps, const std::vector<std::uint64_t>& units,
+                       const std::vector<int>& replayed, std::uint64_t l1_latency, bool l2_holds_footprint,
+                       MemoryProfile& profile) {
   const AddressSample& sample = record.address_sample;
   const std::size_t n = record.query_count();
   const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
@@ -330,7 +344,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   for (int sm = 0; sm < gpu.sms; ++sm)
     for (std::uint32_t w : sm_warps[sm]) {
       all_units += units[w];
-      if (!sample.KeepsWarp(w)) {
+      if (!kept[w]) {
         unkept_units[sm] += units[w];
         continue;
       }
@@ -398,7 +412,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
         static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
     for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
       const std::uint32_t w = sm_warps[sm][k];
-      if (sample.KeepsWarp(w)) continue;
+      if (kept[w]) continue;
       // The same warp of the nearest kept block round at or before this
       // one, on a sampled SM chosen by this SM's number.
       const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
@@ -465,9 +479,23 @@ int SmOfWarp(std::size_t warp, const GpuParams& gpu) {
   return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) % static_cast<std::size_t>(gpu.sms));
 }
 
+// Block by block (block b on SM b mod sms), each SM's list sized first:
+// no division per warp and no growth.
 std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuParams& gpu) {
-  std::vector<std::vector<std::uint32_t>> sm_warps(static_cast<std::size_t>(gpu.sms));
-  for (std::size_t w = 0; w < warps; ++w) sm_warps[SmOfWarp(w, gpu)].push_back(static_cast<std::uint32_t>(w));
+  const auto sms = static_cast<std::size_t>(gpu.sms);
+  const auto per_block = static_cast<std::size_t>(gpu.warps_per_block);
+  const std::size_t blocks = (warps + per_block - 1) / per_block;
+  std::vector<std::vector<std::uint32_t>> sm_warps(sms);
+  for (std::size_t sm = 0; sm < sms && sm < blocks; ++sm) {
+    const std::size_t mine = (blocks - sm + sms - 1) / sms;  // blocks sm, sm + sms, ...
+    const std::size_t last = sm + (mine - 1) * sms;          // its last block, perhaps partial
+    sm_warps[sm].reserve((mine - 1) * per_block + std::min(per_block, warps - last * per_block));
+  }
+  for (std::size_t b = 0, sm = 0; b < blocks; ++b, sm = sm + 1 == sms ? 0 : sm + 1) {
+    std::vector<std::uint32_t>& list = sm_warps[sm];
+    for (std::size_t w = b * per_block; w < std::min(warps, (b + 1) * per_block); ++w)
+      list.push_back(static_cast<std::uint32_t>(w));
+  }
   return sm_warps;
 }
 
@@ -502,6 +530,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // Per warp, its units of work: steps when coalesced, its lanes' node
   // fetches per thread (what the sampled estimate scales by).
   const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
+  const std::vector<std::uint8_t> kept = KeptWarps(sample, warps);
   std::vector<std::uint32_t> steps(warps, 0);
   std::vector<std::uint64_t> units(warps, 0);
   const std::uint64_t* offsets = record.fetch_offsets.data();
@@ -532,7 +561,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     replayed.push_back(sm);
     if (!skips_blocks) continue;
     for (std::uint32_t w : sm_warps[sm])
-      if (sample.KeepsWarp(w)) kept_warps[sm].push_back(w);
+      if (kept[w]) kept_warps[sm].push_back(w);
   }
   std::vector<SmMisses> sms(gpu.sms);
   const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
@@ -582,7 +611,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     std::uint64_t sampled_units = 0, all_units = 0, sampled_dram = 0;
     for (std::size_t w = 0; w < warps; ++w) {
       all_units += units[w];
-      if (sample.KeepsWarp(w)) sampled_units += units[w];
+      if (kept[w]) sampled_units += units[w];
     }
     for (int sm : replayed) sampled_dram += sms[sm].dram;
     const double expected = static_cast<double>(record.touched_sectors) * static_cast<double>(sampled_units) /
@@ -605,7 +634,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     c.dram_accesses += s.dram;
   }
   if (record.sampled())
-    EstimateUnsampled(record, gpu, pattern, sm_warps, steps, units, replayed, latency[0], caches.L2().cold(), profile);
+    EstimateUnsampled(record, gpu, pattern, sm_warps, kept, steps, units, replayed, latency[0], caches.L2().cold(),
+                      profile);
   return profile;
 }
 

@@ -183,13 +183,15 @@ void BeamSensorModel::Score(const std::vector<Pose2>& particles, const LaserScan
     reading_densities_[k] = BeamReadingDensity(params_, scan.ranges_m[static_cast<std::size_t>(k) * beams.beam_step]);
   // The hits of one launch at a time (work.hits), and never the whole
   // batch's queries: the first update of global localization casts tens of
-  // millions of rays.
-  work.hits.clear();
+  // millions of rays. A launch resizes them without clearing first: every
+  // entry is overwritten, and zeroing them launch after launch showed in
+  // profiles.
   log_likelihoods.resize(particles.size());
   const std::size_t rays = static_cast<std::size_t>(n) * beams_per_particle;
   work.rays = rays;
   work.beams_scored = beams_per_particle;
   if (!work.record_kernel) {
+    work.hits.clear();
     work.nodes = CastAndScore(particles, scan, geometry, beams, combination, 0, n, log_likelihoods);
     return;
   }
