@@ -49,6 +49,15 @@ __attribute__((target("avx512f,avx512dq"))) std::uint64_t SlowestRayQueryLanes(c
   __m512i slowest = _mm512_setzero_si512();
   __m512i quiet = _mm512_setzero_si512();
   std::uint64_t with_nodes = 0, exiting = 0;
+  // With at most 7 exits (a ray program has two), the last pass's cycles
+  // come from a register rather than a gather: exit e at min(e, 7), whose
+  // entry 7 is the table's last (every entry from `exits` on is a quiet
+  // pass, RayQueryTerms' contract).
+  const bool in_register = t.exits < 8;
+  const bool narrow_quiet = t.quiet_pass_cycles <= 0xFFFFFFFFu;
+  const __m512i seven = _mm512_set1_epi64(7);
+  const __m512i last_pass = _mm512_loadu_si512(t.last_pass_cycles.data());
+  const __m512i by_exit = _mm512_mask_set1_epi64(last_pass, 0x80, static_cast<long long>(t.last_pass_cycles.back()));
   for (std::size_t q = lo; q < hi; q += 8) {
     const auto in = static_cast<__mmask8>(hi - q >= 8 ? 0xFF : (1u << (hi - q)) - 1);
     const __m512i begin = _mm512_maskz_loadu_epi64(in, t.fetch_offsets + q);
@@ -61,10 +70,17 @@ __attribute__((target("avx512f,avx512dq"))) std::uint64_t SlowestRayQueryLanes(c
     else
       for (std::size_t i = 0; q + i < hi; ++i) packed |= std::uint64_t{t.last_exits[q + i]} << (8 * i);
     const __m512i exit = _mm512_cvtepu8_epi64(_mm_cvtsi64_si128(static_cast<long long>(packed)));
-    const __m512i last = _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), has, exit,
-                                                     reinterpret_cast<const long long*>(t.last_pass_cycles.data()), 8);
+    const __m512i last =
+        in_register ? _mm512_maskz_permutexvar_epi64(has, _mm512_min_epu64(exit, seven), by_exit)
+                    : _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), has, exit,
+                                                  reinterpret_cast<const long long*>(t.last_pass_cycles.data()), 8);
     const __m512i before_last = _mm512_sub_epi64(nodes, one);
-    const __m512i passes = _mm512_add_epi64(_mm512_mullo_epi64(before_last, quiet_cycles), last);
+    // A 32 x 32-bit product where it is exact (a query's nodes fit 32 bits,
+    // RayHit::nodes): one instruction against vpmullq's three. Lanes without
+    // nodes are masked out below.
+    const __m512i product =
+        narrow_quiet ? _mm512_mul_epu32(before_last, quiet_cycles) : _mm512_mullo_epi64(before_last, quiet_cycles);
+    const __m512i passes = _mm512_add_epi64(product, last);
     __m512i cycles = _mm512_add_epi64(once, _mm512_maskz_loadu_epi64(in, t.memory_cycles + q));
     cycles = _mm512_mask_add_epi64(cycles, has, cycles, passes);
     slowest = _mm512_mask_max_epu64(slowest, in, slowest, cycles);
