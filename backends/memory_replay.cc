@@ -10,6 +10,7 @@
 
 #include "backends/cache_model.h"
 #include "backends/key_ranks.h"
+#include "backends/warp_nodes.h"
 
 namespace rc {
 namespace {
@@ -534,14 +535,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   std::vector<std::uint32_t> steps(warps, 0);
   std::vector<std::uint64_t> units(warps, 0);
   const std::uint64_t* offsets = record.fetch_offsets.data();
-  const auto warp_size = static_cast<std::size_t>(gpu.warp_size);
-  for (std::size_t w = 0; w < warps; ++w) {
-    const std::size_t lo = w * warp_size, hi = std::min(n, lo + warp_size);
-    std::uint64_t most = 0;
-    for (std::size_t q = lo; q < hi; ++q) most = std::max(most, offsets[q + 1] - offsets[q]);
-    steps[w] = static_cast<std::uint32_t>(most);
-    units[w] = pattern.coalesced ? most : offsets[hi] - offsets[lo];
-  }
+  CountWarpNodes(offsets, n, static_cast<std::size_t>(gpu.warp_size), steps.data(), units.data());
+  if (pattern.coalesced) std::copy(steps.begin(), steps.end(), units.begin());
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   owner_cycles.resize(pattern.coalesced ? warps : n);
@@ -587,6 +582,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // groups is known).
   const bool share_dram = record.sampled() && l2.cold() && record.touched_sectors > 0;
   std::vector<std::uint32_t> dram_groups(share_dram ? owner_cycles.size() : 0, 0);
+  std::vector<std::uint32_t> dram_owners;  // those with a DRAM group, each once (the sampled SMs' few)
   for (std::size_t r = 0; r < rounds; ++r)
     for (int sm : replayed) {
       SmMisses& s = sms[sm];
@@ -599,7 +595,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
         slowest = std::max(slowest, level);
         if (s.group_end[m]) {
           if (share_dram && slowest == 2) {
-            ++dram_groups[s.owner[m]];
+            if (dram_groups[s.owner[m]]++ == 0) dram_owners.push_back(s.owner[m]);
             slowest = 1;
           }
           owner_cycles[s.owner[m]] += latency[slowest] - latency[0];
@@ -618,8 +614,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
                             static_cast<double>(std::max<std::uint64_t>(1, all_units));
     const double p = sampled_dram > 0 ? std::min(1.0, expected / static_cast<double>(sampled_dram)) : 0.0;
     const double extra = p * static_cast<double>(latency[2] - latency[1]);
-    for (std::size_t i = 0; i < dram_groups.size(); ++i)
-      if (dram_groups[i]) owner_cycles[i] += static_cast<std::uint64_t>(std::llround(extra * dram_groups[i]));
+    for (std::uint32_t i : dram_owners)
+      owner_cycles[i] += static_cast<std::uint64_t>(std::llround(extra * dram_groups[i]));
   }
 
   profile.sm_sector_requests.assign(gpu.sms, 0);

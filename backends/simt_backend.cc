@@ -5,6 +5,7 @@
 
 #include "backends/energy_model.h"
 #include "backends/modelled_backend.h"
+#include "backends/warp_nodes.h"
 #include "backends/warp_schedule.h"
 #include "robocore/shipped_programs.h"
 
@@ -177,11 +178,14 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
   std::vector<std::vector<std::uint64_t>> sm_latencies(gpu_.sms);
   std::vector<SimtClassCounts> sm_classes(gpu_.sms, SimtClassCounts{});
   std::uint64_t warp_instructions = 0, thread_instructions = 0;
+  std::vector<std::uint32_t> warp_steps(warps);
+  std::vector<std::uint64_t> warp_lane_nodes(warps);
+  CountWarpNodes(record.fetch_offsets.data(), n, static_cast<std::size_t>(gpu_.warp_size), warp_steps.data(),
+                 warp_lane_nodes.data());
   for (std::size_t w = 0; w < warps; ++w) {
     const std::size_t lo = w * gpu_.warp_size, hi = std::min(n, lo + gpu_.warp_size);
-    std::uint64_t steps = 0;
-    for (std::size_t q = lo; q < hi; ++q) steps = std::max<std::uint64_t>(steps, record.nodes(q));
-    const std::uint64_t lane_nodes = record.fetch_offsets[hi] - record.fetch_offsets[lo];
+    const std::uint64_t steps = warp_steps[w];
+    const std::uint64_t lane_nodes = warp_lane_nodes[w];
     warp_instructions += once_total + steps * pass_total;
     thread_instructions += (hi - lo) * once_total + lane_nodes * pass_total;
     const int sm = SmOfWarp(w, gpu_);
