@@ -4,12 +4,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "common/avx512_warnings.h"
+
 #if defined(__x86_64__)
-// GCC 12 warns of an uninitialized variable inside its own AVX-512 headers
-// (the masked forms' _mm512_undefined source); the warning is not ours.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
+RC_AVX512_WARNINGS_OFF
 #include <immintrin.h>
 #endif
 
@@ -152,7 +150,7 @@ __attribute__((target("avx2"))) std::uint64_t SlowestRayQueryAvx2(const RayQuery
   return std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
 }
 
-#pragma GCC diagnostic pop
+RC_AVX512_WARNINGS_ON
 
 #else
 

@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "common/avx512_warnings.h"
+
 #if defined(__x86_64__)
-// GCC 12 warns of an uninitialized variable inside its own AVX-512 headers
-// (the masked forms' _mm512_undefined source); the warning is not ours.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
+RC_AVX512_WARNINGS_OFF
 #include <immintrin.h>
 #endif
 
@@ -48,7 +46,7 @@ __attribute__((target("avx512f"))) void CountWarpNodesLanes(const std::uint64_t*
   }
 }
 
-#pragma GCC diagnostic pop
+RC_AVX512_WARNINGS_ON
 
 #else  // not x86-64: never called (UseAvx512() is false).
 

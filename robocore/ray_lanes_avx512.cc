@@ -5,12 +5,10 @@
 // ray_lane_loop.inc.
 #include "robocore/ray_lane_state.h"
 
+#include "common/avx512_warnings.h"
+
 #if defined(__x86_64__)
-// GCC 12 warns of an uninitialized variable inside its own AVX-512 headers
-// (the masked forms' _mm512_undefined_pd source); the warning is not ours.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
+RC_AVX512_WARNINGS_OFF
 #include <immintrin.h>
 
 #include <vector>
@@ -150,7 +148,7 @@ RC_LANES_TARGET void CastLanesAvx512(RayCastMethod method, const LaneScene& scen
 
 }  // namespace rc::ray_lanes
 
-#pragma GCC diagnostic pop
+RC_AVX512_WARNINGS_ON
 
 #else  // not x86-64: never called (RayLanesApply is false).
 
