@@ -8,6 +8,7 @@
 
 #include <omp.h>
 
+#include "backends/borrowed_cycles.h"
 #include "backends/cache_model.h"
 #include "backends/key_ranks.h"
 #include "backends/warp_nodes.h"
@@ -365,20 +366,6 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   auto rate = [&](std::uint64_t extra, std::uint64_t units) {
     return units > 0 ? static_cast<double>(extra) / static_cast<double>(units) : mean_extra;
   };
-  // cycles += llround(extra), inline for the non-negative extras it gets
-  // (once per query): truncation is the floor, and extra - floor(extra) is
-  // exact (below 2^53 by Sterbenz's lemma; above, extra is whole), so a
-  // half rounds up as llround's does.
-  auto add = [](std::uint64_t& cycles, double extra) {
-    if (!(extra >= 0.0 && extra < 0x1p63)) {
-      cycles += static_cast<std::uint64_t>(std::llround(extra));
-      return;
-    }
-    // Through the signed conversion, one instruction (the unsigned one is a
-    // branch and a subtraction without AVX-512); extra is below 2^63.
-    const auto whole = static_cast<std::int64_t>(extra);
-    cycles += static_cast<std::uint64_t>(whole) + static_cast<std::uint64_t>(extra - static_cast<double>(whole) >= 0.5);
-  };
   // Each lane's rank in its warp by node count, ties in launch order: its
   // key (node count, lane) is distinct, so its rank is the number of smaller
   // keys (key_ranks.h; in 32 bits where node counts allow, which runs in
@@ -421,7 +408,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
           (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
       const std::uint32_t twin = twins[t];
       if (pattern.coalesced) {
-        add(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
+        AddRoundedCycles(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
         continue;
       }
       // Per thread: lanes paired with the twin's by rank of node count (the
@@ -438,9 +425,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
         }
       }
       RanksByNodes(w, mine);
-      const std::size_t first = std::size_t{w} * lanes;
-      for (std::size_t i = 0; i < mine.size(); ++i)
-        add(owner_cycles[first + i], (mine[i] < theirs.size() ? theirs[mine[i]] : mean_extra) * lane_nodes[i]);
+      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), theirs.data(), theirs.size(), mean_extra,
+                        owner_cycles.data() + std::size_t{w} * lanes);
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
