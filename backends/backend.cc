@@ -114,6 +114,7 @@ std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, con
   // the one that runs it, the others replay at the same time. Each
   // backend's price does not depend on the order.
   PricingContext context(record);
+  for (const Backend* b : backends) b->AnnouncePricing(record, context);
   std::vector<BatchCost> costs(backends.size());
   std::vector<std::exception_ptr> errors(backends.size());
 #pragma omp parallel for schedule(dynamic, 1)

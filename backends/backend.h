@@ -22,6 +22,7 @@
 
 #include "backends/backend_params.h"
 #include "backends/memory_replay.h"
+#include "backends/pricing_context.h"
 #include "robocore/kernel_record.h"
 #include "robocore/ray_batch.h"
 #include "robocore/robocore_api.h"
@@ -89,6 +90,12 @@ class Backend {
   static std::vector<std::string> ModelledNames();  // all but cpu
 
   virtual const BackendSpecs& specs() const = 0;
+
+  // Tells `context` what Price(record, context) will ask of it, so that
+  // work several backends share is done once for all (PriceAll announces
+  // every backend before pricing any). Prices do not depend on it; the
+  // default announces nothing.
+  virtual void AnnouncePricing(const KernelRecord& /*record*/, PricingContext& /*context*/) const {}
 
   // Prices a recorded batch. The context lets backends that price the same
   // record share work (the memory replay); results do not depend on it.

@@ -443,14 +443,6 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   c.l1_hits = c.sector_requests - c.l2_accesses;
 }
 
-std::string MemoryKey(const GpuParams& g, const AccessPattern& p) {
-  std::ostringstream key;
-  key << g.sms << ' ' << g.warp_size << ' ' << g.warps_per_block << ' ' << g.sector_bytes << ' ' << g.line_bytes << ' '
-      << g.l1_bytes << ' ' << g.l1_latency_cycles << ' ' << g.l2_bytes << ' ' << g.l2_ways << ' ' << g.l2_latency_cycles
-      << ' ' << g.DramExtraCycles() << " | " << p.warps_per_wave << ' ' << p.coalesced;
-  return key.str();
-}
-
 }  // namespace
 
 MemoryCounters& MemoryCounters::operator+=(const MemoryCounters& more) {
@@ -499,6 +491,11 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
 // the thread count. A sampled record replays its sampled SMs only, and
 // EstimateUnsampled fills in the rest.
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern) {
+  return ReplayMemory(record, gpu, pattern, CountWarpNodes(record.fetch_offsets, static_cast<std::size_t>(gpu.warp_size)));
+}
+
+MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
+                           const WarpNodeCounts& warp_nodes) {
   const AddressSample& sample = record.address_sample;
   if (record.sampled() && !sample.SamePlacement(gpu.warp_size, gpu.warps_per_block, gpu.sms, gpu.sector_bytes))
     throw std::logic_error("ReplayMemory: the record's address sample was taken for another placement of warps on SMs");
@@ -518,11 +515,13 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // fetches per thread (what the sampled estimate scales by).
   const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
   const std::vector<std::uint8_t> kept = KeptWarps(sample, warps);
-  std::vector<std::uint32_t> steps(warps, 0);
-  std::vector<std::uint64_t> units(warps, 0);
+  if (warp_nodes.steps.size() != warps || warp_nodes.lane_nodes.size() != warps)
+    throw std::logic_error("ReplayMemory: the warp node counts are for another record or warp size");
+  const std::vector<std::uint32_t>& steps = warp_nodes.steps;
+  std::vector<std::uint64_t> warp_steps;
+  if (pattern.coalesced) warp_steps.assign(steps.begin(), steps.end());
+  const std::vector<std::uint64_t>& units = pattern.coalesced ? warp_steps : warp_nodes.lane_nodes;
   const std::uint64_t* offsets = record.fetch_offsets.data();
-  CountWarpNodes(offsets, n, static_cast<std::size_t>(gpu.warp_size), steps.data(), units.data());
-  if (pattern.coalesced) std::copy(steps.begin(), steps.end(), units.begin());
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   owner_cycles.resize(pattern.coalesced ? warps : n);
@@ -621,44 +620,6 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   return profile;
 }
 
-namespace {
-
-// Finds or starts the computation of `key` in `pending` (under `mutex`);
-// the caller that starts it computes it outside the lock, the others wait.
-template <class T, class Compute>
-std::shared_ptr<const T> Once(std::mutex& mutex,
-                              std::map<std::string, std::shared_future<std::shared_ptr<const T>>>& pending,
-                              const std::string& key, Compute compute) {
-  std::promise<std::shared_ptr<const T>> promise;
-  std::shared_future<std::shared_ptr<const T>> future;
-  bool mine = false;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    auto it = pending.find(key);
-    if (it == pending.end()) {
-      future = promise.get_future().share();
-      pending.emplace(key, future);
-      mine = true;
-    } else {
-      future = it->second;
-    }
-  }
-  if (mine) {
-    try {
-      promise.set_value(std::make_shared<const T>(compute()));
-    } catch (...) {
-      promise.set_exception(std::current_exception());
-    }
-  }
-  return future.get();
-}
-
-}  // namespace
-
-std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu, const AccessPattern& pattern) {
-  return Once(mutex_, profiles_, MemoryKey(gpu, pattern), [&] { return ReplayMemory(record_, gpu, pattern); });
-}
-
 ExitProfile ProfileExits(const KernelRecord& record) {
   const std::size_t n = record.query_count();
   const std::uint64_t* offsets = record.fetch_offsets.data();
@@ -741,10 +702,6 @@ ExitProfile ProfileExits(const KernelRecord& record) {
     profile.passes.insert(profile.passes.end(), part.passes.begin(), part.passes.end());
   }
   return profile;
-}
-
-std::shared_ptr<const ExitProfile> PricingContext::Exits() {
-  return Once(mutex_, exits_, "exits", [&] { return ProfileExits(record_); });
 }
 
 }  // namespace rc

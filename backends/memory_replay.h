@@ -22,14 +22,12 @@
 // A node wider than a sector requests each of its sectors; its latency is
 // its slowest sector's.
 #include <cstdint>
-#include <future>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
 #include "backends/gpu_params.h"
+#include "backends/warp_nodes.h"
 #include "robocore/kernel_record.h"
 
 namespace rc {
@@ -66,6 +64,10 @@ std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuPa
 std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu);
 
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern);
+// The same with the record's warp node counts for gpu.warp_size already
+// counted (CountWarpNodes).
+MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
+                           const WarpNodeCounts& warp_nodes);
 
 // Per query, how many of its loop passes ended at each exit: pairs of
 // (variant, passes) in CSR form, variant 0 = no exit, 1 + j = RETURN_IF j.
@@ -77,28 +79,5 @@ struct ExitProfile {
   std::vector<std::uint32_t> passes;
 };
 ExitProfile ProfileExits(const KernelRecord& record);
-
-// Shared work of several backends pricing one record: the memory replay
-// depends only on the GPU's memory system and the access pattern, so TTA+,
-// TTA+-p, TTA+-cr and RoboCore (same pattern) replay it once; the exit
-// profile depends on the record alone. Thread-safe: the first caller of a
-// profile computes it while later callers of the same one wait for it, and
-// callers of different profiles run at once. The record must outlive the
-// context and stay unchanged.
-class PricingContext {
- public:
-  explicit PricingContext(const KernelRecord& record) : record_(record) {}
-  const KernelRecord& record() const { return record_; }
-  std::shared_ptr<const MemoryProfile> Memory(const GpuParams& gpu, const AccessPattern& pattern);
-  std::shared_ptr<const ExitProfile> Exits();
-
- private:
-  template <class T>
-  using Pending = std::shared_future<std::shared_ptr<const T>>;
-  const KernelRecord& record_;
-  std::mutex mutex_;
-  std::map<std::string, Pending<MemoryProfile>> profiles_;
-  std::map<std::string, Pending<ExitProfile>> exits_;
-};
 
 }  // namespace rc

@@ -1,7 +1,6 @@
 #include "backends/robocore_backend.h"
 
 #include "backends/modelled_backend.h"
-#include "backends/rt_unit_model.h"
 
 namespace rc {
 
@@ -13,7 +12,7 @@ RoboCoreBackend::RoboCoreBackend(const BackendParameters& params)
   specs_.early_exit = EarlyExitMode::kConditionalReturn;
 }
 
-BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+RtUnitPricing RoboCoreBackend::UnitPricing(const KernelRecord& record) const {
   RtUnitPricing pricing;
   pricing.unit = &robocore_.unit;
   pricing.gpu = &gpu_;
@@ -26,7 +25,15 @@ BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& c
           ProgramStoreMicroOps(record, pricing.datapath) +
       static_cast<std::uint64_t>(robocore_.decode_config_cycles_per_layout) * record.regions.size() +
       static_cast<std::uint64_t>(gpu_.kernel_launch_cycles);
-  return PriceOnRtUnit(record, context, pricing, specs_.name);
+  return pricing;
+}
+
+void RoboCoreBackend::AnnouncePricing(const KernelRecord& record, PricingContext& context) const {
+  AnnounceRtUnit(record, context, UnitPricing(record));
+}
+
+BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+  return PriceOnRtUnit(record, context, UnitPricing(record), specs_.name);
 }
 
 }  // namespace rc

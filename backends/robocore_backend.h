@@ -14,6 +14,7 @@
 // use no SACT micro-ops, so on them RoboCore times like TTA+-cr; it differs
 // in its launch (program plus decode configuration).
 #include "backends/backend.h"
+#include "backends/rt_unit_model.h"
 
 namespace rc {
 
@@ -21,11 +22,14 @@ class RoboCoreBackend final : public Backend {
  public:
   explicit RoboCoreBackend(const BackendParameters& params);
   const BackendSpecs& specs() const override { return specs_; }
+  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const override;
 
  protected:
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
+  RtUnitPricing UnitPricing(const KernelRecord& record) const;
+
   GpuParams gpu_;
   RoboCoreParams robocore_;
   EnergyParams energy_;

@@ -6,6 +6,7 @@
 #include "backends/energy_model.h"
 #include "backends/modelled_backend.h"
 #include "backends/ray_query_cycles.h"
+#include "backends/ray_warp_cycles.h"
 #include "backends/warp_schedule.h"
 
 namespace rc {
@@ -33,7 +34,26 @@ struct Tally {
   }
 };
 
+// A ray record's per-query costs on this timing (ray_query_cycles.h): the
+// loop's variants are 0 = no exit, 1 + j = RETURN_IF j.
+RayPassCosts RayCostsOf(const ProgramTiming& timing) {
+  RayPassCosts costs;
+  costs.once_cycles = timing.once().cycles;
+  costs.quiet_pass_cycles = timing.loop.Cost(kNoExit).cycles;
+  costs.last_pass_cycles.fill(costs.quiet_pass_cycles);
+  for (int j = 0; j < timing.loop.return_count(); ++j)
+    costs.last_pass_cycles[j] = timing.loop.Cost(static_cast<std::uint8_t>(j)).cycles;
+  return costs;
+}
+
 }  // namespace
+
+void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing) {
+  if (!record.exits_per_query()) return;
+  const ProgramTiming timing(*record.program, record.leaf.get(), pricing.datapath);
+  context.ExpectRayWarps(*pricing.gpu, RtUnitAccessPattern(*pricing.unit), timing.loop.return_count(),
+                         RayCostsOf(timing));
+}
 
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit) {
   AccessPattern p;
@@ -56,7 +76,8 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   const RtUnitParams& unit = *pricing.unit;
   const EnergyParams& energy = *pricing.energy;
   const ProgramTiming timing(*record.program, record.leaf.get(), pricing.datapath);
-  const auto memory = context.Memory(gpu, RtUnitAccessPattern(unit));
+  const AccessPattern pattern = RtUnitAccessPattern(unit);
+  const auto memory = context.Memory(gpu, pattern);
 
   // Loop-pass cost per exit variant: index 0 = no exit, 1 + j = RETURN_IF j.
   const int variants = timing.loop.return_count() + 1;
@@ -74,32 +95,30 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
   // A ray record keeps one exit per query, which prices a query in O(1)
-  // without the exit profile (ray_query_cycles.h); other records go through
-  // the profile. Both sum the same integer products.
-  const bool exits_per_query = record.exits_per_query();
-  const auto exits = exits_per_query ? nullptr : context.Exits();
-  RayQueryTerms terms;
-  if (exits_per_query) {
-    terms.fetch_offsets = record.fetch_offsets.data();
-    terms.last_exits = record.last_exits.data();
-    terms.memory_cycles = memory->query_memory_cycles.data();
-    terms.once_cycles = once_cycles;
-    terms.quiet_pass_cycles = pass_cycles[0];
-    terms.last_pass_cycles.fill(pass_cycles[0]);
-    terms.exits = variants - 1;
-    for (int v = 1; v < variants; ++v) terms.last_pass_cycles[v - 1] = pass_cycles[v];
-  }
+  // without the exit profile, in one pass shared with the other units
+  // (ray_warp_cycles.h); other records go through the profile. Both sum the
+  // same integer products.
+  if (record.exits_per_query()) {
+    const auto rays = context.RayWarps(gpu, pattern, variants - 1, RayCostsOf(timing));
+    for (int sm = 0; sm < gpu.sms; ++sm) {
+      for (std::uint32_t w : sm_warps[sm]) {
+        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+        const std::size_t threads = std::min(n, lo + gpu.warp_size) - lo;
+        sm_threads[sm] += threads;
+        sm_warp_cycles[sm].push_back(CeilDiv(threads, intake_per_cycle) + rays->slowest[w]);
+      }
+      std::copy_n(rays->sm_passes.begin() + static_cast<long>(sm) * variants, variants,
+                  sm_variant_passes[sm].begin());
+    }
+  } else {
+    const auto exits = context.Exits();
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int sm = 0; sm < gpu.sms; ++sm) {
-    std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
-    RayPassTally tally;
-    for (std::uint32_t w : sm_warps[sm]) {
-      const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
-      const std::size_t hi = std::min(n, lo + gpu.warp_size);
-      std::uint64_t slowest = 0;
-      if (exits_per_query) {
-        slowest = SlowestRayQuery(terms, lo, hi, tally);
-      } else {
+    for (int sm = 0; sm < gpu.sms; ++sm) {
+      std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
+      for (std::uint32_t w : sm_warps[sm]) {
+        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+        const std::size_t hi = std::min(n, lo + gpu.warp_size);
+        std::uint64_t slowest = 0;
         for (std::size_t q = lo; q < hi; ++q) {
           std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
           for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
@@ -108,13 +127,9 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
           }
           slowest = std::max(slowest, cycles);
         }
+        sm_threads[sm] += hi - lo;
+        sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
       }
-      sm_threads[sm] += hi - lo;
-      sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
-    }
-    if (exits_per_query) {
-      passes[0] += tally.quiet;
-      for (int v = 1; v < variants; ++v) passes[v] += tally.exit[v - 1];
     }
   }
 

@@ -41,6 +41,11 @@ struct RtUnitPricing {
 BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing,
                         const std::string& backend_name);
 
+// Tells the context what PriceOnRtUnit will ask of it for this record
+// (PricingContext::ExpectRayWarps), so that the units pricing one record
+// share one pass over its queries. Prices do not depend on it.
+void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing);
+
 // Access pattern of the RT units: per-thread requests, warp-buffer waves.
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit);
 

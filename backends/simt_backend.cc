@@ -178,10 +178,9 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
   std::vector<std::vector<std::uint64_t>> sm_latencies(gpu_.sms);
   std::vector<SimtClassCounts> sm_classes(gpu_.sms, SimtClassCounts{});
   std::uint64_t warp_instructions = 0, thread_instructions = 0;
-  std::vector<std::uint32_t> warp_steps(warps);
-  std::vector<std::uint64_t> warp_lane_nodes(warps);
-  CountWarpNodes(record.fetch_offsets.data(), n, static_cast<std::size_t>(gpu_.warp_size), warp_steps.data(),
-                 warp_lane_nodes.data());
+  const auto warp_nodes = context.WarpNodes(gpu_.warp_size);
+  const std::vector<std::uint32_t>& warp_steps = warp_nodes->steps;
+  const std::vector<std::uint64_t>& warp_lane_nodes = warp_nodes->lane_nodes;
   for (std::size_t w = 0; w < warps; ++w) {
     const std::size_t lo = w * gpu_.warp_size, hi = std::min(n, lo + gpu_.warp_size);
     const std::uint64_t steps = warp_steps[w];

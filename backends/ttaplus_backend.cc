@@ -1,7 +1,6 @@
 #include "backends/ttaplus_backend.h"
 
 #include "backends/modelled_backend.h"
-#include "backends/rt_unit_model.h"
 
 namespace rc {
 
@@ -20,7 +19,7 @@ TtaPlusBackend::TtaPlusBackend(const BackendParameters& params, EarlyExitMode mo
   specs_.early_exit = mode;
 }
 
-BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+RtUnitPricing TtaPlusBackend::UnitPricing(const KernelRecord& record) const {
   RtUnitPricing pricing;
   pricing.unit = &ttaplus_.unit;
   pricing.gpu = &gpu_;
@@ -29,7 +28,15 @@ BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& co
   pricing.launch_cycles = static_cast<std::uint64_t>(gpu_.kernel_launch_cycles) +
                           ProgramStoreMicroOps(record, pricing.datapath) *
                               static_cast<std::uint64_t>(ttaplus_.unit.program_config_cycles_per_micro_op);
-  return PriceOnRtUnit(record, context, pricing, specs_.name);
+  return pricing;
+}
+
+void TtaPlusBackend::AnnouncePricing(const KernelRecord& record, PricingContext& context) const {
+  AnnounceRtUnit(record, context, UnitPricing(record));
+}
+
+BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
+  return PriceOnRtUnit(record, context, UnitPricing(record), specs_.name);
 }
 
 }  // namespace rc

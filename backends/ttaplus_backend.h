@@ -16,6 +16,7 @@
 // Launch: the kernel launch plus writing the (lowered) program into every
 // unit's program store. The unit model is rt_unit_model.h.
 #include "backends/backend.h"
+#include "backends/rt_unit_model.h"
 
 namespace rc {
 
@@ -23,11 +24,14 @@ class TtaPlusBackend final : public Backend {
  public:
   TtaPlusBackend(const BackendParameters& params, EarlyExitMode mode);
   const BackendSpecs& specs() const override { return specs_; }
+  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const override;
 
  protected:
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
+  RtUnitPricing UnitPricing(const KernelRecord& record) const;
+
   GpuParams gpu_;
   TtaPlusParams ttaplus_;
   EnergyParams energy_;

@@ -65,4 +65,14 @@ void CountWarpNodes(const std::uint64_t* offsets, std::size_t queries, std::size
     CountWarpNodesScalar(offsets, queries, warp_size, steps, lane_nodes);
 }
 
+WarpNodeCounts CountWarpNodes(const std::vector<std::uint64_t>& fetch_offsets, std::size_t warp_size) {
+  if (warp_size == 0) throw std::invalid_argument("CountWarpNodes: warp_size must be at least 1");
+  const std::size_t queries = fetch_offsets.size() - 1;
+  WarpNodeCounts counts;
+  counts.steps.resize((queries + warp_size - 1) / warp_size);
+  counts.lane_nodes.resize(counts.steps.size());
+  CountWarpNodes(fetch_offsets.data(), queries, warp_size, counts.steps.data(), counts.lane_nodes.data());
+  return counts;
+}
+
 }  // namespace rc

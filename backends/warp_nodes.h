@@ -10,6 +10,7 @@
 // (tests/backends/warp_nodes_test.cc).
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace rc {
 
@@ -26,5 +27,14 @@ void CountWarpNodesScalar(const std::uint64_t* fetch_offsets, std::size_t querie
                           std::uint32_t* steps, std::uint64_t* lane_nodes);
 void CountWarpNodesLanes(const std::uint64_t* fetch_offsets, std::size_t queries, std::size_t warp_size,
                          std::uint32_t* steps, std::uint64_t* lane_nodes);
+
+// Both counts of every warp, for a whole record's fetch_offsets (queries +
+// 1 entries): what the memory replay and the SIMT model both read, counted
+// once per record and warp size (PricingContext::WarpNodes).
+struct WarpNodeCounts {
+  std::vector<std::uint32_t> steps;
+  std::vector<std::uint64_t> lane_nodes;
+};
+WarpNodeCounts CountWarpNodes(const std::vector<std::uint64_t>& fetch_offsets, std::size_t warp_size);
 
 }  // namespace rc

@@ -1,0 +1,65 @@
+#pragma once
+// Shared work of several backends pricing one record (PriceAll, backend.h):
+//   Memory     the memory replay, which depends only on the GPU's memory
+//              system and the access pattern, so TTA+, TTA+-p, TTA+-cr and
+//              RoboCore (same pattern) replay it once;
+//   Exits, WarpNodes
+//              the exit profile and the warps' node counts (per warp size),
+//              which depend on the record alone;
+//   RayWarps   the RT units' per-warp slowest query and per-SM passes of a
+//              ray record (ray_warp_cycles.h), one pass over the queries for
+//              every unit whose costs were announced (ExpectRayWarps) before
+//              the first unit asked.
+// Thread-safe: the first caller of a profile computes it while later
+// callers of the same one wait for it, and callers of different profiles run
+// at once. A result never depends on what else was asked or announced. The
+// record must outlive the context and stay unchanged.
+#include <future>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "backends/gpu_params.h"
+#include "backends/memory_replay.h"
+#include "backends/ray_warp_cycles.h"
+#include "backends/warp_nodes.h"
+#include "robocore/kernel_record.h"
+
+namespace rc {
+
+class PricingContext {
+ public:
+  explicit PricingContext(const KernelRecord& record) : record_(record) {}
+  const KernelRecord& record() const { return record_; }
+  std::shared_ptr<const MemoryProfile> Memory(const GpuParams& gpu, const AccessPattern& pattern);
+  std::shared_ptr<const ExitProfile> Exits();
+  std::shared_ptr<const WarpNodeCounts> WarpNodes(int warp_size);
+
+  // A unit that will ask RayWarps(gpu, pattern, exits, costs) says so
+  // first, so that one pass serves it and the others announced with it.
+  void ExpectRayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits, const RayPassCosts& costs);
+  // For a record with an exit per query: the warps' cycles under `costs`
+  // with the memory cycles of Memory(gpu, pattern).
+  std::shared_ptr<const RayWarpCycles> RayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits,
+                                                const RayPassCosts& costs);
+
+ private:
+  template <class T>
+  using Pending = std::shared_future<std::shared_ptr<const T>>;
+  // The units one pass priced, and their cycles in the same order.
+  struct RayWarpGroup {
+    std::vector<RayPassCosts> costs;
+    std::vector<std::shared_ptr<const RayWarpCycles>> cycles;
+  };
+  const KernelRecord& record_;
+  std::mutex mutex_;
+  std::map<std::string, Pending<MemoryProfile>> profiles_;
+  std::map<std::string, Pending<ExitProfile>> exits_;
+  std::map<std::string, Pending<WarpNodeCounts>> warp_nodes_;
+  std::map<std::string, std::vector<RayPassCosts>> expected_rays_;
+  std::map<std::string, Pending<RayWarpGroup>> ray_groups_;
+};
+
+}  // namespace rc
