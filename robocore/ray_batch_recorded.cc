@@ -340,21 +340,27 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   }
 
   // Prefix sums, every entry written: resize, not assign, so that a reused
-  // record's vectors are not first filled with zeros.
+  // record's vectors are not first filled with zeros. The running sum stays
+  // in a register: reading each entry back would wait on its store.
   record.fetch_offsets.resize(launch.count + 1);
-  record.fetch_offsets[0] = 0;
-  for (long i = 0; i < n; ++i) record.fetch_offsets[i + 1] = record.fetch_offsets[i] + hits[i].nodes;
+  std::uint64_t* offsets = record.fetch_offsets.data();
+  std::uint64_t sum = 0;
+  offsets[0] = 0;
+  for (long i = 0; i < n; ++i) offsets[i + 1] = sum += hits[i].nodes;
   record.address_sample = sample;
   if (sample.KeepsAll()) {
     record.address_offsets.clear();
   } else {
     record.address_offsets.resize(launch.count + 1);
-    record.address_offsets[0] = 0;
+    std::uint64_t* kept_offsets = record.address_offsets.data();
+    std::uint64_t kept_sum = 0;
+    kept_offsets[0] = 0;
     for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
       const long lo = b * block, hi = std::min(n, lo + block);
-      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      for (long i = lo; i < hi; ++i)
-        record.address_offsets[i + 1] = record.address_offsets[i] + (keep ? hits[i].nodes : 0);
+      if (sample.KeepsQuery(static_cast<std::size_t>(lo)))
+        for (long i = lo; i < hi; ++i) kept_offsets[i + 1] = kept_sum += hits[i].nodes;
+      else
+        std::fill(kept_offsets + lo + 1, kept_offsets + hi + 1, kept_sum);
     }
   }
   std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);

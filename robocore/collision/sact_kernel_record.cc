@@ -220,19 +220,22 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   record->regions.assign(1, TreeNodeRegion(base_address, node_bytes, node_count));
   record->node_bytes = node_bytes;
   record->scalar_bytes = sizeof(Scalar);
+  // Prefix sums with the running sum in a register (reading each entry back
+  // would wait on its store).
   record->fetch_offsets.assign(obbs.size() + 1, 0);
-  for (long i = 0; i < n; ++i) record->fetch_offsets[i + 1] = record->fetch_offsets[i] + (*outcomes)[i].nodes_visited;
+  std::uint64_t sum = 0;
+  for (long i = 0; i < n; ++i) record->fetch_offsets[i + 1] = sum += (*outcomes)[i].nodes_visited;
   record->last_exits.clear();
   record->node_exits.resize(record->fetch_offsets.back());
   record->address_sample = sample;
   record->address_offsets.clear();
   if (!sample.KeepsAll()) {
     record->address_offsets.assign(obbs.size() + 1, 0);
+    std::uint64_t kept_sum = 0;
     for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
       const long lo = b * block, hi = std::min(n, lo + block);
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      for (long i = lo; i < hi; ++i)
-        record->address_offsets[i + 1] = record->address_offsets[i] + (keep ? (*outcomes)[i].nodes_visited : 0);
+      for (long i = lo; i < hi; ++i) record->address_offsets[i + 1] = kept_sum += keep ? (*outcomes)[i].nodes_visited : 0;
     }
   }
   std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
