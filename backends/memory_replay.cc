@@ -458,8 +458,8 @@ int SmOfWarp(std::size_t warp, const GpuParams& gpu) {
   return static_cast<int>((warp / static_cast<std::size_t>(gpu.warps_per_block)) % static_cast<std::size_t>(gpu.sms));
 }
 
-// Block by block (block b on SM b mod sms), each SM's list sized first:
-// no division per warp and no growth.
+// Block by block (block b on SM b mod sms), each SM's list sized first and
+// a block's warps written as a run: no division per warp and no growth.
 std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuParams& gpu) {
   const auto sms = static_cast<std::size_t>(gpu.sms);
   const auto per_block = static_cast<std::size_t>(gpu.warps_per_block);
@@ -468,12 +468,15 @@ std::vector<std::vector<std::uint32_t>> WarpsBySm(std::size_t warps, const GpuPa
   for (std::size_t sm = 0; sm < sms && sm < blocks; ++sm) {
     const std::size_t mine = (blocks - sm + sms - 1) / sms;  // blocks sm, sm + sms, ...
     const std::size_t last = sm + (mine - 1) * sms;          // its last block, perhaps partial
-    sm_warps[sm].reserve((mine - 1) * per_block + std::min(per_block, warps - last * per_block));
-  }
-  for (std::size_t b = 0, sm = 0; b < blocks; ++b, sm = sm + 1 == sms ? 0 : sm + 1) {
     std::vector<std::uint32_t>& list = sm_warps[sm];
-    for (std::size_t w = b * per_block; w < std::min(warps, (b + 1) * per_block); ++w)
-      list.push_back(static_cast<std::uint32_t>(w));
+    list.resize((mine - 1) * per_block + std::min(per_block, warps - last * per_block));
+    std::uint32_t* at = list.data();
+    for (std::size_t b = sm; b < blocks; b += sms) {
+      const auto first = static_cast<std::uint32_t>(b * per_block);
+      const auto count = static_cast<std::uint32_t>(std::min(warps, (b + 1) * per_block) - b * per_block);
+      for (std::uint32_t i = 0; i < count; ++i) at[i] = first + i;
+      at += count;
+    }
   }
   return sm_warps;
 }
@@ -524,11 +527,13 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   const std::uint64_t* offsets = record.fetch_offsets.data();
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
-  owner_cycles.resize(pattern.coalesced ? warps : n);
+  // Written once each (a resize would first fill the per-query array with
+  // zeros).
+  owner_cycles.reserve(pattern.coalesced ? warps : n);
   if (pattern.coalesced) {
-    for (std::size_t w = 0; w < warps; ++w) owner_cycles[w] = latency[0] * steps[w];
+    for (std::size_t w = 0; w < warps; ++w) owner_cycles.push_back(latency[0] * steps[w]);
   } else {
-    for (std::size_t q = 0; q < n; ++q) owner_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
+    for (std::size_t q = 0; q < n; ++q) owner_cycles.push_back(latency[0] * (offsets[q + 1] - offsets[q]));
   }
 
   // The SMs replayed, each with the warps whose addresses the record kept

@@ -20,11 +20,11 @@ RtUnitPricing RoboCoreBackend::UnitPricing(const KernelRecord& record) const {
   pricing.datapath = robocore_.Datapath();
   // Launch: the kernel launch, ConfigRoboCore (the program into every
   // unit's store) and ConfigDecode (one layout per node kind).
-  pricing.launch_cycles =
-      static_cast<std::uint64_t>(robocore_.unit.program_config_cycles_per_micro_op) *
-          ProgramStoreMicroOps(record, pricing.datapath) +
+  pricing.launch_cycles_besides_program =
       static_cast<std::uint64_t>(robocore_.decode_config_cycles_per_layout) * record.regions.size() +
       static_cast<std::uint64_t>(gpu_.kernel_launch_cycles);
+  pricing.program_config_cycles_per_micro_op =
+      static_cast<std::uint64_t>(robocore_.unit.program_config_cycles_per_micro_op);
   return pricing;
 }
 

@@ -28,7 +28,7 @@ class RoboCoreBackend final : public Backend {
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
-  RtUnitPricing UnitPricing(const KernelRecord& record) const;
+  RtUnitPricing UnitPricing(const KernelRecord& record) const;  // its launch is the record's
 
   GpuParams gpu_;
   RoboCoreParams robocore_;

@@ -62,8 +62,7 @@ AccessPattern RtUnitAccessPattern(const RtUnitParams& unit) {
   return p;
 }
 
-std::uint64_t ProgramStoreMicroOps(const KernelRecord& record, const DatapathConfig& datapath) {
-  const ProgramTiming timing(*record.program, record.leaf.get(), datapath);
+std::uint64_t ProgramStoreMicroOps(const ProgramTiming& timing) {
   std::uint64_t n = 0;
   for (const SectionTiming* s : {&timing.prologue, &timing.loop, &timing.epilogue, &timing.leaf})
     for (const LoweredOp& op : s->ops()) n += !op.dropped;
@@ -170,7 +169,10 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
     total.micro_ops += t.micro_ops;
     total.arithmetic_joules += t.arithmetic_joules;
   }
-  FinishKernelCycles(cost, pricing.launch_cycles, busiest, gpu);
+  FinishKernelCycles(cost,
+                     pricing.launch_cycles_besides_program +
+                         pricing.program_config_cycles_per_micro_op * ProgramStoreMicroOps(timing),
+                     busiest, gpu);
   for (int i = 0; i < kOpcodeCount; ++i) cost.micro_ops[i] = total.executed[i];
   cost.predicated_off_micro_ops = total.predicated;
   cost.interconnect_hops = total.hops;

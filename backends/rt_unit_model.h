@@ -35,7 +35,10 @@ struct RtUnitPricing {
   const GpuParams* gpu = nullptr;
   const EnergyParams* energy = nullptr;
   DatapathConfig datapath;
-  std::uint64_t launch_cycles = 0;
+  // The launch: these cycles, plus writing the program (as lowered for
+  // `datapath`) into every unit's store at this many cycles per micro-op.
+  std::uint64_t launch_cycles_besides_program = 0;
+  std::uint64_t program_config_cycles_per_micro_op = 0;
 };
 
 BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing,
@@ -51,6 +54,6 @@ AccessPattern RtUnitAccessPattern(const RtUnitParams& unit);
 
 // Micro-ops a program occupies in a unit's program store on this datapath
 // (after lowering), for the launch's program configuration.
-std::uint64_t ProgramStoreMicroOps(const KernelRecord& record, const DatapathConfig& datapath);
+std::uint64_t ProgramStoreMicroOps(const ProgramTiming& timing);
 
 }  // namespace rc

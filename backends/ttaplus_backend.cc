@@ -19,15 +19,15 @@ TtaPlusBackend::TtaPlusBackend(const BackendParameters& params, EarlyExitMode mo
   specs_.early_exit = mode;
 }
 
-RtUnitPricing TtaPlusBackend::UnitPricing(const KernelRecord& record) const {
+RtUnitPricing TtaPlusBackend::UnitPricing(const KernelRecord& /*record*/) const {
   RtUnitPricing pricing;
   pricing.unit = &ttaplus_.unit;
   pricing.gpu = &gpu_;
   pricing.energy = &energy_;
   pricing.datapath = ttaplus_.Datapath(mode_);
-  pricing.launch_cycles = static_cast<std::uint64_t>(gpu_.kernel_launch_cycles) +
-                          ProgramStoreMicroOps(record, pricing.datapath) *
-                              static_cast<std::uint64_t>(ttaplus_.unit.program_config_cycles_per_micro_op);
+  pricing.launch_cycles_besides_program = static_cast<std::uint64_t>(gpu_.kernel_launch_cycles);
+  pricing.program_config_cycles_per_micro_op =
+      static_cast<std::uint64_t>(ttaplus_.unit.program_config_cycles_per_micro_op);
   return pricing;
 }
 

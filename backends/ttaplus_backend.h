@@ -30,7 +30,7 @@ class TtaPlusBackend final : public Backend {
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
-  RtUnitPricing UnitPricing(const KernelRecord& record) const;
+  RtUnitPricing UnitPricing(const KernelRecord& record) const;  // its launch is the record's
 
   GpuParams gpu_;
   TtaPlusParams ttaplus_;
