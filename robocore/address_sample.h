@@ -55,6 +55,13 @@ struct AddressSample {
   int block_stride = 1;
 
   bool KeepsAll() const { return sampled_sms <= 0 || sampled_sms >= sms; }
+  // Queries per block (warp_size x warps_per_block, at least 1): a sample
+  // keeps a block's queries all or none.
+  std::size_t BlockQueries() const {
+    const std::size_t q = static_cast<std::size_t>(warp_size > 0 ? warp_size : 0) *
+                          static_cast<std::size_t>(warps_per_block > 0 ? warps_per_block : 0);
+    return q > 0 ? q : 1;
+  }
   bool KeepsSm(int sm) const { return KeepsAll() || (sm * sampled_sms) % sms < sampled_sms; }
   std::size_t Stride() const { return static_cast<std::size_t>(block_stride < 1 ? 1 : block_stride); }
   // Whether block round `round` (a block's place in its SM's list) of a

@@ -55,21 +55,9 @@ void KernelRecord::Validate() const {
     if (!address_sample.KeepsAll()) fail("a sample without address offsets");
     if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
   } else {
-    if (address_offsets.size() != fetch_offsets.size() || address_offsets.front() != 0)
-      fail("address offsets: one per query plus one, from 0");
     // A block's queries share an SM, so the sample keeps all of them or none.
-    const std::size_t n = query_count();
-    const std::size_t block =
-        std::max<std::size_t>(1, static_cast<std::size_t>(std::max(0, address_sample.warp_size)) *
-                                     static_cast<std::size_t>(std::max(0, address_sample.warps_per_block)));
-    for (std::size_t lo = 0; lo < n; lo += block) {
-      const bool keep = address_sample.KeepsQuery(lo);
-      for (std::size_t q = lo; q < std::min(n, lo + block); ++q) {
-        const std::uint64_t kept = address_offsets[q + 1] - address_offsets[q];
-        if (address_offsets[q + 1] < address_offsets[q] || kept != (keep ? nodes(q) : 0))
-          fail("query " + std::to_string(q) + " keeps addresses against its sample");
-      }
-    }
+    if (address_offsets != KeptAddressOffsets(fetch_offsets, address_sample))
+      fail("address offsets: one per block plus one, a kept block's nodes each");
     if (address_offsets.back() != fetch_addresses.size()) fail("address offsets do not end at the address count");
   }
   // Branch-free scans first (records hold millions of fetches); the slow
@@ -127,6 +115,19 @@ KernelRecordBuilder& KernelRecordBuilder::AddQuery(const std::vector<std::uint64
 KernelRecord KernelRecordBuilder::Build() const {
   record_.Validate();
   return record_;
+}
+
+std::vector<std::uint64_t> KeptAddressOffsets(const std::vector<std::uint64_t>& fetch_offsets,
+                                              const AddressSample& sample) {
+  const std::size_t n = fetch_offsets.size() - 1, block = sample.BlockQueries();
+  std::vector<std::uint64_t> offsets(1, 0);
+  offsets.reserve((n + block - 1) / block + 1);
+  std::uint64_t kept = 0;
+  for (std::size_t lo = 0; lo < n; lo += block) {
+    if (sample.KeepsQuery(lo)) kept += fetch_offsets[std::min(n, lo + block)] - fetch_offsets[lo];
+    offsets.push_back(kept);
+  }
+  return offsets;
 }
 
 }  // namespace rc

@@ -15,7 +15,7 @@
 // every query, which is all the cost models need besides the memory replay.
 //
 // Memory: 1 byte per fetch (exit) + 8 bytes per kept address + 8 bytes per
-// query (+ 8 more with a sample). A Wean-sized DeliBot update (90,000 rays,
+// query (+ 8 per block of queries with a sample). A Wean-sized DeliBot update (90,000 rays,
 // about 26 nodes each) records about 21 MB with every address, 5 MB with
 // one SM of eight sampled.
 #include <cstdint>
@@ -107,10 +107,11 @@ struct KernelRecord {
   // Which queries' addresses are kept. With every query kept
   // (address_sample.KeepsAll()), address_offsets is empty and query i's
   // addresses sit at its exits' positions, [fetch_offsets[i],
-  // fetch_offsets[i+1]). Otherwise address_offsets has one entry per query
-  // plus one, and a kept query's nodes(i) addresses are
-  // [address_offsets[i], address_offsets[i+1]) (an empty range for the
-  // others).
+  // fetch_offsets[i+1]). Otherwise address_offsets has one entry per block
+  // of the sample (address_sample.BlockQueries() consecutive queries, the
+  // last perhaps partial) plus one, KeptAddressOffsets: a kept block b's
+  // queries' addresses are [address_offsets[b], address_offsets[b+1]), in
+  // launch order, and an unkept block's range is empty.
   AddressSample address_sample;
   std::vector<std::uint64_t> address_offsets;
   // With a sample: how many distinct sectors (address_sample.sector_bytes,
@@ -137,9 +138,14 @@ struct KernelRecord {
     return last_exits[query] == kNoExit ? nodes(query) : nodes(query) - 1;
   }
   bool LastPassExits(std::size_t query) const { return nodes(query) > 0 && last_exits[query] != kNoExit; }
+  // Whether query i's addresses are kept.
+  bool KeepsAddresses(std::size_t query) const { return !sampled() || address_sample.KeepsQuery(query); }
   // Query i's addresses (nodes(i) of them); only for a kept query.
   const std::uint64_t* addresses(std::size_t query) const {
-    return fetch_addresses.data() + (sampled() ? address_offsets[query] : fetch_offsets[query]);
+    if (!sampled()) return fetch_addresses.data() + fetch_offsets[query];
+    const std::size_t block = query / address_sample.BlockQueries();
+    return fetch_addresses.data() + address_offsets[block] +
+           (fetch_offsets[query] - fetch_offsets[block * address_sample.BlockQueries()]);
   }
   // Lowest address and one past the highest byte of all regions.
   std::uint64_t footprint_begin() const;
@@ -150,6 +156,12 @@ struct KernelRecord {
   // every region, or an exit names a RETURN_IF the loop does not have.
   void Validate() const;
 };
+
+// A sampled record's address_offsets for these fetch offsets (queries + 1
+// prefix sums): per block of `sample`, where its kept addresses begin, and
+// the total at the end (blocks + 1 entries).
+std::vector<std::uint64_t> KeptAddressOffsets(const std::vector<std::uint64_t>& fetch_offsets,
+                                              const AddressSample& sample);
 
 // A record built by hand (tests, the collision kernel): queries with the
 // given node addresses and exits, one region covering them.

@@ -348,21 +348,10 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   offsets[0] = 0;
   for (long i = 0; i < n; ++i) offsets[i + 1] = sum += hits[i].nodes;
   record.address_sample = sample;
-  if (sample.KeepsAll()) {
+  if (sample.KeepsAll())
     record.address_offsets.clear();
-  } else {
-    record.address_offsets.resize(launch.count + 1);
-    std::uint64_t* kept_offsets = record.address_offsets.data();
-    std::uint64_t kept_sum = 0;
-    kept_offsets[0] = 0;
-    for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
-      const long lo = b * block, hi = std::min(n, lo + block);
-      if (sample.KeepsQuery(static_cast<std::size_t>(lo)))
-        for (long i = lo; i < hi; ++i) kept_offsets[i + 1] = kept_sum += hits[i].nodes;
-      else
-        std::fill(kept_offsets + lo + 1, kept_offsets + hi + 1, kept_sum);
-    }
-  }
+  else
+    record.address_offsets = KeptAddressOffsets(record.fetch_offsets, sample);
   std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);
   for (long b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + block_addresses[b].size();
   const std::uint64_t kept = sample.KeepsAll() ? record.fetch_offsets.back() : record.address_offsets.back();

@@ -36,7 +36,6 @@ KernelRecord MakeProbe(const KernelRecord& t, const std::vector<std::uint32_t>& 
   probe.address_sample = sample;
   probe.fetch_offsets.resize(queries + 1);
   probe.last_exits.resize(queries);
-  if (!sample.KeepsAll()) probe.address_offsets.assign(1, 0);
   // Queries start spread over the structure (a large odd stride) and walk
   // consecutive elements, like rays crossing cells of one row.
   constexpr std::uint64_t kStartStride = 7919;
@@ -49,8 +48,8 @@ KernelRecord MakeProbe(const KernelRecord& t, const std::vector<std::uint32_t>& 
         const std::uint64_t element = (q * kStartStride + j) % elements;
         probe.fetch_addresses.push_back(region.base + element * region.element_bytes);
       }
-    if (!sample.KeepsAll()) probe.address_offsets.push_back(probe.fetch_addresses.size());
   }
+  if (!sample.KeepsAll()) probe.address_offsets = KeptAddressOffsets(probe.fetch_offsets, sample);
   return probe;
 }
 

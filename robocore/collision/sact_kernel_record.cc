@@ -76,10 +76,7 @@ KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const Micr
     record.Validate();
     return record;
   }
-  record.address_offsets.assign(n + 1, 0);
-  for (std::size_t q = 0; q < n; ++q)
-    record.address_offsets[q + 1] =
-        record.address_offsets[q] + (sample.KeepsQuery(q) ? batch.visit_offsets[q + 1] - batch.visit_offsets[q] : 0);
+  record.address_offsets = KeptAddressOffsets(record.fetch_offsets, sample);
   record.fetch_addresses.reserve(record.address_offsets.back());
   // Sectors the whole batch touched, numbered from the region's base (the
   // record's footprint_begin()).
@@ -229,15 +226,7 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   record->node_exits.resize(record->fetch_offsets.back());
   record->address_sample = sample;
   record->address_offsets.clear();
-  if (!sample.KeepsAll()) {
-    record->address_offsets.assign(obbs.size() + 1, 0);
-    std::uint64_t kept_sum = 0;
-    for (long b = 0; b < blocks; ++b) {  // a block's queries share an SM
-      const long lo = b * block, hi = std::min(n, lo + block);
-      const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      for (long i = lo; i < hi; ++i) record->address_offsets[i + 1] = kept_sum += keep ? (*outcomes)[i].nodes_visited : 0;
-    }
-  }
+  if (!sample.KeepsAll()) record->address_offsets = KeptAddressOffsets(record->fetch_offsets, sample);
   std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
   for (long b = 0; b < blocks; ++b) {
     exit_start[b + 1] = exit_start[b] + block_exits[b].size();
