@@ -494,7 +494,8 @@ std::size_t WarpCount(const KernelRecord& record, const GpuParams& gpu) {
 // the thread count. A sampled record replays its sampled SMs only, and
 // EstimateUnsampled fills in the rest.
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern) {
-  return ReplayMemory(record, gpu, pattern, CountWarpNodes(record.fetch_offsets, static_cast<std::size_t>(gpu.warp_size)));
+  return ReplayMemory(record, gpu, pattern,
+                      CountWarpNodes(record.fetch_offsets, static_cast<std::size_t>(gpu.warp_size)));
 }
 
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,

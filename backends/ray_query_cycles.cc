@@ -100,10 +100,11 @@ __attribute__((target("avx512f,avx512dq"))) void SlowestRayQueriesLanes(const Ra
     const __m512i before_last = _mm512_sub_epi64(nodes, one);
     const __m512i memory = _mm512_maskz_loadu_epi64(in, a.memory_cycles + q);
     for (int k = 0; k < count; ++k) {
-      const __m512i last = in_register ? _mm512_maskz_permutexvar_epi64(has, exit_slot, by_exit[k])
-                                       : _mm512_mask_i64gather_epi64(
-                                             _mm512_setzero_si512(), has, exit,
-                                             reinterpret_cast<const long long*>(costs[k].last_pass_cycles.data()), 8);
+      const __m512i last =
+          in_register
+              ? _mm512_maskz_permutexvar_epi64(has, exit_slot, by_exit[k])
+              : _mm512_mask_i64gather_epi64(_mm512_setzero_si512(), has, exit,
+                                            reinterpret_cast<const long long*>(costs[k].last_pass_cycles.data()), 8);
       // A 32 x 32-bit product where it is exact (a query's nodes fit 32
       // bits, RayHit::nodes): one instruction against vpmullq's three.
       // Lanes without nodes are masked out below.
@@ -165,8 +166,7 @@ __attribute__((target("avx2"))) void SlowestRayQueriesAvx2(const RayQueryArrays&
       for (std::size_t i = 0; i < left; ++i) packed |= std::uint32_t{a.last_exits[q + i]} << (8 * i);
     const __m256i exit = _mm256_cvtepu8_epi64(_mm_cvtsi32_si128(static_cast<int>(packed)));
     const __m256i before_last = _mm256_and_si256(_mm256_sub_epi64(nodes, one), has);
-    const __m256i memory =
-        _mm256_maskload_epi64(reinterpret_cast<const long long*>(a.memory_cycles + q), in);
+    const __m256i memory = _mm256_maskload_epi64(reinterpret_cast<const long long*>(a.memory_cycles + q), in);
     for (int k = 0; k < count; ++k) {
       const auto* last_pass = reinterpret_cast<const long long*>(costs[k].last_pass_cycles.data());
       const __m256i last = _mm256_mask_i64gather_epi64(_mm256_setzero_si256(), last_pass, exit, has, 8);

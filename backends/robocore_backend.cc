@@ -28,12 +28,4 @@ RtUnitPricing RoboCoreBackend::UnitPricing(const KernelRecord& record) const {
   return pricing;
 }
 
-void RoboCoreBackend::AnnouncePricing(const KernelRecord& record, PricingContext& context) const {
-  AnnounceRtUnit(record, context, UnitPricing(record));
-}
-
-BatchCost RoboCoreBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
-  return PriceOnRtUnit(record, context, UnitPricing(record), specs_.name);
-}
-
 }  // namespace rc

@@ -13,22 +13,17 @@
 // modelled in robocore/function_unit_simulator.h. The ray-cast step programs
 // use no SACT micro-ops, so on them RoboCore times like TTA+-cr; it differs
 // in its launch (program plus decode configuration).
-#include "backends/backend.h"
 #include "backends/rt_unit_model.h"
 
 namespace rc {
 
-class RoboCoreBackend final : public Backend {
+class RoboCoreBackend final : public RtUnitBackend {
  public:
   explicit RoboCoreBackend(const BackendParameters& params);
   const BackendSpecs& specs() const override { return specs_; }
-  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const override;
-
- protected:
-  BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
-  RtUnitPricing UnitPricing(const KernelRecord& record) const;  // its launch is the record's
+  RtUnitPricing UnitPricing(const KernelRecord& record) const override;
 
   GpuParams gpu_;
   RoboCoreParams robocore_;

@@ -106,8 +106,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
         sm_threads[sm] += threads;
         sm_warp_cycles[sm].push_back(CeilDiv(threads, intake_per_cycle) + rays->slowest[w]);
       }
-      std::copy_n(rays->sm_passes.begin() + static_cast<long>(sm) * variants, variants,
-                  sm_variant_passes[sm].begin());
+      std::copy_n(rays->sm_passes.begin() + static_cast<long>(sm) * variants, variants, sm_variant_passes[sm].begin());
     }
   } else {
     const auto exits = context.Exits();

@@ -49,6 +49,23 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
 // share one pass over its queries. Prices do not depend on it.
 void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing);
 
+// What TTA+ and RoboCore backends share: each says how its unit prices a
+// record (UnitPricing), and both announce and price through the unit
+// model the same way.
+class RtUnitBackend : public Backend {
+ public:
+  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const final {
+    AnnounceRtUnit(record, context, UnitPricing(record));
+  }
+
+ protected:
+  BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const final {
+    return PriceOnRtUnit(record, context, UnitPricing(record), specs().name);
+  }
+  // The unit, its datapath and the record's launch.
+  virtual RtUnitPricing UnitPricing(const KernelRecord& record) const = 0;
+};
+
 // Access pattern of the RT units: per-thread requests, warp-buffer waves.
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit);
 

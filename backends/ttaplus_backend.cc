@@ -31,12 +31,4 @@ RtUnitPricing TtaPlusBackend::UnitPricing(const KernelRecord& /*record*/) const 
   return pricing;
 }
 
-void TtaPlusBackend::AnnouncePricing(const KernelRecord& record, PricingContext& context) const {
-  AnnounceRtUnit(record, context, UnitPricing(record));
-}
-
-BatchCost TtaPlusBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
-  return PriceOnRtUnit(record, context, UnitPricing(record), specs_.name);
-}
-
 }  // namespace rc

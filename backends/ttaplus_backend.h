@@ -15,22 +15,17 @@
 //   ttaplus-cr  conditional return: a fired RETURN_IF ends the pass.
 // Launch: the kernel launch plus writing the (lowered) program into every
 // unit's program store. The unit model is rt_unit_model.h.
-#include "backends/backend.h"
 #include "backends/rt_unit_model.h"
 
 namespace rc {
 
-class TtaPlusBackend final : public Backend {
+class TtaPlusBackend final : public RtUnitBackend {
  public:
   TtaPlusBackend(const BackendParameters& params, EarlyExitMode mode);
   const BackendSpecs& specs() const override { return specs_; }
-  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const override;
-
- protected:
-  BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
-  RtUnitPricing UnitPricing(const KernelRecord& record) const;  // its launch is the record's
+  RtUnitPricing UnitPricing(const KernelRecord& record) const override;
 
   GpuParams gpu_;
   TtaPlusParams ttaplus_;

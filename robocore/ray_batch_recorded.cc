@@ -273,10 +273,9 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
     const bool keep = sample.KeepsQuery(static_cast<std::size_t>(b * block));
     long& last = open[keep];
     const bool adjacent = last >= 0 && segments[last].blocks.back() + 1 == b;
-    const bool joins =
-        last >= 0 && (lanes ? segments[last].queries + size <= kLaneSegmentQueries &&
-                                  (keep || adjacent || segments[last].queries < kInPlaceQueries)
-                            : !keep && segments[last].queries + size <= kSegmentQueries && adjacent);
+    const bool joins = last >= 0 && (lanes ? segments[last].queries + size <= kLaneSegmentQueries &&
+                                                 (keep || adjacent || segments[last].queries < kInPlaceQueries)
+                                           : !keep && segments[last].queries + size <= kSegmentQueries && adjacent);
     if (!joins) {
       last = static_cast<long>(segments.size());
       segments.push_back({{}, 0, keep});

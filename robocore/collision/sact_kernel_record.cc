@@ -188,7 +188,8 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
       const long lo = b * block, hi = std::min(n, lo + block);
       if (!record) {
         for (long i = lo; i < hi; ++i)
-          (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, [](const NodeVisit&) {}, &scratch);
+          (*outcomes)[i] = CollideObbVisiting(
+              tree, obbs[i], options, [](const NodeVisit&) {}, &scratch);
         continue;
       }
       // Each visit kept as it happens: its exit, in a sampled record its
@@ -201,7 +202,8 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
         if (mark) mine.Mark(v.node);
         if (keep) addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
       };
-      for (long i = lo; i < hi; ++i) (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
+      for (long i = lo; i < hi; ++i)
+        (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
     }
     if (mark) {
 #pragma omp critical(rc_collision_touched_sectors)

@@ -175,12 +175,8 @@ TEST(RtUnitCost, SactLatencySweepScalesRoboCoresTest) {
 }
 
 TEST(RtUnitCost, ALargerWarpBufferHidesMoreLatency) {
-  const OccupancyGrid grid = test::RoomGrid(100, 80, 0.1, 0.02, 21);
-  const RayCastScene scene(grid, RayCastMethod::kDda);
-  const RayBatch batch = test::FanBatch(grid, 64, 32, 8.0, 22);
-  std::vector<RayHit> hits;
-  KernelRecord record;
-  CastRayBatchRecorded(scene, batch, hits, record);
+  const KernelRecord record =
+      test::RecordedFan(test::RoomGrid(100, 80, 0.1, 0.02, 21), RayCastMethod::kDda, 64, 32, 8.0, 22);
   BackendParameters one, eight;
   one.ttaplus.unit.warp_buffer_warps = 1;
   eight.ttaplus.unit.warp_buffer_warps = 8;
@@ -189,12 +185,8 @@ TEST(RtUnitCost, ALargerWarpBufferHidesMoreLatency) {
 }
 
 TEST(Pricing, ASharedContextGivesTheSameCosts) {
-  const OccupancyGrid grid = test::RoomGrid(60, 60, 0.1, 0.05, 31);
-  const RayCastScene scene(grid, RayCastMethod::kMarch);
-  const RayBatch batch = test::FanBatch(grid, 20, 20, 5.0, 32);
-  std::vector<RayHit> hits;
-  KernelRecord record;
-  CastRayBatchRecorded(scene, batch, hits, record);
+  const KernelRecord record =
+      test::RecordedFan(test::RoomGrid(60, 60, 0.1, 0.05, 31), RayCastMethod::kMarch, 20, 20, 5.0, 32);
   std::vector<std::unique_ptr<Backend>> owned;
   std::vector<const Backend*> backends;
   for (const std::string& name : Backend::ModelledNames()) {
@@ -237,12 +229,9 @@ TEST(Pricing, WideNodesRequestEverySectorTheySpan) {
 }
 
 TEST(Pricing, DoesNotDependOnTheThreadCount) {
-  const OccupancyGrid grid = test::RoomGrid(150, 120, 0.1, 0.03, 51);  // 17.6 KiB: L1 cold path
-  const RayCastScene scene(grid, RayCastMethod::kDda);
-  const RayBatch batch = test::FanBatch(grid, 40, 64, 8.0, 52);
-  std::vector<RayHit> hits;
-  KernelRecord record;
-  CastRayBatchRecorded(scene, batch, hits, record);
+  // A 17.6 KiB grid: the L1's cold path.
+  const KernelRecord record =
+      test::RecordedFan(test::RoomGrid(150, 120, 0.1, 0.03, 51), RayCastMethod::kDda, 40, 64, 8.0, 52);
   BackendParameters small_l1;  // forces the LRU path
   small_l1.gpu.l1_bytes = 4096;
   const int threads = omp_get_max_threads();

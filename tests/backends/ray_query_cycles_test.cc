@@ -57,8 +57,7 @@ RayPassCosts UnitCosts(int k, int exits, std::uint64_t quiet_pass_cycles) {
 
 // The definition, written out: a query's cycles and passes from its nodes
 // and its last exit.
-std::uint64_t Expected(const Queries& q, const RayPassCosts& c, std::size_t lo, std::size_t hi,
-                       RayPassTally* tally) {
+std::uint64_t Expected(const Queries& q, const RayPassCosts& c, std::size_t lo, std::size_t hi, RayPassTally* tally) {
   std::uint64_t slowest = 0;
   for (std::size_t i = lo; i < hi; ++i) {
     const std::uint64_t nodes = q.offsets[i + 1] - q.offsets[i];

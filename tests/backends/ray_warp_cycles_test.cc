@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include "backends/memory_replay.h"
-#include "robocore/ray_batch_recorded.h"
 #include "test_scenes.h"
 
 namespace rc {
@@ -26,12 +25,8 @@ RayPassCosts UnitCosts(int k) {
 }
 
 TEST(RayWarpCycles, OnePassForManyUnitsGivesEachWhatItsOwnPassGives) {
-  const OccupancyGrid grid = test::RoomGrid(60, 60, 0.1, 0.05, 31);
-  const RayCastScene scene(grid, RayCastMethod::kMarch);
-  const RayBatch batch = test::FanBatch(grid, 20, 20, 5.0, 32);
-  std::vector<RayHit> hits;
-  KernelRecord record;
-  CastRayBatchRecorded(scene, batch, hits, record);
+  const KernelRecord record =
+      test::RecordedFan(test::RoomGrid(60, 60, 0.1, 0.05, 31), RayCastMethod::kMarch, 20, 20, 5.0, 32);
   ASSERT_TRUE(record.exits_per_query());
   GpuParams gpu;
   gpu.sms = 3;

@@ -2,6 +2,7 @@
 
 #include "common/angles.h"
 #include "common/random_stream.h"
+#include "robocore/ray_batch_recorded.h"
 
 namespace rc::test {
 
@@ -48,6 +49,16 @@ MemoryRegion ByteRegion(std::uint64_t base, std::uint64_t elements) {
   r.element_bytes = 1;
   r.elements = elements;
   return r;
+}
+
+KernelRecord RecordedFan(const OccupancyGrid& grid, RayCastMethod method, int particles, int beams, double max_range_m,
+                         std::uint64_t seed) {
+  const RayCastScene scene(grid, method);
+  const RayBatch batch = FanBatch(grid, particles, beams, max_range_m, seed);
+  std::vector<RayHit> hits;
+  KernelRecord record;
+  CastRayBatchRecorded(scene, batch, hits, record);
+  return record;
 }
 
 }  // namespace rc::test
