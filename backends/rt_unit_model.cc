@@ -79,11 +79,10 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   const auto memory = context.Memory(gpu, pattern);
 
   // Loop-pass cost per exit variant: index 0 = no exit, 1 + j = RETURN_IF j.
+  const RayPassCosts costs = RayCostsOf(timing);
   const int variants = timing.loop.return_count() + 1;
-  std::vector<std::uint64_t> pass_cycles(variants);
-  for (int v = 0; v < variants; ++v)
-    pass_cycles[v] = timing.loop.Cost(v == 0 ? kNoExit : static_cast<std::uint8_t>(v - 1)).cycles;
-  const std::uint64_t once_cycles = timing.once().cycles;
+  std::vector<std::uint64_t> pass_cycles(variants, costs.quiet_pass_cycles);
+  for (int v = 1; v < variants; ++v) pass_cycles[v] = costs.last_pass_cycles[v - 1];
 
   const std::size_t n = record.query_count();
   const std::size_t warps = WarpCount(record, gpu);
@@ -98,7 +97,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   // (ray_warp_cycles.h); other records go through the profile. Both sum the
   // same integer products.
   if (record.exits_per_query()) {
-    const auto rays = context.RayWarps(gpu, pattern, variants - 1, RayCostsOf(timing));
+    const auto rays = context.RayWarps(gpu, pattern, variants - 1, costs);
     for (int sm = 0; sm < gpu.sms; ++sm) {
       for (std::uint32_t w : sm_warps[sm]) {
         const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
@@ -118,7 +117,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
         const std::size_t hi = std::min(n, lo + gpu.warp_size);
         std::uint64_t slowest = 0;
         for (std::size_t q = lo; q < hi; ++q) {
-          std::uint64_t cycles = once_cycles + memory->query_memory_cycles[q];
+          std::uint64_t cycles = costs.once_cycles + memory->query_memory_cycles[q];
           for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
             cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
             passes[exits->variant[i]] += exits->passes[i];
