@@ -62,16 +62,23 @@ class SmReplay {
       // requests, each its own group.
       Grow(misses_, fetches_);
       const std::size_t m = l1_.AccessAll(sector_.data(), fetches_, misses_.data());
-      for (std::size_t j = 0; j < m; ++j) AddMiss(sector_[misses_[j]], owner_[misses_[j]], 1);
+      const MissSlots out = AddMisses(m);
+      for (std::size_t j = 0; j < m; ++j) {
+        out.sector[j] = sector_[misses_[j]];
+        out.owner[j] = owner_[misses_[j]];
+        out.group_end[j] = 1;
+      }
       out_.requests += fetches_;
     } else {
       const std::size_t requests = coalesced_ ? WalkCoalesced(max_steps) : WalkWideNodes(max_steps);
       Grow(misses_, requests);
       const std::size_t m = l1_.AccessAll(request_sector_.data(), requests, misses_.data());
+      const MissSlots out = AddMisses(m);
       for (std::size_t j = 0; j < m; ++j) {
         const std::uint32_t group = request_group_[misses_[j]];
-        const bool last = j + 1 == m || request_group_[misses_[j + 1]] != group;
-        AddMiss(request_sector_[misses_[j]], group_owner_[group], last);
+        out.sector[j] = request_sector_[misses_[j]];
+        out.owner[j] = group_owner_[group];
+        out.group_end[j] = j + 1 == m || request_group_[misses_[j + 1]] != group;
       }
       out_.requests += requests;
     }
@@ -95,20 +102,27 @@ class SmReplay {
   std::uint32_t SortByStep(const std::uint32_t* warps, std::size_t count) {
     const std::size_t n = record_.query_count();
     const std::uint64_t* offsets = record_.fetch_offsets.data();
-    lane_query_.clear();
+    lane_addresses_.clear();
+    lane_nodes_.clear();
     lane_owner_.clear();
     std::uint32_t max_steps = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t lo = static_cast<std::size_t>(warps[i]) * gpu_.warp_size;
+      // A warp lies within one block, so its lanes' addresses follow one
+      // another: the record's lookup once per warp, not per lane.
+      const std::uint64_t* a = record_.addresses(lo);
       for (std::size_t q = lo; q < std::min(n, lo + gpu_.warp_size); ++q) {
-        lane_query_.push_back(static_cast<std::uint32_t>(q));
+        const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+        lane_addresses_.push_back(a);
+        lane_nodes_.push_back(nodes);
         lane_owner_.push_back(coalesced_ ? warps[i] : static_cast<std::uint32_t>(q));
+        a += nodes;
       }
       max_steps = std::max(max_steps, steps_[warps[i]]);
     }
     // Fetches per step = lanes with more nodes than the step's index.
     step_start_.assign(max_steps + 2, 0);
-    for (std::uint32_t q : lane_query_) ++step_start_[offsets[q + 1] - offsets[q]];
+    for (std::uint32_t nodes : lane_nodes_) ++step_start_[nodes];
     std::uint32_t active = 0;
     for (std::uint32_t k = max_steps + 1; k-- > 0;) {
       const std::uint32_t ending_here = step_start_[k];
@@ -160,12 +174,10 @@ class SmReplay {
   // fetches are [step_start_[k], cursor_[k]).
   template <class Write>
   void Scatter(Write write) {
-    const std::uint64_t* offsets = record_.fetch_offsets.data();
     std::uint32_t* cursor = cursor_.data();
-    for (std::size_t j = 0; j < lane_query_.size(); ++j) {
-      const std::uint32_t q = lane_query_[j], lane_owner = lane_owner_[j];
-      const std::uint64_t* a = record_.addresses(q);
-      const auto nodes = static_cast<std::uint32_t>(offsets[q + 1] - offsets[q]);
+    for (std::size_t j = 0; j < lane_nodes_.size(); ++j) {
+      const std::uint32_t lane_owner = lane_owner_[j], nodes = lane_nodes_[j];
+      const std::uint64_t* a = lane_addresses_[j];
       for (std::uint32_t k = 0; k < nodes; ++k)
         if (write(cursor[k], a[k], lane_owner, k)) ++cursor[k];
     }
@@ -255,10 +267,19 @@ class SmReplay {
   // Sectors a node of `bytes` may span at any alignment.
   std::uint64_t SpanOf(std::uint64_t bytes) const { return (bytes + gpu_.sector_bytes - 1) / gpu_.sector_bytes + 1; }
 
-  void AddMiss(std::uint32_t sector, std::uint32_t owner, bool group_end) {
-    out_.sector.push_back(sector);
-    out_.owner.push_back(owner);
-    out_.group_end.push_back(group_end ? 1 : 0);
+  // Room for `count` more misses at the end of out_, to be written through
+  // the pointers (push_back would store each vector's end at every miss).
+  struct MissSlots {
+    std::uint32_t* sector;
+    std::uint32_t* owner;
+    std::uint8_t* group_end;
+  };
+  MissSlots AddMisses(std::size_t count) {
+    const std::size_t at = out_.sector.size();
+    out_.sector.resize(at + count);
+    out_.owner.resize(at + count);
+    out_.group_end.resize(at + count);
+    return {out_.sector.data() + at, out_.owner.data() + at, out_.group_end.data() + at};
   }
 
   std::vector<std::uint32_t> group_owner_;  // per group of the wave
@@ -275,7 +296,10 @@ class SmReplay {
   // sector, at addresses aligned to it (the layouts guarantee it).
   bool one_sector_nodes_ = false;
   std::size_t fetches_ = 0;  // in the wave
-  std::vector<std::uint32_t> lane_query_, lane_owner_, step_start_, cursor_;
+  // Per lane of the wave: its query's first address, node count and owner.
+  std::vector<const std::uint64_t*> lane_addresses_;
+  std::vector<std::uint32_t> lane_nodes_, lane_owner_;
+  std::vector<std::uint32_t> step_start_, cursor_;
   std::vector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
   std::vector<std::uint64_t> address_;
   static constexpr int kRecentBits = 10;
@@ -527,13 +551,13 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   const std::uint64_t* offsets = record.fetch_offsets.data();
   std::vector<std::uint64_t>& owner_cycles =
       pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
-  // Written once each (a resize would first fill the per-query array with
-  // zeros).
-  owner_cycles.reserve(pattern.coalesced ? warps : n);
+  // Through a pointer: push_back stored the vector's end at every entry.
+  owner_cycles.resize(pattern.coalesced ? warps : n);
+  std::uint64_t* first_cycles = owner_cycles.data();
   if (pattern.coalesced) {
-    for (std::size_t w = 0; w < warps; ++w) owner_cycles.push_back(latency[0] * steps[w]);
+    for (std::size_t w = 0; w < warps; ++w) first_cycles[w] = latency[0] * steps[w];
   } else {
-    for (std::size_t q = 0; q < n; ++q) owner_cycles.push_back(latency[0] * (offsets[q + 1] - offsets[q]));
+    for (std::size_t q = 0; q < n; ++q) first_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
   }
 
   // The SMs replayed, each with the warps whose addresses the record kept
@@ -571,8 +595,10 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // that share of the DRAM latency (settled below, once the count of such
   // groups is known).
   const bool share_dram = record.sampled() && l2.cold() && record.touched_sectors > 0;
-  std::vector<std::uint32_t> dram_groups(share_dram ? owner_cycles.size() : 0, 0);
-  std::vector<std::uint32_t> dram_owners;  // those with a DRAM group, each once (the sampled SMs' few)
+  // The owner of each group whose slowest miss went to DRAM (the sampled
+  // SMs' few): sorted afterwards, so an owner's groups are counted together
+  // without a per-owner array over the whole launch.
+  std::vector<std::uint32_t> dram_group_owners;
   for (std::size_t r = 0; r < rounds; ++r)
     for (int sm : replayed) {
       SmMisses& s = sms[sm];
@@ -585,7 +611,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
         slowest = std::max(slowest, level);
         if (s.group_end[m]) {
           if (share_dram && slowest == 2) {
-            if (dram_groups[s.owner[m]]++ == 0) dram_owners.push_back(s.owner[m]);
+            dram_group_owners.push_back(s.owner[m]);
             slowest = 1;
           }
           owner_cycles[s.owner[m]] += latency[slowest] - latency[0];
@@ -604,8 +630,13 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
                             static_cast<double>(std::max<std::uint64_t>(1, all_units));
     const double p = sampled_dram > 0 ? std::min(1.0, expected / static_cast<double>(sampled_dram)) : 0.0;
     const double extra = p * static_cast<double>(latency[2] - latency[1]);
-    for (std::uint32_t i : dram_owners)
-      owner_cycles[i] += static_cast<std::uint64_t>(std::llround(extra * dram_groups[i]));
+    std::sort(dram_group_owners.begin(), dram_group_owners.end());
+    for (std::size_t i = 0; i < dram_group_owners.size();) {
+      const std::uint32_t owner = dram_group_owners[i];
+      std::size_t groups = 0;
+      for (; i < dram_group_owners.size() && dram_group_owners[i] == owner; ++i) ++groups;
+      owner_cycles[owner] += static_cast<std::uint64_t>(std::llround(extra * static_cast<double>(groups)));
+    }
   }
 
   profile.sm_sector_requests.assign(gpu.sms, 0);
