@@ -40,16 +40,17 @@ void RankDistinctKeysPortable(const std::int32_t* keys, std::size_t count, std::
 }
 
 #if defined(__x86_64__)
-// The keys stay in four registers while each key is compared with all of
-// them.
-__attribute__((target("avx512f"))) void RankDistinctKeysAvx512(const std::int32_t* keys, std::size_t count,
-                                                               std::int32_t* place) {
-  CheckCount(count);
-  constexpr int kVectors = static_cast<int>(kMaxRankedKeys / 16);
+namespace {
+
+// The keys stay in kVectors registers while each key is compared with all
+// of them. The vector count is a template argument so that the per-vector
+// arrays live in registers: with a run-time count they were kept on the
+// stack, and each count waited on its own previous store.
+template <int kVectors>
+__attribute__((target("avx512f"))) void RankAvx512(const std::int32_t* keys, std::size_t count, std::int32_t* place) {
   __m512i key[kVectors], at[kVectors];
   __mmask16 in[kVectors];
-  const int vectors = static_cast<int>((count + 15) / 16);
-  for (int v = 0; v < vectors; ++v) {
+  for (int v = 0; v < kVectors; ++v) {
     const std::size_t left = count - 16 * static_cast<std::size_t>(v);
     in[v] = static_cast<__mmask16>(left >= 16 ? 0xFFFF : (1u << left) - 1);
     key[v] = _mm512_maskz_loadu_epi32(in[v], keys + 16 * v);
@@ -58,32 +59,62 @@ __attribute__((target("avx512f"))) void RankDistinctKeysAvx512(const std::int32_
   const __m512i one = _mm512_set1_epi32(1);
   for (std::size_t j = 0; j < count; ++j) {
     const __m512i other = _mm512_set1_epi32(keys[j]);
-    for (int v = 0; v < vectors; ++v)
+    for (int v = 0; v < kVectors; ++v)
       at[v] = _mm512_mask_add_epi32(at[v], _mm512_cmpgt_epi32_mask(key[v], other), at[v], one);
   }
-  for (int v = 0; v < vectors; ++v) _mm512_mask_storeu_epi32(place + 16 * v, in[v], at[v]);
+  for (int v = 0; v < kVectors; ++v) _mm512_mask_storeu_epi32(place + 16 * v, in[v], at[v]);
 }
 
-// The same in AVX2: eight registers of eight keys; a comparison's all-ones
-// lanes are -1, so subtracting them counts.
-__attribute__((target("avx2"))) void RankDistinctKeysAvx2(const std::int32_t* keys, std::size_t count,
-                                                          std::int32_t* place) {
-  CheckCount(count);
-  constexpr int kVectors = static_cast<int>(kMaxRankedKeys / 8);
-  alignas(32) std::int32_t padded[kMaxRankedKeys] = {};
+// The same in AVX2, kVectors registers of eight keys (the keys padded to
+// whole registers); a comparison's all-ones lanes are -1, so subtracting
+// them counts.
+template <int kVectors>
+__attribute__((target("avx2"))) void RankAvx2(const std::int32_t* keys, std::size_t count, std::int32_t* place) {
+  alignas(32) std::int32_t padded[8 * kVectors] = {};
   std::copy(keys, keys + count, padded);
   __m256i key[kVectors], at[kVectors];
-  const int vectors = static_cast<int>((count + 7) / 8);
-  for (int v = 0; v < vectors; ++v) {
+  for (int v = 0; v < kVectors; ++v) {
     key[v] = _mm256_load_si256(reinterpret_cast<const __m256i*>(padded + 8 * v));
     at[v] = _mm256_setzero_si256();
   }
   for (std::size_t j = 0; j < count; ++j) {
     const __m256i other = _mm256_set1_epi32(keys[j]);
-    for (int v = 0; v < vectors; ++v) at[v] = _mm256_sub_epi32(at[v], _mm256_cmpgt_epi32(key[v], other));
+    for (int v = 0; v < kVectors; ++v) at[v] = _mm256_sub_epi32(at[v], _mm256_cmpgt_epi32(key[v], other));
   }
-  for (int v = 0; v < vectors; ++v) _mm256_store_si256(reinterpret_cast<__m256i*>(padded + 8 * v), at[v]);
+  for (int v = 0; v < kVectors; ++v) _mm256_store_si256(reinterpret_cast<__m256i*>(padded + 8 * v), at[v]);
   std::copy(padded, padded + count, place);
+}
+
+}  // namespace
+
+static_assert(kMaxRankedKeys == 64, "the dispatch below covers up to four AVX-512 and eight AVX2 registers");
+
+__attribute__((target("avx512f"))) void RankDistinctKeysAvx512(const std::int32_t* keys, std::size_t count,
+                                                               std::int32_t* place) {
+  CheckCount(count);
+  switch ((count + 15) / 16) {
+    case 0: return;
+    case 1: return RankAvx512<1>(keys, count, place);
+    case 2: return RankAvx512<2>(keys, count, place);
+    case 3: return RankAvx512<3>(keys, count, place);
+    default: return RankAvx512<4>(keys, count, place);
+  }
+}
+
+__attribute__((target("avx2"))) void RankDistinctKeysAvx2(const std::int32_t* keys, std::size_t count,
+                                                          std::int32_t* place) {
+  CheckCount(count);
+  switch ((count + 7) / 8) {
+    case 0: return;
+    case 1: return RankAvx2<1>(keys, count, place);
+    case 2: return RankAvx2<2>(keys, count, place);
+    case 3: return RankAvx2<3>(keys, count, place);
+    case 4: return RankAvx2<4>(keys, count, place);
+    case 5: return RankAvx2<5>(keys, count, place);
+    case 6: return RankAvx2<6>(keys, count, place);
+    case 7: return RankAvx2<7>(keys, count, place);
+    default: return RankAvx2<8>(keys, count, place);
+  }
 }
 #else
 void RankDistinctKeysAvx512(const std::int32_t*, std::size_t, std::int32_t*) {
