@@ -42,19 +42,21 @@ struct MarkingVisitor : LastFetchVisitor {
   }
 };
 
-// Also appends the device address of every fetch to a block's buffer (and
-// marks its sector when `touched` is set).
+// Also appends the index of every fetched node to a block's buffer (and
+// marks its sector when `touched` is set). A ray kernel fetches one
+// structure, so an index names its node (KeptBlockNodes).
 struct RecordingVisitor : LastFetchVisitor {
-  std::vector<std::uint64_t>* out = nullptr;
+  std::vector<std::uint32_t>* out = nullptr;
   std::uint32_t* touched = nullptr;
-  std::uint64_t base[2];
+  FetchKind kept_kind = FetchKind::kGridCell;  // the structure whose nodes `out` indexes
   std::uint64_t offset[2];
   std::uint32_t element_bytes[2];
   int sector_shift = 5;
 
   void Fetch(FetchKind kind, std::uint32_t index) {
     const int k = static_cast<int>(kind);
-    out->push_back(base[k] + std::uint64_t{index} * element_bytes[k]);
+    if (kind != kept_kind) throw std::logic_error("CastRayBatchRecorded: a ray kernel fetched a second structure");
+    out->push_back(index);
     if (touched) touched[(offset[k] + std::uint64_t{index} * element_bytes[k]) >> sector_shift] = 1;
     LastFetchVisitor::Fetch(kind, index);
   }
@@ -105,19 +107,25 @@ struct LaneBatchWork {
   std::vector<std::uint8_t> exits;
 };
 
+// Per block of a launch, the node indices of its queries in launch order,
+// for the blocks whose addresses the sample keeps (empty for the others).
+// Indices, at 4 bytes a node, rather than addresses at 8: the record's
+// addresses are written once, from them, straight into its array.
+using KeptBlockNodes = std::vector<std::vector<std::uint32_t>>;
+
 // Casts blocks (of `block` queries; ascending, not necessarily adjacent)
 // in the lanes as one contiguous batch, then puts each query's hit and last
-// exit in place and, for kept blocks (`block_addresses` set), appends its
-// node addresses to its block's buffer. One batch rather than one per run
+// exit in place and, for kept blocks (`kept_nodes` set), appends its
+// node indices to its block's buffer. One batch rather than one per run
 // of adjacent blocks: the lanes drain at a batch's end, idling while its
 // last rays finish. Adjacent unkept blocks are cast in place, without the
 // copies. `lane` says where to mark touched sectors.
 void CastBlocksInLanes(const RayCastScene& scene, const LaunchQueries& launch, const std::vector<long>& blocks,
-                       long block, const MemoryRegion& fetched, LaneRecording lane, LaneBatchWork& work, RayHit* hits,
-                       std::uint8_t* last_exit, std::vector<std::vector<std::uint64_t>>* block_addresses) {
+                       long block, LaneRecording lane, LaneBatchWork& work, RayHit* hits, std::uint8_t* last_exit,
+                       KeptBlockNodes* kept_nodes) {
   const long n = static_cast<long>(launch.count);
   auto end_of = [&](long b) { return std::min(n, (b + 1) * block); };
-  if (!block_addresses && blocks.back() - blocks.front() + 1 == static_cast<long>(blocks.size())) {
+  if (!kept_nodes && blocks.back() - blocks.front() + 1 == static_cast<long>(blocks.size())) {
     const long lo = blocks.front() * block, hi = end_of(blocks.back());
     lane.last_exits = last_exit + lo;
     lane.nodes = nullptr;
@@ -130,7 +138,7 @@ void CastBlocksInLanes(const RayCastScene& scene, const LaunchQueries& launch, c
   work.hits.resize(work.queries.size());
   work.exits.assign(work.queries.size(), kNoExit);
   lane.last_exits = work.exits.data();
-  lane.nodes = block_addresses ? &work.log : nullptr;
+  lane.nodes = kept_nodes ? &work.log : nullptr;
   CastRayLanes(scene, work.queries.data(), work.queries.size(), launch.max_range_m, work.hits.data(), &lane);
   std::size_t g = 0;  // position in the gathered batch
   for (long b : blocks) {
@@ -139,21 +147,18 @@ void CastBlocksInLanes(const RayCastScene& scene, const LaunchQueries& launch, c
               hits + lo);
     std::copy(work.exits.begin() + static_cast<long>(g), work.exits.begin() + static_cast<long>(g) + (hi - lo),
               last_exit + lo);
-    if (!block_addresses) {
+    if (!kept_nodes) {
       g += static_cast<std::size_t>(hi - lo);
       continue;
     }
-    std::vector<std::uint64_t>& out = (*block_addresses)[static_cast<std::size_t>(b)];
+    std::vector<std::uint32_t>& out = (*kept_nodes)[static_cast<std::size_t>(b)];
     std::size_t fetches = 0;
     for (std::size_t i = g; i < g + static_cast<std::size_t>(hi - lo); ++i) fetches += work.hits[i].nodes;
     out.resize(fetches);
-    std::uint64_t* address = out.data();
+    std::uint32_t* at = out.data();
     for (long i = lo; i < hi; ++i, ++g) {
       const std::uint32_t* index = work.log.NodesOf(g);
-      const std::uint32_t nodes = work.hits[g].nodes;
-      for (std::uint32_t k = 0; k < nodes; ++k)
-        address[k] = fetched.base + std::uint64_t{index[k]} * fetched.element_bytes;
-      address += nodes;
+      at = std::copy(index, index + work.hits[g].nodes, at);
     }
   }
 }
@@ -228,7 +233,7 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   std::vector<std::uint8_t>& last_exit = record.last_exits;
   last_exit.assign(launch.count, kNoExit);
   record.node_exits.clear();
-  std::vector<std::vector<std::uint64_t>> block_addresses(static_cast<std::size_t>(blocks));
+  KeptBlockNodes kept_nodes(static_cast<std::size_t>(blocks));
   // A sample also counts the sectors the whole batch touches: one bitset of
   // the footprint's sectors per thread, ORed together afterwards.
   const bool mark = !sample.KeepsAll();
@@ -240,7 +245,6 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
     const int k = static_cast<int>(r.kind);
-    prototype.base[k] = r.base;
     prototype.offset[k] = r.base - footprint_begin;
     prototype.element_bytes[k] = r.element_bytes;
   }
@@ -298,11 +302,12 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
       lane.element_bytes = fetched.element_bytes;
       lane.sector_shift = sector_shift;
       if (lanes) {
-        CastBlocksInLanes(scene, launch, seg.blocks, block, fetched, lane, lane_work, hits, last_exit.data(),
-                          seg.keep ? &block_addresses : nullptr);
+        CastBlocksInLanes(scene, launch, seg.blocks, block, lane, lane_work, hits, last_exit.data(),
+                          seg.keep ? &kept_nodes : nullptr);
       } else if (seg.keep) {
         RecordingVisitor recording = prototype;
-        recording.out = &block_addresses[static_cast<std::size_t>(seg.blocks.front())];
+        recording.out = &kept_nodes[static_cast<std::size_t>(seg.blocks.front())];
+        recording.kept_kind = fetched.kind;
         recording.touched = mark ? mine.data() : nullptr;
         recording.out->reserve(static_cast<std::size_t>(seg.queries) * 32);
         const RayQuery* queries = launch.Range(lo, lo + seg.queries, lane_work.queries);
@@ -352,13 +357,18 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   else
     record.address_offsets = KeptAddressOffsets(record.fetch_offsets, sample);
   std::vector<std::uint64_t> block_start(static_cast<std::size_t>(blocks) + 1, 0);
-  for (long b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + block_addresses[b].size();
+  for (long b = 0; b < blocks; ++b) block_start[b + 1] = block_start[b] + kept_nodes[b].size();
   const std::uint64_t kept = sample.KeepsAll() ? record.fetch_offsets.back() : record.address_offsets.back();
   if (block_start.back() != kept) throw std::logic_error("CastRayBatchRecorded: a kept block lost fetches");
   record.fetch_addresses.resize(kept);
+  std::uint64_t* const addresses = record.fetch_addresses.data();
+  const std::uint64_t base = fetched.base, element_bytes = fetched.element_bytes;
 #pragma omp parallel for schedule(static)
-  for (long b = 0; b < blocks; ++b)
-    std::copy(block_addresses[b].begin(), block_addresses[b].end(), record.fetch_addresses.begin() + block_start[b]);
+  for (long b = 0; b < blocks; ++b) {
+    const std::uint32_t* index = kept_nodes[b].data();
+    std::uint64_t* out = addresses + block_start[b];
+    for (std::size_t k = 0; k < kept_nodes[b].size(); ++k) out[k] = base + std::uint64_t{index[k]} * element_bytes;
+  }
 }
 
 }  // namespace
