@@ -595,10 +595,25 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   // that share of the DRAM latency (settled below, once the count of such
   // groups is known).
   const bool share_dram = record.sampled() && l2.cold() && record.touched_sectors > 0;
-  // The owner of each group whose slowest miss went to DRAM (the sampled
-  // SMs' few): sorted afterwards, so an owner's groups are counted together
-  // without a per-owner array over the whole launch.
-  std::vector<std::uint32_t> dram_group_owners;
+  // Per owner of the replayed warps, its groups whose slowest miss went to
+  // DRAM, counted in an array over the replayed warps' owners only (an
+  // array over every owner of the launch, zero-filled replay after replay,
+  // showed in profiles): a warp's place among them (1 + its index, 0 if not
+  // replayed), then its lane for a per-thread owner.
+  std::vector<std::uint32_t> replayed_place, dram_groups;
+  std::vector<std::uint32_t> dram_owners;  // those with a DRAM group, each once (the sampled SMs' few)
+  const auto lanes = static_cast<std::size_t>(gpu.warp_size);
+  if (share_dram) {
+    replayed_place.assign(warps, 0);
+    std::uint32_t places = 0;
+    for (int sm : replayed)
+      for (std::uint32_t w : skips_blocks ? kept_warps[sm] : sm_warps[sm]) replayed_place[w] = ++places;
+    dram_groups.assign(pattern.coalesced ? places : std::size_t{places} * lanes, 0);
+  }
+  auto dram_groups_of = [&](std::uint32_t owner) -> std::uint32_t& {
+    if (pattern.coalesced) return dram_groups[replayed_place[owner] - 1];
+    return dram_groups[(replayed_place[owner / lanes] - 1) * lanes + owner % lanes];
+  };
   for (std::size_t r = 0; r < rounds; ++r)
     for (int sm : replayed) {
       SmMisses& s = sms[sm];
@@ -611,7 +626,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
         slowest = std::max(slowest, level);
         if (s.group_end[m]) {
           if (share_dram && slowest == 2) {
-            dram_group_owners.push_back(s.owner[m]);
+            if (dram_groups_of(s.owner[m])++ == 0) dram_owners.push_back(s.owner[m]);
             slowest = 1;
           }
           owner_cycles[s.owner[m]] += latency[slowest] - latency[0];
@@ -630,13 +645,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
                             static_cast<double>(std::max<std::uint64_t>(1, all_units));
     const double p = sampled_dram > 0 ? std::min(1.0, expected / static_cast<double>(sampled_dram)) : 0.0;
     const double extra = p * static_cast<double>(latency[2] - latency[1]);
-    std::sort(dram_group_owners.begin(), dram_group_owners.end());
-    for (std::size_t i = 0; i < dram_group_owners.size();) {
-      const std::uint32_t owner = dram_group_owners[i];
-      std::size_t groups = 0;
-      for (; i < dram_group_owners.size() && dram_group_owners[i] == owner; ++i) ++groups;
-      owner_cycles[owner] += static_cast<std::uint64_t>(std::llround(extra * static_cast<double>(groups)));
-    }
+    for (std::uint32_t owner : dram_owners)
+      owner_cycles[owner] += static_cast<std::uint64_t>(std::llround(extra * dram_groups_of(owner)));
   }
 
   profile.sm_sector_requests.assign(gpu.sms, 0);

@@ -98,12 +98,18 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   // same integer products.
   if (record.exits_per_query()) {
     const auto rays = context.RayWarps(gpu, pattern, variants - 1, costs);
+    // A full warp's intake, divided once: only a launch's last warp may be
+    // partial.
+    const std::uint64_t full_warp_intake = CeilDiv(static_cast<std::uint64_t>(gpu.warp_size), intake_per_cycle);
     for (int sm = 0; sm < gpu.sms; ++sm) {
+      sm_warp_cycles[sm].reserve(sm_warps[sm].size());
       for (std::uint32_t w : sm_warps[sm]) {
         const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
         const std::size_t threads = std::min(n, lo + gpu.warp_size) - lo;
+        const std::uint64_t intake =
+            threads == static_cast<std::size_t>(gpu.warp_size) ? full_warp_intake : CeilDiv(threads, intake_per_cycle);
         sm_threads[sm] += threads;
-        sm_warp_cycles[sm].push_back(CeilDiv(threads, intake_per_cycle) + rays->slowest[w]);
+        sm_warp_cycles[sm].push_back(intake + rays->slowest[w]);
       }
       std::copy_n(rays->sm_passes.begin() + static_cast<long>(sm) * variants, variants, sm_variant_passes[sm].begin());
     }

@@ -181,15 +181,21 @@ BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& conte
   const auto warp_nodes = context.WarpNodes(gpu_.warp_size);
   const std::vector<std::uint32_t>& warp_steps = warp_nodes->steps;
   const std::vector<std::uint64_t>& warp_lane_nodes = warp_nodes->lane_nodes;
+  // Warp w's SM (SmOfWarp) followed block by block rather than divided out
+  // warp by warp.
+  int sm = 0, warp_in_block = 0;
   for (std::size_t w = 0; w < warps; ++w) {
     const std::size_t lo = w * gpu_.warp_size, hi = std::min(n, lo + gpu_.warp_size);
     const std::uint64_t steps = warp_steps[w];
     const std::uint64_t lane_nodes = warp_lane_nodes[w];
     warp_instructions += once_total + steps * pass_total;
     thread_instructions += (hi - lo) * once_total + lane_nodes * pass_total;
-    const int sm = SmOfWarp(w, gpu_);
     for (int c = 0; c < kSimtClassCount; ++c) sm_classes[sm][c] += mix.once[c] + steps * mix.pass[c];
     sm_latencies[sm].push_back(once_latency + steps * pass_latency + memory->warp_memory_cycles[w]);
+    if (++warp_in_block == gpu_.warps_per_block) {
+      warp_in_block = 0;
+      if (++sm == gpu_.sms) sm = 0;
+    }
   }
 
   BatchCost cost = ModelledBatchCost(specs_.name, record, gpu_, *memory);
