@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 #if defined(__x86_64__)
 #include <immintrin.h>
@@ -85,36 +86,37 @@ __attribute__((target("avx2"))) void RankAvx2(const std::int32_t* keys, std::siz
   std::copy(padded, padded + count, place);
 }
 
-}  // namespace
+// Calls rank(std::integral_constant<int, vectors>{}), for 1 <= vectors <=
+// kMax: the run-time vector count as the template argument the forms above
+// take.
+template <int kMax, class Rank>
+void WithVectorCount(std::size_t vectors, Rank rank) {
+  if constexpr (kMax > 1) {
+    if (vectors < static_cast<std::size_t>(kMax)) return WithVectorCount<kMax - 1>(vectors, rank);
+  }
+  rank(std::integral_constant<int, kMax>{});
+}
 
-static_assert(kMaxRankedKeys == 64, "the dispatch below covers up to four AVX-512 and eight AVX2 registers");
+// Checks the count, then ranks `count` keys with rank(vectors) in registers
+// of kPerVector keys each.
+template <int kPerVector, class Rank>
+void RankInVectors(std::size_t count, Rank rank) {
+  static_assert(kMaxRankedKeys % kPerVector == 0, "whole registers of keys");
+  CheckCount(count);
+  if (count > 0)
+    WithVectorCount<static_cast<int>(kMaxRankedKeys / kPerVector)>((count + kPerVector - 1) / kPerVector, rank);
+}
+
+}  // namespace
 
 __attribute__((target("avx512f"))) void RankDistinctKeysAvx512(const std::int32_t* keys, std::size_t count,
                                                                std::int32_t* place) {
-  CheckCount(count);
-  switch ((count + 15) / 16) {
-    case 0: return;
-    case 1: return RankAvx512<1>(keys, count, place);
-    case 2: return RankAvx512<2>(keys, count, place);
-    case 3: return RankAvx512<3>(keys, count, place);
-    default: return RankAvx512<4>(keys, count, place);
-  }
+  RankInVectors<16>(count, [&](auto vectors) { RankAvx512<decltype(vectors)::value>(keys, count, place); });
 }
 
 __attribute__((target("avx2"))) void RankDistinctKeysAvx2(const std::int32_t* keys, std::size_t count,
                                                           std::int32_t* place) {
-  CheckCount(count);
-  switch ((count + 7) / 8) {
-    case 0: return;
-    case 1: return RankAvx2<1>(keys, count, place);
-    case 2: return RankAvx2<2>(keys, count, place);
-    case 3: return RankAvx2<3>(keys, count, place);
-    case 4: return RankAvx2<4>(keys, count, place);
-    case 5: return RankAvx2<5>(keys, count, place);
-    case 6: return RankAvx2<6>(keys, count, place);
-    case 7: return RankAvx2<7>(keys, count, place);
-    default: return RankAvx2<8>(keys, count, place);
-  }
+  RankInVectors<8>(count, [&](auto vectors) { RankAvx2<decltype(vectors)::value>(keys, count, place); });
 }
 #else
 void RankDistinctKeysAvx512(const std::int32_t*, std::size_t, std::int32_t*) {
