@@ -222,10 +222,11 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
 
   // One pass of the functional kernel, parallel over segments of queries:
   // each query's hit, node count and last pass's exit, and for the blocks
-  // whose addresses the sample keeps, the addresses in a buffer per block.
-  // A block is the GPU's (warps_per_block warps), so a block is kept or not
-  // as a whole; the buffers are joined in launch order afterwards, so the
-  // record does not depend on the thread count or the schedule.
+  // whose addresses the sample keeps, the node indices in a buffer per
+  // block. A block is the GPU's (warps_per_block warps), so a block is kept
+  // or not as a whole; the buffers are turned into the record's addresses
+  // in launch order afterwards, so the record does not depend on the thread
+  // count or the schedule.
   const AddressSample& sample = options.sample;
   const long n = static_cast<long>(launch.count);
   const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);

@@ -4,14 +4,15 @@
 //
 // One pass of the kernel, parallel over segments of queries with OpenMP and
 // deterministic: every query's hit, node count and last pass's exit; the
-// addresses of the blocks the sample keeps, in a buffer per block, joined in
-// launch order; and, with a sample, the sectors the whole batch touched.
+// node indices of the blocks the sample keeps, in a buffer per block, turned
+// into the record's addresses in launch order; and, with a sample, the
+// sectors the whole batch touched.
 // Where CastRayBatch's SIMD lanes apply (ray_batch_lanes.h), every query
 // is cast in them, the kept ones with each lane's node indices logged;
 // elsewhere one query at a time, the kept ones with a recording visitor.
 // The record does not depend on the thread count or the path.
-// Cost: about CastRayBatch, plus one 8-byte store per kept fetch; a record
-// reused across batches keeps its capacity.
+// Cost: about CastRayBatch, plus a 4-byte and an 8-byte store per kept
+// fetch; a record reused across batches keeps its capacity.
 #include <functional>
 #include <string>
 #include <vector>
