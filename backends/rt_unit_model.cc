@@ -78,11 +78,8 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   const AccessPattern pattern = RtUnitAccessPattern(unit);
   const auto memory = context.Memory(gpu, pattern);
 
-  // Loop-pass cost per exit variant: index 0 = no exit, 1 + j = RETURN_IF j.
   const RayPassCosts costs = RayCostsOf(timing);
-  const int variants = timing.loop.return_count() + 1;
-  std::vector<std::uint64_t> pass_cycles(variants, costs.quiet_pass_cycles);
-  for (int v = 1; v < variants; ++v) pass_cycles[v] = costs.last_pass_cycles[v - 1];
+  const int variants = timing.loop.return_count() + 1;  // exit variants: 0 = no exit, 1 + j = RETURN_IF j
 
   const std::size_t n = record.query_count();
   const std::size_t warps = WarpCount(record, gpu);
@@ -115,6 +112,9 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
     }
   } else {
     const auto exits = context.Exits();
+    // Loop-pass cost per exit variant.
+    std::vector<std::uint64_t> pass_cycles(variants, costs.quiet_pass_cycles);
+    for (int v = 1; v < variants; ++v) pass_cycles[v] = costs.last_pass_cycles[v - 1];
 #pragma omp parallel for schedule(dynamic, 1)
     for (int sm = 0; sm < gpu.sms; ++sm) {
       std::vector<std::uint64_t>& passes = sm_variant_passes[sm];

@@ -229,7 +229,7 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   // count or the schedule.
   const AddressSample& sample = options.sample;
   const long n = static_cast<long>(launch.count);
-  const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);
+  const long block = static_cast<long>(sample.BlockQueries());  // KeptAddressOffsets' blocks
   const long blocks = (n + block - 1) / block;
   std::vector<std::uint8_t>& last_exit = record.last_exits;
   last_exit.assign(launch.count, kNoExit);

@@ -169,7 +169,7 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   if (record && options.sact.sphere_pretests)
     throw std::invalid_argument("CollideBatchRecorded: the SACT program has no sphere pre-test section");
   const long n = static_cast<long>(obbs.size());
-  const long block = std::max(1L, static_cast<long>(sample.warp_size) * sample.warps_per_block);
+  const long block = static_cast<long>(sample.BlockQueries());  // KeptAddressOffsets' blocks
   const long blocks = (n + block - 1) / block;
   outcomes->resize(obbs.size());
   const std::uint64_t node_count = tree.nodes().size();
