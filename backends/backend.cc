@@ -110,11 +110,12 @@ BatchCost BatchCost::ScaledBy(double factor) const {
 }
 
 std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, const KernelRecord& record) {
-  // The backends price in parallel: those sharing a memory replay wait for
-  // the one that runs it, the others replay at the same time. Each
-  // backend's price does not depend on the order.
+  // The work the backends share is computed first, spread over the threads
+  // (PricingContext::ComputeExpected); then the backends price in parallel.
+  // Each backend's price does not depend on the order.
   PricingContext context(record);
   for (const Backend* b : backends) b->AnnouncePricing(record, context);
+  context.ComputeExpected();
   std::vector<BatchCost> costs(backends.size());
   std::vector<std::exception_ptr> errors(backends.size());
 #pragma omp parallel for schedule(dynamic, 1)

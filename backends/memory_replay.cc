@@ -392,9 +392,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // Each lane's rank in its warp by node count, ties in launch order: its
   // key (node count, lane) is distinct, so its rank is the number of smaller
   // keys (key_ranks.h; in 32 bits where node counts allow, which runs in
-  // more SIMD lanes).
-  std::uint32_t lane_nodes[kMaxRankedKeys];  // of the warp ranked last
-  auto RanksByNodes = [&](std::uint32_t warp, std::vector<std::uint32_t>& rank) {
+  // more SIMD lanes). Also gives the lanes' node counts.
+  auto RanksByNodes = [&](std::uint32_t warp, std::vector<std::uint32_t>& rank, std::uint32_t* lane_nodes) {
     const std::size_t first = std::size_t{warp} * lanes, count = std::min(n, first + lanes) - first;
     std::uint32_t most = 0;
     for (std::size_t i = 0; i < count; ++i) {
@@ -414,21 +413,48 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     else
       rank_keys(std::uint64_t{});
   };
-  // Each twin lends to a warp of every unsampled SM: its lanes' rates, by
-  // rank of node count, are found once, when first borrowed.
-  std::vector<std::uint32_t> mine, twin_rank;
-  std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty until found
+  // The twin of the unkept warp at position k of SM sm's list: the same
+  // warp of the nearest kept block round at or before its own, on a sampled
+  // SM chosen by this SM's number.
+  auto twin_of = [&](int sm, std::size_t k) {
+    const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
+    return (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
+  };
+  // Per thread, each twin that lends: its lanes' rates, by rank of node
+  // count, found before the SMs borrow them.
+  std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty: lends nothing
+  if (!pattern.coalesced) {
+    std::vector<std::uint8_t> lends(twins.size(), 0);
+    for (int sm = 0; sm < gpu.sms; ++sm)
+      for (std::size_t k = 0; k < sm_warps[sm].size(); ++k)
+        if (!kept[sm_warps[sm][k]]) lends[twin_of(sm, k)] = 1;
+    std::vector<std::uint32_t> twin_rank;
+    std::uint32_t lane_nodes[kMaxRankedKeys];
+    for (std::size_t t = 0; t < twins.size(); ++t) {
+      if (!lends[t]) continue;
+      RanksByNodes(twins[t], twin_rank, lane_nodes);
+      std::vector<double>& theirs = twin_rates[t];
+      theirs.resize(twin_rank.size());
+      for (std::size_t i = 0; i < twin_rank.size(); ++i) {
+        const std::size_t partner = std::size_t{twins[t]} * lanes + i;
+        theirs[twin_rank[i]] = lane_nodes[i] > 0 ? rate(extra_of_query(partner), lane_nodes[i]) : mean_extra;
+      }
+    }
+  }
+  // SM by SM, each an OpenMP task (every SM writes only its own warps' cycles
+  // and its own request count): a caller that replays several patterns at
+  // once (PricingContext::ComputeExpected) lets an idle thread take SMs of
+  // this estimate; anywhere else they run in turn on the calling thread.
+#pragma omp taskloop grainsize(1) default(shared)
   for (int sm = 0; sm < gpu.sms; ++sm) {
     profile.sm_sector_requests[sm] +=
         static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
+    std::vector<std::uint32_t> mine;
+    std::uint32_t lane_nodes[kMaxRankedKeys];
     for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
       const std::uint32_t w = sm_warps[sm][k];
       if (kept[w]) continue;
-      // The same warp of the nearest kept block round at or before this
-      // one, on a sampled SM chosen by this SM's number.
-      const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
-      const std::size_t t =
-          (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
+      const std::size_t t = twin_of(sm, k);
       const std::uint32_t twin = twins[t];
       if (pattern.coalesced) {
         AddRoundedCycles(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
@@ -438,16 +464,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // longest query with the twin's longest, ...), each borrowing its
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
-      std::vector<double>& theirs = twin_rates[t];
-      if (theirs.empty()) {  // a warp has at least one query
-        RanksByNodes(twin, twin_rank);
-        theirs.resize(twin_rank.size());
-        for (std::size_t i = 0; i < twin_rank.size(); ++i) {
-          const std::size_t partner = std::size_t{twin} * lanes + i;
-          theirs[twin_rank[i]] = lane_nodes[i] > 0 ? rate(extra_of_query(partner), lane_nodes[i]) : mean_extra;
-        }
-      }
-      RanksByNodes(w, mine);
+      const std::vector<double>& theirs = twin_rates[t];
+      RanksByNodes(w, mine, lane_nodes);
       AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), theirs.data(), theirs.size(), mean_extra,
                         owner_cycles.data() + std::size_t{w} * lanes);
     }

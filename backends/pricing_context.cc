@@ -63,11 +63,55 @@ std::shared_ptr<const WarpNodeCounts> PricingContext::WarpNodes(int warp_size) {
               [&] { return CountWarpNodes(record_.fetch_offsets, static_cast<std::size_t>(warp_size)); });
 }
 
+void PricingContext::ExpectMemory(const GpuParams& gpu, const AccessPattern& pattern) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  expected_memory_.emplace(MemoryKey(gpu, pattern), ExpectedMemory{gpu, pattern});
+}
+
 void PricingContext::ExpectRayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits,
                                     const RayPassCosts& costs) {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<RayPassCosts>& expected = expected_rays_[MemoryKey(gpu, pattern) + " | " + std::to_string(exits)];
-  if (std::find(expected.begin(), expected.end(), costs) == expected.end()) expected.push_back(costs);
+  expected_memory_.emplace(MemoryKey(gpu, pattern), ExpectedMemory{gpu, pattern});
+  ExpectedRays& expected =
+      expected_rays_
+          .emplace(MemoryKey(gpu, pattern) + " | " + std::to_string(exits), ExpectedRays{gpu, pattern, exits, {}})
+          .first->second;
+  if (std::find(expected.costs.begin(), expected.costs.end(), costs) == expected.costs.end())
+    expected.costs.push_back(costs);
+}
+
+void PricingContext::ComputeExpected() {
+  std::vector<ExpectedMemory> memory;
+  std::vector<ExpectedRays> rays;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [key, m] : expected_memory_) memory.push_back(m);
+    for (const auto& [key, r] : expected_rays_) rays.push_back(r);
+  }
+  // Each result keeps its computation's exception (Once), which reaches the
+  // backend that asks for it; here it is only started.
+  auto ahead = [](auto compute) {
+    try {
+      compute();
+    } catch (...) {
+    }
+  };
+  for (const ExpectedMemory& m : memory) ahead([&] { WarpNodes(m.gpu.warp_size); });
+  // The per-thread replays first: they take longer than the coalesced ones
+  // (every lane's fetch is a request, and the sampled estimate pairs lanes).
+  std::stable_sort(memory.begin(), memory.end(), [](const ExpectedMemory& a, const ExpectedMemory& b) {
+    return !a.pattern.coalesced && b.pattern.coalesced;
+  });
+  // One task per replay: a thread whose replay ends first takes SMs of the
+  // others' sampled estimates (EstimateUnsampled's tasks).
+#pragma omp parallel
+#pragma omp single
+  for (std::size_t i = 0; i < memory.size(); ++i) {
+#pragma omp task default(shared) firstprivate(i)
+    ahead([&] { Memory(memory[i].gpu, memory[i].pattern); });
+  }
+  for (const ExpectedRays& r : rays)
+    if (!r.costs.empty()) ahead([&] { RayWarps(r.gpu, r.pattern, r.exits, r.costs.front()); });
 }
 
 std::shared_ptr<const RayWarpCycles> PricingContext::RayWarps(const GpuParams& gpu, const AccessPattern& pattern,
@@ -77,7 +121,8 @@ std::shared_ptr<const RayWarpCycles> PricingContext::RayWarps(const GpuParams& g
     RayWarpGroup g;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      g.costs = expected_rays_[key];
+      const auto expected = expected_rays_.find(key);
+      if (expected != expected_rays_.end()) g.costs = expected->second.costs;
     }
     if (std::find(g.costs.begin(), g.costs.end(), costs) == g.costs.end()) g.costs.push_back(costs);
     for (RayWarpCycles& c : CountRayWarpCycles(record_, gpu, exits, Memory(gpu, pattern)->query_memory_cycles, g.costs))

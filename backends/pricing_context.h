@@ -12,8 +12,10 @@
 //              the first unit asked.
 // Thread-safe: the first caller of a profile computes it while later
 // callers of the same one wait for it, and callers of different profiles run
-// at once. A result never depends on what else was asked or announced. The
-// record must outlive the context and stay unchanged.
+// at once. What was announced (ExpectMemory, ExpectRayWarps) may also be
+// computed ahead, all of it at once (ComputeExpected), before the backends
+// ask. A result never depends on what else was asked, announced or computed
+// ahead. The record must outlive the context and stay unchanged.
 #include <future>
 #include <map>
 #include <memory>
@@ -37,9 +39,23 @@ class PricingContext {
   std::shared_ptr<const ExitProfile> Exits();
   std::shared_ptr<const WarpNodeCounts> WarpNodes(int warp_size);
 
+  // A backend that will ask Memory(gpu, pattern) says so first, so that
+  // ComputeExpected replays it beside the others.
+  void ExpectMemory(const GpuParams& gpu, const AccessPattern& pattern);
   // A unit that will ask RayWarps(gpu, pattern, exits, costs) says so
-  // first, so that one pass serves it and the others announced with it.
+  // first, so that one pass serves it and the others announced with it
+  // (and expects Memory(gpu, pattern)).
   void ExpectRayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits, const RayPassCosts& costs);
+  // Computes everything announced so far, in an order that keeps every
+  // thread busy: the warps' node counts, then the memory replays at once
+  // (an OpenMP task each, the longest first; a thread whose replay ends
+  // first takes SMs of another's sampled estimate), then each ray pass with
+  // its SMs spread over the threads. Left to the backends' own calls, a
+  // replay and the pass that needs it ran on one thread while the others
+  // waited for them. Called outside a parallel region for that (inside one,
+  // it runs on the calling thread). A computation that fails keeps its
+  // exception for the backend that asks for its result.
+  void ComputeExpected();
   // For a record with an exit per query: the warps' cycles under `costs`
   // with the memory cycles of Memory(gpu, pattern).
   std::shared_ptr<const RayWarpCycles> RayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits,
@@ -53,12 +69,23 @@ class PricingContext {
     std::vector<RayPassCosts> costs;
     std::vector<std::shared_ptr<const RayWarpCycles>> cycles;
   };
+  struct ExpectedMemory {
+    GpuParams gpu;
+    AccessPattern pattern;
+  };
+  struct ExpectedRays {
+    GpuParams gpu;
+    AccessPattern pattern;
+    int exits = 0;
+    std::vector<RayPassCosts> costs;  // in the order announced
+  };
   const KernelRecord& record_;
   std::mutex mutex_;
+  std::map<std::string, ExpectedMemory> expected_memory_;
   std::map<std::string, Pending<MemoryProfile>> profiles_;
   std::map<std::string, Pending<ExitProfile>> exits_;
   std::map<std::string, Pending<WarpNodeCounts>> warp_nodes_;
-  std::map<std::string, std::vector<RayPassCosts>> expected_rays_;
+  std::map<std::string, ExpectedRays> expected_rays_;
   std::map<std::string, Pending<RayWarpGroup>> ray_groups_;
 };
 

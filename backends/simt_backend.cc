@@ -141,10 +141,19 @@ SimtInstructionMix SimtBackend::InstructionMix(const KernelRecord& record) const
   return mix;
 }
 
+AccessPattern SimtBackend::MemoryPattern(const SimtInstructionMix& mix) const {
+  return AccessPattern{simt_.ResidentWarps(gpu_, mix.registers), true};
+}
+
+void SimtBackend::AnnouncePricing(const KernelRecord& record, PricingContext& context) const {
+  context.ExpectMemory(gpu_, MemoryPattern(InstructionMix(record)));
+}
+
 BatchCost SimtBackend::DoPrice(const KernelRecord& record, PricingContext& context) const {
   const SimtInstructionMix mix = InstructionMix(record);
-  const int resident = simt_.ResidentWarps(gpu_, mix.registers);
-  const auto memory = context.Memory(gpu_, AccessPattern{resident, true});
+  const AccessPattern pattern = MemoryPattern(mix);
+  const int resident = pattern.warps_per_wave;
+  const auto memory = context.Memory(gpu_, pattern);
   const auto timing = Timings(simt_);
 
   auto work_of = [&](const std::vector<MicroOp>& ops) {

@@ -67,6 +67,7 @@ class SimtBackend final : public Backend {
   const BackendSpecs& specs() const override { return specs_; }
 
   SimtInstructionMix InstructionMix(const KernelRecord& record) const;
+  void AnnouncePricing(const KernelRecord& record, PricingContext& context) const override;
   // The per-op fallback's instructions for one execution of `ops` (loop:
   // one pass, with its branches).
   SimtClassCounts FallbackInstructions(const std::vector<MicroOp>& ops, bool loop, bool fp64) const;
@@ -75,6 +76,9 @@ class SimtBackend final : public Backend {
   BatchCost DoPrice(const KernelRecord& record, PricingContext& context) const override;
 
  private:
+  // Coalesced, in waves of the warps that fit an SM at the mix's registers.
+  AccessPattern MemoryPattern(const SimtInstructionMix& mix) const;
+
   GpuParams gpu_;
   SimtParams simt_;
   EnergyParams energy_;
