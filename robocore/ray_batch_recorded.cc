@@ -363,7 +363,10 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   if (block_start.back() != kept) throw std::logic_error("CastRayBatchRecorded: a kept block lost fetches");
   record.fetch_addresses.resize(kept);
   std::uint64_t* const addresses = record.fetch_addresses.data();
-  const std::uint64_t base = fetched.base, element_bytes = fetched.element_bytes;
+  // A 32-bit index times a 32-bit size: one 32x32->64 multiply per address
+  // (a 64-bit element size made it a 64x64 one, three in SSE2).
+  const std::uint64_t base = fetched.base;
+  const std::uint32_t element_bytes = fetched.element_bytes;
 #pragma omp parallel for schedule(static)
   for (long b = 0; b < blocks; ++b) {
     const std::uint32_t* index = kept_nodes[b].data();

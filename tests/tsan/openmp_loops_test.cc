@@ -27,7 +27,9 @@ DelibotSettings SmallRun(SensorModelKind model) {
 
 // monte_carlo_localizer.cc (motion update), beam_sensor_model.cc (both
 // loops), ray_batch_recorded.cc (the recorded casts), and the pricing of
-// every update: memory_replay.cc (three loops) and rt_unit_model.cc.
+// every update: backend.cc (PriceAll), pricing_context.cc (the replays'
+// tasks), memory_replay.cc (two loops and the sampled estimate's tasks),
+// ray_warp_cycles.cc and rt_unit_model.cc.
 TEST(OpenMpLoops, BeamModelFilterWithPricingAndHypotheses) {
   omp_set_num_threads(4);
   const OccupancyGrid g = test::AsymmetricRoom();
