@@ -71,7 +71,18 @@ WarpNodeCounts CountWarpNodes(const std::vector<std::uint64_t>& fetch_offsets, s
   WarpNodeCounts counts;
   counts.steps.resize((queries + warp_size - 1) / warp_size);
   counts.lane_nodes.resize(counts.steps.size());
-  CountWarpNodes(fetch_offsets.data(), queries, warp_size, counts.steps.data(), counts.lane_nodes.data());
+  // In runs of whole warps spread over the threads: a warp's counts depend
+  // on its own queries alone.
+  constexpr std::size_t kRunWarps = 1024;
+  const std::size_t warps = counts.steps.size();
+  const long runs = static_cast<long>((warps + kRunWarps - 1) / kRunWarps);
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < runs; ++r) {
+    const std::size_t first = static_cast<std::size_t>(r) * kRunWarps, last = std::min(warps, first + kRunWarps);
+    const std::size_t begin = first * warp_size, end = std::min(queries, last * warp_size);
+    CountWarpNodes(fetch_offsets.data() + begin, end - begin, warp_size, counts.steps.data() + first,
+                   counts.lane_nodes.data() + first);
+  }
   return counts;
 }
 
