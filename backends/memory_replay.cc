@@ -381,7 +381,18 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
         kept_extra += extra_of_query(q);
     }
-  if (kept_units == 0 || all_units == kept_units || twins.empty()) return;
+  // Per thread, an unkept query's cycles are written here whole (ReplayMemory
+  // wrote only the kept ones): the L1 latency per node, then what it borrows.
+  auto write_l1_cycles = [&](std::uint32_t w) {
+    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
+      owner_cycles[q] = l1_latency * record.nodes(q);
+  };
+  if (kept_units == 0 || all_units == kept_units || twins.empty()) {
+    if (!pattern.coalesced)
+      for (std::uint32_t w = 0; w < kept.size(); ++w)
+        if (!kept[w]) write_l1_cycles(w);
+    return;
+  }
   const double mean_extra = static_cast<double>(kept_extra) / static_cast<double>(kept_units);
   const double requests_per_unit = static_cast<double>(kept_requests) / static_cast<double>(kept_units);
   // Cycles beyond the L1 per unit of `twin` (a warp, or a query), or the
@@ -466,8 +477,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // its tie to query length, which decide the warp's slowest lane.
       const std::vector<double>& theirs = twin_rates[t];
       RanksByNodes(w, mine, lane_nodes);
-      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), theirs.data(), theirs.size(), mean_extra,
-                        owner_cycles.data() + std::size_t{w} * lanes);
+      std::uint64_t* cycles = owner_cycles.data() + std::size_t{w} * lanes;
+      for (std::size_t i = 0; i < mine.size(); ++i) cycles[i] = l1_latency * lane_nodes[i];
+      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), theirs.data(), theirs.size(), mean_extra, cycles);
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
@@ -574,8 +586,16 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   std::uint64_t* first_cycles = owner_cycles.data();
   if (pattern.coalesced) {
     for (std::size_t w = 0; w < warps; ++w) first_cycles[w] = latency[0] * steps[w];
-  } else {
+  } else if (!record.sampled()) {
     for (std::size_t q = 0; q < n; ++q) first_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
+  } else {
+    // The replayed (kept) warps' queries only: EstimateUnsampled writes the
+    // others' whole, with their node counts at hand (a pass over every
+    // query's offsets, out of the host's caches, showed in profiles).
+    for (std::size_t w = 0; w < warps; ++w)
+      if (kept[w])
+        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
+          first_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
   }
 
   // The SMs replayed, each with the warps whose addresses the record kept
