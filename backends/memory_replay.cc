@@ -431,21 +431,18 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
     return (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
   };
-  // Per thread, each twin that lends: its lanes' rates, by rank of node
-  // count, found before the SMs borrow them.
-  std::vector<std::vector<double>> twin_rates(pattern.coalesced ? 0 : twins.size());  // empty: lends nothing
+  // Per thread, every twin's lanes' rates by rank of node count (a twin
+  // lends to a warp of every unsampled SM), found before the SMs borrow
+  // them: twin t's are rates[t * lanes, t * lanes + its lane count).
+  std::vector<double> twin_rates(pattern.coalesced ? 0 : twins.size() * lanes);
+  std::vector<std::uint32_t> twin_lanes(pattern.coalesced ? 0 : twins.size());
   if (!pattern.coalesced) {
-    std::vector<std::uint8_t> lends(twins.size(), 0);
-    for (int sm = 0; sm < gpu.sms; ++sm)
-      for (std::size_t k = 0; k < sm_warps[sm].size(); ++k)
-        if (!kept[sm_warps[sm][k]]) lends[twin_of(sm, k)] = 1;
     std::vector<std::uint32_t> twin_rank;
     std::uint32_t lane_nodes[kMaxRankedKeys];
     for (std::size_t t = 0; t < twins.size(); ++t) {
-      if (!lends[t]) continue;
       RanksByNodes(twins[t], twin_rank, lane_nodes);
-      std::vector<double>& theirs = twin_rates[t];
-      theirs.resize(twin_rank.size());
+      double* theirs = twin_rates.data() + t * lanes;
+      twin_lanes[t] = static_cast<std::uint32_t>(twin_rank.size());
       for (std::size_t i = 0; i < twin_rank.size(); ++i) {
         const std::size_t partner = std::size_t{twins[t]} * lanes + i;
         theirs[twin_rank[i]] = lane_nodes[i] > 0 ? rate(extra_of_query(partner), lane_nodes[i]) : mean_extra;
@@ -475,11 +472,11 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // longest query with the twin's longest, ...), each borrowing its
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
-      const std::vector<double>& theirs = twin_rates[t];
       RanksByNodes(w, mine, lane_nodes);
       std::uint64_t* cycles = owner_cycles.data() + std::size_t{w} * lanes;
       for (std::size_t i = 0; i < mine.size(); ++i) cycles[i] = l1_latency * lane_nodes[i];
-      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), theirs.data(), theirs.size(), mean_extra, cycles);
+      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t], mean_extra,
+                        cycles);
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
