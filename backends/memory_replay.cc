@@ -28,6 +28,12 @@ struct SmMisses {
   std::vector<std::uint8_t> group_end;  // 1 on the last miss of its group
   std::vector<std::uint32_t> wave_end;  // per wave: one past its last miss
   std::uint64_t requests = 0, l2_hits = 0, dram = 0;
+
+  void Reserve(std::size_t misses) {
+    sector.reserve(misses);
+    owner.reserve(misses);
+    group_end.reserve(misses);
+  }
 };
 
 // Replays one SM's waves through its L1. Each wave runs step-major (step 0
@@ -612,8 +618,14 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
     const int sm = replayed[i];
-    SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
     const std::vector<std::uint32_t>& list = skips_blocks ? kept_warps[sm] : sm_warps[sm];
+    // Room for as many misses as the SM's warps fetch nodes (every miss, when
+    // each node lies within one sector), so that the lists are not copied
+    // as they grow.
+    std::size_t fetches = 0;
+    for (std::uint32_t w : list) fetches += warp_nodes.lane_nodes[w];
+    sms[sm].Reserve(fetches);
+    SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
     for (std::size_t lo = 0; lo < list.size(); lo += wave)
       replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
   }
