@@ -49,10 +49,11 @@ RayPassCosts RayCostsOf(const ProgramTiming& timing) {
 }  // namespace
 
 void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing) {
+  const AccessPattern pattern = RtUnitAccessPattern(*pricing.unit);
+  context.ExpectMemory(*pricing.gpu, pattern);
   if (!record.exits_per_query()) return;
   const ProgramTiming timing(*record.program, record.leaf.get(), pricing.datapath);
-  context.ExpectRayWarps(*pricing.gpu, RtUnitAccessPattern(*pricing.unit), timing.loop.return_count(),
-                         RayCostsOf(timing));
+  context.ExpectRayWarps(*pricing.gpu, pattern, timing.loop.return_count(), RayCostsOf(timing));
 }
 
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit) {

@@ -44,9 +44,10 @@ struct RtUnitPricing {
 BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing,
                         const std::string& backend_name);
 
-// Tells the context what PriceOnRtUnit will ask of it for this record
-// (PricingContext::ExpectRayWarps), so that the units pricing one record
-// share one pass over its queries. Prices do not depend on it.
+// Tells the context what PriceOnRtUnit will ask of it for this record (its
+// memory replay, and for a ray record PricingContext::ExpectRayWarps), so
+// that the replay runs beside the other backends' and the units pricing one
+// record share one pass over its queries. Prices do not depend on it.
 void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing);
 
 // What TTA+ and RoboCore backends share: each says how its unit prices a
