@@ -15,6 +15,15 @@
 namespace rc {
 namespace {
 
+// Per thread: the L1 latency of every node fetch of warp w's queries, the
+// share of their memory cycles that every fetch pays (`lanes` queries a
+// warp).
+void WriteL1Cycles(const KernelRecord& record, std::size_t w, std::size_t lanes, std::uint64_t l1_latency,
+                   std::uint64_t* query_cycles) {
+  const std::size_t n = record.query_count();
+  for (std::size_t q = w * lanes; q < std::min(n, (w + 1) * lanes); ++q) query_cycles[q] = l1_latency * record.nodes(q);
+}
+
 // What one SM's replay leaves for the shared L2: its L1 misses, in issue
 // order, wave by wave, and its request counts. A group (one node fetch of
 // one thread, or one warp step) waits for its slowest request. Latencies
@@ -389,14 +398,10 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
     }
   // Per thread, an unkept query's cycles are written here whole (ReplayMemory
   // wrote only the kept ones): the L1 latency per node, then what it borrows.
-  auto write_l1_cycles = [&](std::uint32_t w) {
-    for (std::size_t q = std::size_t{w} * lanes; q < std::min(n, (std::size_t{w} + 1) * lanes); ++q)
-      owner_cycles[q] = l1_latency * record.nodes(q);
-  };
   if (kept_units == 0 || all_units == kept_units || twins.empty()) {
     if (!pattern.coalesced)
-      for (std::uint32_t w = 0; w < kept.size(); ++w)
-        if (!kept[w]) write_l1_cycles(w);
+      for (std::size_t w = 0; w < kept.size(); ++w)
+        if (!kept[w]) WriteL1Cycles(record, w, lanes, l1_latency, owner_cycles.data());
     return;
   }
   const double mean_extra = static_cast<double>(kept_extra) / static_cast<double>(kept_units);
@@ -596,9 +601,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
     // others' whole, with their node counts at hand (a pass over every
     // query's offsets, out of the host's caches, showed in profiles).
     for (std::size_t w = 0; w < warps; ++w)
-      if (kept[w])
-        for (std::size_t q = w * gpu.warp_size; q < std::min(n, (w + 1) * gpu.warp_size); ++q)
-          first_cycles[q] = latency[0] * (offsets[q + 1] - offsets[q]);
+      if (kept[w]) WriteL1Cycles(record, w, static_cast<std::size_t>(gpu.warp_size), latency[0], first_cycles);
   }
 
   // The SMs replayed, each with the warps whose addresses the record kept

@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "backends/backend.h"
+#include "backends/memory_replay.h"
 #include "common/random_stream.h"
 #include "robocore/address_sample.h"
 #include "robocore/ray_batch_recorded.h"
@@ -137,6 +138,42 @@ TEST(SampledPricing, RefusesASampleTakenForAnotherPlacement) {
   BackendParameters params;
   params.gpu.sms = 16;  // the sample was taken for 8
   EXPECT_THROW(Backend::Create("simt", params)->Price(sampled), std::logic_error);
+}
+
+// When the kept warps fetched nothing, there is no rate to borrow: each
+// unkept query then waits for the L1 at every node it fetched, as the
+// exact replay charges at least (its cycles are written by the estimate,
+// not by the replay, which writes the kept queries' only).
+TEST(SampledPricing, UnkeptQueriesPayTheL1WhenTheKeptOnesFetchedNothing) {
+  const OccupancyGrid grid = test::RoomGrid(100, 80, 0.05, 0.02, 3);
+  const RayCastScene scene(grid, RayCastMethod::kDda);
+  const GpuParams gpu;
+  const int block = gpu.warp_size * gpu.warps_per_block;
+  RayBatch batch;
+  batch.max_range_m = 3.0;
+  for (int b = 0; b < 2 * gpu.sms; ++b)
+    for (int i = 0; i < block; ++i) {
+      // Blocks on SM 0, the one the sample keeps, start off the map and
+      // head away from it; the others start inside.
+      const bool off_map = b % gpu.sms == 0;
+      batch.queries.push_back({off_map ? -2.0 : 2.0, 2.0, off_map ? 3.1 : 0.01 * i});
+    }
+  std::vector<RayHit> hits;
+  KernelRecord sampled;
+  RecordOptions options;
+  options.sample.sampled_sms = 1;
+  CastRayBatchRecorded(scene, batch, hits, sampled, options);
+  ASSERT_TRUE(sampled.sampled());
+  std::uint64_t kept_nodes = 0, unkept_nodes = 0;
+  for (std::size_t q = 0; q < sampled.query_count(); ++q)
+    (sampled.address_sample.KeepsQuery(q) ? kept_nodes : unkept_nodes) += sampled.nodes(q);
+  ASSERT_EQ(kept_nodes, 0u) << "the case needs kept warps without fetches";
+  ASSERT_GT(unkept_nodes, 0u);
+  const MemoryProfile profile = ReplayMemory(sampled, gpu, AccessPattern{4, false});
+  ASSERT_EQ(profile.query_memory_cycles.size(), sampled.query_count());
+  for (std::size_t q = 0; q < sampled.query_count(); ++q)
+    EXPECT_EQ(profile.query_memory_cycles[q], static_cast<std::uint64_t>(gpu.l1_latency_cycles) * sampled.nodes(q))
+        << q;
 }
 
 }  // namespace
