@@ -1,26 +1,33 @@
 #!/usr/bin/env bash
 # Pricing's end-to-end cost as a user sees it: whole `rcbench delibot`
 # processes, priced (the default) and --no-pricing alternating, each round
-# both workloads, one thread. Prints one line per run: workload, mode, wall
-# (s), user + system CPU (s) and peak RSS (KB) from GNU time, then the
-# medians' ratios. CPU time is the load-independent measure on a shared
-# machine; wall time is what a user waits. The claim audit is off in both
-# (--no-claim-audit): it prices nothing, and its host time in both runs
-# would make pricing's share look smaller than it is.
-# Usage: benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
+# every workload, on THREADS threads (default 1). Prints one line per run:
+# workload, mode, wall (s), user + system CPU (s) and peak RSS (KB) from GNU
+# time, then per workload the medians' ratios and the median and largest of
+# the rounds' paired ratios (a round's priced run over its unpriced one,
+# which ran beside it and so saw the same load). CPU time is the
+# load-independent measure on a shared machine; wall time is what a user
+# waits. The claim audit is off in both (--no-claim-audit): it prices
+# nothing, and its host time in both runs would make pricing's share look
+# smaller than it is. The workloads: the demo; the demo with the beam model,
+# whose first update casts 25 million rays (the costliest to price); Wean
+# with every beam.
+# Usage: [THREADS=n] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
 set -euo pipefail
 RCBENCH="$(realpath "${1:-build/rcbench}")"
 DATA="$(realpath "${2:-../shared/data}")"
 ROUNDS="${3:-3}"
+THREADS="${THREADS:-1}"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"
 
 declare -A ARGS=(
-  [demo]="delibot --threads 1 --no-claim-audit"
-  [wean_180_beams]="delibot --threads 1 --no-claim-audit --map $DATA/wean/wean.dat --trace $DATA/wean/robotdata1.log --particles 2000 --beam-step 1 --max-records 100"
+  [demo]="delibot --threads $THREADS --no-claim-audit"
+  [beam_model]="delibot --threads $THREADS --no-claim-audit --sensor-model beam"
+  [wean_180_beams]="delibot --threads $THREADS --no-claim-audit --map $DATA/wean/wean.dat --trace $DATA/wean/robotdata1.log --particles 2000 --beam-step 1 --max-records 100"
 )
-workloads=(demo)
+workloads=(demo beam_model)
 [ -f "$DATA/wean/wean.dat" ] && workloads+=(wean_180_beams) || echo "no $DATA/wean: the Wean workload is skipped"
 
 : > runs.txt
@@ -43,8 +50,8 @@ runs = {}
 for line in open(sys.argv[1]):
     w, mode, wall, cpu, rss = line.split()
     runs.setdefault((w, mode), []).append((float(wall), float(cpu), int(rss)))
-print("\n| workload | CPU priced / unpriced (s) | ratio | wall priced / unpriced (s) | ratio | peak RSS priced / unpriced (MB) | ratio |")
-print("|---|---|---|---|---|---|---|")
+print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio |")
+print("|---|---|---|---|---|---|---|---|---|")
 for w in dict.fromkeys(k[0] for k in runs):
     p, u = runs[(w, "priced")], runs[(w, "unpriced")]
     med = lambda xs, i: statistics.median(x[i] for x in xs)
@@ -52,5 +59,8 @@ for w in dict.fromkeys(k[0] for k in runs):
     for i, scale in ((1, 1), (0, 1), (2, 1024)):
         a, b = med(p, i) / scale, med(u, i) / scale
         cells += [f"{a:.2f} / {b:.2f}" if scale == 1 else f"{a:.0f} / {b:.0f}", f"{a / b:.2f}x"]
+        if scale == 1:
+            paired = [x[i] / y[i] for x, y in zip(p, u)]
+            cells.append(f"{statistics.median(paired):.2f}x, {max(paired):.2f}x")
     print(f"| {w} | " + " | ".join(cells) + " |")
 PY
