@@ -15,10 +15,13 @@ RC_AVX512_WARNINGS_OFF
 
 namespace rc {
 
-void AddBorrowedCyclesScalar(const std::uint32_t* rank, const std::uint32_t* nodes, std::size_t count,
-                             const double* rate, std::size_t rate_count, double fallback, std::uint64_t* cycles) {
-  for (std::size_t i = 0; i < count; ++i)
+void WriteBorrowedCyclesScalar(const std::uint32_t* rank, const std::uint32_t* nodes, std::size_t count,
+                               const double* rate, std::size_t rate_count, double fallback, std::uint64_t l1_latency,
+                               std::uint64_t* cycles) {
+  for (std::size_t i = 0; i < count; ++i) {
+    cycles[i] = l1_latency * nodes[i];
     AddRoundedCycles(cycles[i], (rank[i] < rate_count ? rate[rank[i]] : fallback) * nodes[i]);
+  }
 }
 
 #if defined(__x86_64__)
@@ -26,14 +29,15 @@ void AddBorrowedCyclesScalar(const std::uint32_t* rank, const std::uint32_t* nod
 // Eight lanes a step: the rates gathered by rank, the products and their
 // rounding in vectors; a step with a product outside [0, 2^63) goes lane by
 // lane instead.
-__attribute__((target("avx512f,avx512dq,avx512vl"))) void AddBorrowedCyclesLanes(
+__attribute__((target("avx512f,avx512dq,avx512vl"))) void WriteBorrowedCyclesLanes(
     const std::uint32_t* rank, const std::uint32_t* nodes, std::size_t count, const double* rate,
-    std::size_t rate_count, double fallback, std::uint64_t* cycles) {
+    std::size_t rate_count, double fallback, std::uint64_t l1_latency, std::uint64_t* cycles) {
   // Ranks are 32-bit: with more rates than that, every rank has one.
   const bool every_rank = rate_count > 0xFFFFFFFFu;
   const __m256i limit = _mm256_set1_epi32(static_cast<int>(static_cast<std::uint32_t>(every_rank ? 0 : rate_count)));
   const __m512d otherwise = _mm512_set1_pd(fallback);
   const __m512d zero = _mm512_setzero_pd(), top = _mm512_set1_pd(0x1p63), half = _mm512_set1_pd(0.5);
+  const __m512i l1 = _mm512_set1_epi64(static_cast<long long>(l1_latency));
   for (std::size_t i = 0; i < count; i += 8) {
     const auto in = static_cast<__mmask8>(count - i >= 8 ? 0xFF : (1u << (count - i)) - 1);
     const __m256i r = _mm256_maskz_loadu_epi32(in, rank + i);
@@ -43,13 +47,13 @@ __attribute__((target("avx512f,avx512dq,avx512vl"))) void AddBorrowedCyclesLanes
     const __m512d extra = _mm512_mul_pd(borrowed, _mm512_cvtepu32_pd(k));
     const __mmask8 inline_ok = _mm512_cmp_pd_mask(extra, zero, _CMP_GE_OQ) & _mm512_cmp_pd_mask(extra, top, _CMP_LT_OQ);
     if ((inline_ok & in) != in) {
-      AddBorrowedCyclesScalar(rank + i, nodes + i, count - i < 8 ? count - i : 8, rate, rate_count, fallback,
-                              cycles + i);
+      WriteBorrowedCyclesScalar(rank + i, nodes + i, count - i < 8 ? count - i : 8, rate, rate_count, fallback,
+                                l1_latency, cycles + i);
       continue;
     }
     const __m512i whole = _mm512_cvttpd_epi64(extra);
     const __mmask8 up = _mm512_cmp_pd_mask(_mm512_sub_pd(extra, _mm512_cvtepi64_pd(whole)), half, _CMP_GE_OQ);
-    __m512i c = _mm512_maskz_loadu_epi64(in, cycles + i);
+    __m512i c = _mm512_mullo_epi64(_mm512_cvtepu32_epi64(k), l1);
     c = _mm512_add_epi64(c, whole);
     c = _mm512_mask_add_epi64(c, up, c, _mm512_set1_epi64(1));
     _mm512_mask_storeu_epi64(cycles + i, in, c);
@@ -60,19 +64,19 @@ RC_AVX512_WARNINGS_ON
 
 #else  // not x86-64: never called (UseAvx512() is false).
 
-void AddBorrowedCyclesLanes(const std::uint32_t*, const std::uint32_t*, std::size_t, const double*, std::size_t, double,
-                            std::uint64_t*) {
-  throw std::logic_error("AddBorrowedCyclesLanes: AVX-512 exists only on x86-64");
+void WriteBorrowedCyclesLanes(const std::uint32_t*, const std::uint32_t*, std::size_t, const double*, std::size_t,
+                              double, std::uint64_t, std::uint64_t*) {
+  throw std::logic_error("WriteBorrowedCyclesLanes: AVX-512 exists only on x86-64");
 }
 
 #endif
 
-void AddBorrowedCycles(const std::uint32_t* rank, const std::uint32_t* nodes, std::size_t count, const double* rate,
-                       std::size_t rate_count, double fallback, std::uint64_t* cycles) {
+void WriteBorrowedCycles(const std::uint32_t* rank, const std::uint32_t* nodes, std::size_t count, const double* rate,
+                         std::size_t rate_count, double fallback, std::uint64_t l1_latency, std::uint64_t* cycles) {
   if (UseAvx512())
-    AddBorrowedCyclesLanes(rank, nodes, count, rate, rate_count, fallback, cycles);
+    WriteBorrowedCyclesLanes(rank, nodes, count, rate, rate_count, fallback, l1_latency, cycles);
   else
-    AddBorrowedCyclesScalar(rank, nodes, count, rate, rate_count, fallback, cycles);
+    WriteBorrowedCyclesScalar(rank, nodes, count, rate, rate_count, fallback, l1_latency, cycles);
 }
 
 }  // namespace rc

@@ -484,10 +484,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
       // partner's cycles per node. The pairing keeps the lanes' spread and
       // its tie to query length, which decide the warp's slowest lane.
       RanksByNodes(w, mine, lane_nodes);
-      std::uint64_t* cycles = owner_cycles.data() + std::size_t{w} * lanes;
-      for (std::size_t i = 0; i < mine.size(); ++i) cycles[i] = l1_latency * lane_nodes[i];
-      AddBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t], mean_extra,
-                        cycles);
+      WriteBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t],
+                          mean_extra, l1_latency, owner_cycles.data() + std::size_t{w} * lanes);
     }
   }
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);

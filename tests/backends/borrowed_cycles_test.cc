@@ -1,5 +1,6 @@
 // The sampled estimate's borrowed cycles (borrowed_cycles.h): every form
-// against the definition, llround of each lane's product, at every count
+// against the definition, the L1 latency per node plus llround of each
+// lane's product, written over what the lanes held, at every count
 // up to a warp and beyond, with ranks past the rates and products that
 // are negative, huge or fractional halves.
 #include "backends/borrowed_cycles.h"
@@ -25,7 +26,7 @@ TEST(BorrowedCycles, RoundingIsLlroundsOnEveryExtra) {
   }
 }
 
-TEST(BorrowedCycles, EveryFormAddsEachLanesRoundedProduct) {
+TEST(BorrowedCycles, EveryFormWritesTheL1ShareAndEachLanesRoundedProduct) {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> real(0.0, 400.0);
   for (std::size_t count = 0; count <= 70; ++count) {
@@ -40,6 +41,7 @@ TEST(BorrowedCycles, EveryFormAddsEachLanesRoundedProduct) {
         if (rate.size() > 1) rate[1] = 0x1p62;
       }
       const double fallback = variant == 1 ? 0.5 : real(rng);
+      const std::uint64_t l1_latency = variant == 1 ? 0 : 1 + rng() % 40;
       std::vector<std::uint32_t> rank(count), nodes(count);
       std::vector<std::uint64_t> start(count);
       for (std::size_t i = 0; i < count; ++i) {
@@ -47,18 +49,21 @@ TEST(BorrowedCycles, EveryFormAddsEachLanesRoundedProduct) {
         nodes[i] = static_cast<std::uint32_t>(rng() % 5 == 0 ? 0 : rng() % 300);
         start[i] = rng() % 100000;
       }
-      std::vector<std::uint64_t> want = start;
+      std::vector<std::uint64_t> want(count);
       for (std::size_t i = 0; i < count; ++i) {
         const double r = rank[i] < rate.size() ? rate[rank[i]] : fallback;
-        want[i] += static_cast<std::uint64_t>(std::llround(r * nodes[i]));
+        want[i] = l1_latency * nodes[i] + static_cast<std::uint64_t>(std::llround(r * nodes[i]));
       }
       std::vector<std::uint64_t> scalar = start, dispatched = start, lanes = start;
-      AddBorrowedCyclesScalar(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, scalar.data());
-      AddBorrowedCycles(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, dispatched.data());
+      WriteBorrowedCyclesScalar(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, l1_latency,
+                                scalar.data());
+      WriteBorrowedCycles(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, l1_latency,
+                          dispatched.data());
       EXPECT_EQ(scalar, want) << count << " lanes, variant " << variant;
       EXPECT_EQ(dispatched, want) << count << " lanes, variant " << variant;
       if (CpuHasAvx512()) {
-        AddBorrowedCyclesLanes(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, lanes.data());
+        WriteBorrowedCyclesLanes(rank.data(), nodes.data(), count, rate.data(), rate.size(), fallback, l1_latency,
+                                 lanes.data());
         EXPECT_EQ(lanes, want) << count << " lanes, variant " << variant;
       }
     }
