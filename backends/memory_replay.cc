@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 
 #include <omp.h>
@@ -464,30 +465,39 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // and its own request count): a caller that replays several patterns at
   // once (PricingContext::ComputeExpected) lets an idle thread take SMs of
   // this estimate; anywhere else they run in turn on the calling thread.
+  // As in ReplayMemory's loop, no exception may leave a task.
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(gpu.sms));
 #pragma omp taskloop grainsize(1) default(shared)
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    profile.sm_sector_requests[sm] +=
-        static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
-    std::vector<std::uint32_t> mine;
-    std::uint32_t lane_nodes[kMaxRankedKeys];
-    for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
-      const std::uint32_t w = sm_warps[sm][k];
-      if (kept[w]) continue;
-      const std::size_t t = twin_of(sm, k);
-      const std::uint32_t twin = twins[t];
-      if (pattern.coalesced) {
-        AddRoundedCycles(owner_cycles[w], rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
-        continue;
+    try {
+      profile.sm_sector_requests[sm] +=
+          static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
+      std::vector<std::uint32_t> mine;
+      std::uint32_t lane_nodes[kMaxRankedKeys];
+      for (std::size_t k = 0; k < sm_warps[sm].size(); ++k) {
+        const std::uint32_t w = sm_warps[sm][k];
+        if (kept[w]) continue;
+        const std::size_t t = twin_of(sm, k);
+        const std::uint32_t twin = twins[t];
+        if (pattern.coalesced) {
+          AddRoundedCycles(owner_cycles[w],
+                           rate(owner_cycles[twin] - l1_latency * steps[twin], steps[twin]) * steps[w]);
+          continue;
+        }
+        // Per thread: lanes paired with the twin's by rank of node count (the
+        // longest query with the twin's longest, ...), each borrowing its
+        // partner's cycles per node. The pairing keeps the lanes' spread and
+        // its tie to query length, which decide the warp's slowest lane.
+        RanksByNodes(w, mine, lane_nodes);
+        WriteBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t],
+                            mean_extra, l1_latency, owner_cycles.data() + std::size_t{w} * lanes);
       }
-      // Per thread: lanes paired with the twin's by rank of node count (the
-      // longest query with the twin's longest, ...), each borrowing its
-      // partner's cycles per node. The pairing keeps the lanes' spread and
-      // its tie to query length, which decide the warp's slowest lane.
-      RanksByNodes(w, mine, lane_nodes);
-      WriteBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t],
-                          mean_extra, l1_latency, owner_cycles.data() + std::size_t{w} * lanes);
+    } catch (...) {
+      errors[static_cast<std::size_t>(sm)] = std::current_exception();
     }
   }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
   MemoryCounters& c = profile.totals;
   auto scaled = [&](std::uint64_t v) {
@@ -616,20 +626,29 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   }
   std::vector<SmMisses> sms(gpu.sms);
   const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
+  // An exception may not leave an OpenMP loop (it would end the process):
+  // each SM keeps its own, and the first is rethrown after the loop.
+  std::vector<std::exception_ptr> errors(replayed.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
-    const int sm = replayed[i];
-    const std::vector<std::uint32_t>& list = skips_blocks ? kept_warps[sm] : sm_warps[sm];
-    // Room for as many misses as the SM's warps fetch nodes (every miss, when
-    // each node lies within one sector), so that the lists are not copied
-    // as they grow.
-    std::size_t fetches = 0;
-    for (std::uint32_t w : list) fetches += warp_nodes.lane_nodes[w];
-    sms[sm].Reserve(fetches);
-    SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
-    for (std::size_t lo = 0; lo < list.size(); lo += wave)
-      replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
+    try {
+      const int sm = replayed[i];
+      const std::vector<std::uint32_t>& list = skips_blocks ? kept_warps[sm] : sm_warps[sm];
+      // Room for as many misses as the SM's warps fetch nodes (every miss,
+      // when each node lies within one sector), so that the lists are not
+      // copied as they grow.
+      std::size_t fetches = 0;
+      for (std::uint32_t w : list) fetches += warp_nodes.lane_nodes[w];
+      sms[sm].Reserve(fetches);
+      SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
+      for (std::size_t lo = 0; lo < list.size(); lo += wave)
+        replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
+    } catch (...) {
+      errors[static_cast<std::size_t>(i)] = std::current_exception();
+    }
   }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
 
   std::size_t rounds = 0;
   for (const SmMisses& s : sms) rounds = std::max(rounds, s.wave_end.size());

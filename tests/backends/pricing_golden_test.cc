@@ -10,7 +10,11 @@
 // associative LRU L1 with a cold L2 (a grid larger than the L1), a
 // set-associative LRU L2 (the L2 shrunk below the footprint), the cold L1
 // (a grid that fits), two regions (rm's distance field), nodes wider than a
-// sector with every SACT exit, and a partial last warp.
+// sector with every SACT exit, and a partial last warp. Two cases sample
+// the record as the CLI does (one SM of eight, every second block of it),
+// for the sampled SM's replay and the estimate of the rest; their
+// fingerprints were printed later, at the commit that added them, from
+// code whose demo and beam-model timelines equal 0ab87ad's.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -65,13 +69,27 @@ std::vector<std::string> PriceEveryBackend(const KernelRecord& record, const Bac
   return out;
 }
 
-KernelRecord RayRecord(int size_x, int size_y, RayCastMethod method, int particles, int beams, std::uint64_t seed) {
+KernelRecord RayRecord(int size_x, int size_y, RayCastMethod method, int particles, int beams, std::uint64_t seed,
+                       const RecordOptions& options = {}) {
   const OccupancyGrid grid = test::RoomGrid(size_x, size_y, 0.1, 0.03, seed);
   const RayCastScene scene(grid, method);
   const RayBatch batch = test::FanBatch(grid, particles, beams, 10.0, seed + 1);
   std::vector<RayHit> hits;
   KernelRecord record;
-  CastRayBatchRecorded(scene, batch, hits, record);
+  CastRayBatchRecorded(scene, batch, hits, record, options);
+  return record;
+}
+
+// The CLI's address sample (one SM of eight, every second block of it):
+// the sampled SM's replay and the estimate of the others.
+KernelRecord SampledRayRecord(int size_x, int size_y, RayCastMethod method, int particles, int beams,
+                              std::uint64_t seed) {
+  RecordOptions options;
+  options.sample.sampled_sms = 1;
+  options.sample.block_stride = 2;
+  KernelRecord record = RayRecord(size_x, size_y, method, particles, beams, seed, options);
+  EXPECT_TRUE(record.sampled());
+  EXPECT_LT(record.address_offsets.back(), record.total_nodes() / 4) << "most addresses should be left out";
   return record;
 }
 
@@ -203,6 +221,74 @@ TEST(PricingGolden, MarchWithASetAssociativeL2) {
     ",69849, pred=0 hops=577018 ctrl=0 push=69849 wi=0 ti=0 bound=latency (warp buffer)"
     " l1=lru (fully associative) l2=lru (set associative)",
   }}, [] { return RayRecord(400, 300, RayCastMethod::kMarch, 40, 64, 72); }, small_l2);
+}
+
+TEST(PricingGolden, DdaSampledOnOneSmEverySecondBlock) {
+  Check({"dda 400x300, sampled", {
+    "simt q=18000 n=491940 cyc=79061 launch=5000 e=0x1.c76e6b9f29d97p-12"
+    " s=0x1.e5de914a6b02ep-15 eff=0x1.4b3659a16bc5cp-2 mem=258902/227596/31306/27556/3750"
+    " ops=1037880,509940,509940,36000,2513700,1055880,18000,0,0,0,0,0,0,527940,1493820,0,0,49"
+    "1940,18000,983880,491940, pred=0 hops=0 ctrl=0 push=491940 wi=2036220 ti=21075660"
+    " bound=latency (resident warps) l1=lru (fully associative) l2=cold (footprint fits:"
+    " compulsory misses only)",
+    "ttaplus q=18000 n=491940 cyc=177324 launch=5036 e=0x1.3245f273daf18p-12"
+    " s=0x1.106fa9475af7ep-13 eff=nan mem=491940/460761/31179/27429/3750"
+    " ops=1037880,509940,509940,36000,2513700,1055880,18000,0,0,0,0,0,0,527940,1493820,0,0,49"
+    "1940,18000,0,491940, pred=0 hops=5663340 ctrl=0 push=491940 wi=0 ti=0 bound=latency"
+    " (warp buffer) l1=lru (fully associative) l2=cold (footprint fits: compulsory misses"
+    " only)",
+    "ttaplus-p q=18000 n=491940 cyc=183903 launch=5038 e=0x1.50d117c729927p-12"
+    " s=0x1.1a8b42d3fe969p-13 eff=nan mem=491940/460761/31179/27429/3750"
+    " ops=1002130,492065,492065,36000,2442200,1020130,18000,0,0,0,0,0,0,510065,1440195,0,0,49"
+    "1940,18000,966005,491940, pred=268125 hops=6647220 ctrl=0 push=491940 wi=0 ti=0"
+    " bound=latency (warp buffer) l1=lru (fully associative) l2=cold (footprint fits:"
+    " compulsory misses only)",
+    "ttaplus-cr q=18000 n=491940 cyc=183513 launch=5038 e=0x1.49e1ba56b60cep-12"
+    " s=0x1.19f1de8e413bcp-13 eff=nan mem=491940/460761/31179/27429/3750"
+    " ops=1002130,492065,492065,36000,2442200,1020130,18000,0,0,0,0,0,0,510065,1440195,0,0,49"
+    "1940,18000,966005,491940, pred=0 hops=6450595 ctrl=0 push=491940 wi=0 ti=0 bound=latency"
+    " (warp buffer) l1=lru (fully associative) l2=cold (footprint fits: compulsory misses"
+    " only)",
+    "robocore q=18000 n=491940 cyc=183514 launch=5039 e=0x1.49e1ba56b60cep-12"
+    " s=0x1.19f2433e5a019p-13 eff=nan mem=491940/460761/31179/27429/3750"
+    " ops=1002130,492065,492065,36000,2442200,1020130,18000,0,0,0,0,0,0,510065,1440195,0,0,49"
+    "1940,18000,966005,491940, pred=0 hops=6450595 ctrl=0 push=491940 wi=0 ti=0 bound=latency"
+    " (warp buffer) l1=lru (fully associative) l2=cold (footprint fits: compulsory misses"
+    " only)",
+  }}, [] { return SampledRayRecord(400, 300, RayCastMethod::kDda, 200, 90, 71); });
+}
+
+TEST(PricingGolden, MarchSampledWithASetAssociativeL2) {
+  BackendParameters small_l2;
+  small_l2.gpu.l2_bytes = 32768;
+  small_l2.gpu.l1_bytes = 8192;
+  Check({"march 400x300, L2 32 KiB, sampled", {
+    "simt q=7680 n=202438 cyc=202550 launch=5000 e=0x1.9a2e80db746b5p-12"
+    " s=0x1.373159b06f333p-13 eff=0x1.54480f6cfd7f1p-2 mem=123792/14527/109265/81930/27335"
+    " ops=420236,15360,7680,15360,825112,443276,0,0,0,0,0,0,0,15360,614994,0,0,202438,7680,40"
+    "4876,202438, pred=0 hops=0 ctrl=0 push=202438 wi=669136 ti=7115456 bound=SFU pipe l1=lru"
+    " (fully associative) l2=lru (set associative)",
+    "ttaplus q=7680 n=202438 cyc=99067 launch=5031 e=0x1.13bf745a0e6a5p-12"
+    " s=0x1.30687c051af06p-14 eff=nan mem=202438/174240/28198/5246/22952"
+    " ops=420236,15360,7680,15360,825112,443276,0,0,0,0,0,0,0,15360,614994,0,0,202438,7680,0,"
+    "202438, pred=0 hops=1314468 ctrl=0 push=202438 wi=0 ti=0 bound=latency (warp buffer)"
+    " l1=lru (fully associative) l2=lru (set associative)",
+    "ttaplus-p q=7680 n=202438 cyc=101241 launch=5033 e=0x1.2060d59ba9ab4p-12"
+    " s=0x1.37169ae9daa7fp-14 eff=nan mem=202438/174240/28198/5246/22952"
+    " ops=405184,15360,7680,15360,802534,428224,0,0,0,0,0,0,0,15360,592416,0,0,202438,7680,39"
+    "7350,202438, pred=82786 hops=1719344 ctrl=0 push=202438 wi=0 ti=0 bound=latency (warp"
+    " buffer) l1=lru (fully associative) l2=lru (set associative)",
+    "ttaplus-cr q=7680 n=202438 cyc=101190 launch=5033 e=0x1.1e902d9176aeep-12"
+    " s=0x1.36ee7cbffbd72p-14 eff=nan mem=202438/174240/28198/5246/22952"
+    " ops=405184,15360,7680,15360,802534,428224,0,0,0,0,0,0,0,15360,592416,0,0,202438,7680,39"
+    "7350,202438, pred=0 hops=1674188 ctrl=0 push=202438 wi=0 ti=0 bound=latency (warp"
+    " buffer) l1=lru (fully associative) l2=lru (set associative)",
+    "robocore q=7680 n=202438 cyc=101191 launch=5034 e=0x1.1e902d9176aeep-12"
+    " s=0x1.36ef46202d62cp-14 eff=nan mem=202438/174240/28198/5246/22952"
+    " ops=405184,15360,7680,15360,802534,428224,0,0,0,0,0,0,0,15360,592416,0,0,202438,7680,39"
+    "7350,202438, pred=0 hops=1674188 ctrl=0 push=202438 wi=0 ti=0 bound=latency (warp"
+    " buffer) l1=lru (fully associative) l2=lru (set associative)",
+  }}, [] { return SampledRayRecord(400, 300, RayCastMethod::kMarch, 120, 64, 72); }, small_l2);
 }
 
 TEST(PricingGolden, RmOnAGridThatFitsTheL1) {

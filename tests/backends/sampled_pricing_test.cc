@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -138,6 +139,15 @@ TEST(SampledPricing, RefusesASampleTakenForAnotherPlacement) {
   BackendParameters params;
   params.gpu.sms = 16;  // the sample was taken for 8
   EXPECT_THROW(Backend::Create("simt", params)->Price(sampled), std::logic_error);
+  // PriceAll replays ahead of the backends, each replay an OpenMP task: the
+  // refusal must still reach the caller, not end the process.
+  std::vector<std::unique_ptr<Backend>> owned;
+  std::vector<const Backend*> every;
+  for (const std::string& name : Backend::ModelledNames()) {
+    owned.push_back(Backend::Create(name, params));
+    every.push_back(owned.back().get());
+  }
+  EXPECT_THROW(PriceAll(every, sampled), std::logic_error);
 }
 
 // When the kept warps fetched nothing, there is no rate to borrow: each

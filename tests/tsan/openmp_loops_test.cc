@@ -29,24 +29,38 @@ DelibotSettings SmallRun(SensorModelKind model) {
 // loops), ray_batch_recorded.cc (the recorded casts), and the pricing of
 // every update: backend.cc (PriceAll), pricing_context.cc (the replays'
 // tasks), memory_replay.cc (two loops and the sampled estimate's tasks),
-// ray_warp_cycles.cc and rt_unit_model.cc.
+// ray_warp_cycles.cc and rt_unit_model.cc. The replay is sampled as the
+// CLI's defaults sample it (one SM, every second block), so that the
+// estimate's tasks run; every priced cost must not depend on the threads.
 TEST(OpenMpLoops, BeamModelFilterWithPricingAndHypotheses) {
   omp_set_num_threads(4);
   const OccupancyGrid g = test::AsymmetricRoom();
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.2, 0.03, 5);
   DelibotSettings s = SmallRun(SensorModelKind::kBeam);
   s.price_backends = true;
+  s.ledger.replay_sms = 1;
+  s.ledger.replay_block_stride = 2;
   s.mcl.hypothesis_floor.min_particles = 60;
   s.mcl.max_particle_count = 900;
   const DelibotResult threaded = RunDelibot(g, run.trace, &run.truth, s);
   omp_set_num_threads(1);
   const DelibotResult serial = RunDelibot(g, run.trace, &run.truth, s);
   ASSERT_EQ(threaded.rows.size(), serial.rows.size());
+  int priced = 0;
   for (std::size_t i = 0; i < serial.rows.size(); ++i) {
     EXPECT_EQ(threaded.rows[i].estimate.x, serial.rows[i].estimate.x) << i;
     EXPECT_EQ(threaded.rows[i].nodes, serial.rows[i].nodes) << i;
+    const LedgerIteration& a = threaded.rows[i].pricing;
+    const LedgerIteration& b = serial.rows[i].pricing;
+    ASSERT_EQ(a.costs.size(), b.costs.size()) << i;
+    for (std::size_t k = 0; k < a.costs.size(); ++k) {
+      EXPECT_EQ(a.costs[k].cycles, b.costs[k].cycles) << i << " backend " << k;
+      EXPECT_EQ(a.costs[k].memory.l2_accesses, b.costs[k].memory.l2_accesses) << i << " backend " << k;
+    }
+    priced += a.priced;
   }
   EXPECT_TRUE(threaded.priced);
+  EXPECT_GT(priced, 0);
 }
 
 // likelihood_field_model.cc.
