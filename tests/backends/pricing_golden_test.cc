@@ -190,10 +190,16 @@ TEST(PricingGolden, DdaOnAGridLargerThanTheL1) {
   }}, [] { return RayRecord(400, 300, RayCastMethod::kDda, 60, 90, 71); });
 }
 
+// An L2 of 32 KiB, below the march cases' footprint (set associative), and
+// an L1 of 8 KiB.
+BackendParameters SmallCaches() {
+  BackendParameters small;
+  small.gpu.l2_bytes = 32768;
+  small.gpu.l1_bytes = 8192;
+  return small;
+}
+
 TEST(PricingGolden, MarchWithASetAssociativeL2) {
-  BackendParameters small_l2;
-  small_l2.gpu.l2_bytes = 32768;
-  small_l2.gpu.l1_bytes = 8192;
   Check({"march 400x300, L2 32 KiB", {
     "simt q=2560 n=69849 cyc=103028 launch=5000 e=0x1.ffc78cbbdd66cp-14"
     " s=0x1.3c944d63b44cep-14 eff=0x1.61c875aac8a9cp-2 mem=40447/10214/30233/22017/8216"
@@ -220,7 +226,7 @@ TEST(PricingGolden, MarchWithASetAssociativeL2) {
     " ops=139800,5120,2560,5120,276989,147480,0,0,0,0,0,0,0,5120,204580,0,0,69849,2560,137189"
     ",69849, pred=0 hops=577018 ctrl=0 push=69849 wi=0 ti=0 bound=latency (warp buffer)"
     " l1=lru (fully associative) l2=lru (set associative)",
-  }}, [] { return RayRecord(400, 300, RayCastMethod::kMarch, 40, 64, 72); }, small_l2);
+  }}, [] { return RayRecord(400, 300, RayCastMethod::kMarch, 40, 64, 72); }, SmallCaches());
 }
 
 TEST(PricingGolden, DdaSampledOnOneSmEverySecondBlock) {
@@ -259,9 +265,6 @@ TEST(PricingGolden, DdaSampledOnOneSmEverySecondBlock) {
 }
 
 TEST(PricingGolden, MarchSampledWithASetAssociativeL2) {
-  BackendParameters small_l2;
-  small_l2.gpu.l2_bytes = 32768;
-  small_l2.gpu.l1_bytes = 8192;
   Check({"march 400x300, L2 32 KiB, sampled", {
     "simt q=7680 n=202438 cyc=202550 launch=5000 e=0x1.9a2e80db746b5p-12"
     " s=0x1.373159b06f333p-13 eff=0x1.54480f6cfd7f1p-2 mem=123792/14527/109265/81930/27335"
@@ -288,7 +291,7 @@ TEST(PricingGolden, MarchSampledWithASetAssociativeL2) {
     " ops=405184,15360,7680,15360,802534,428224,0,0,0,0,0,0,0,15360,592416,0,0,202438,7680,39"
     "7350,202438, pred=0 hops=1674188 ctrl=0 push=202438 wi=0 ti=0 bound=latency (warp"
     " buffer) l1=lru (fully associative) l2=lru (set associative)",
-  }}, [] { return SampledRayRecord(400, 300, RayCastMethod::kMarch, 120, 64, 72); }, small_l2);
+  }}, [] { return SampledRayRecord(400, 300, RayCastMethod::kMarch, 120, 64, 72); }, SmallCaches());
 }
 
 TEST(PricingGolden, RmOnAGridThatFitsTheL1) {
