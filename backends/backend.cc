@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <iomanip>
 #include <ostream>
 #include <stdexcept>
@@ -11,6 +10,7 @@
 #include "backends/robocore_backend.h"
 #include "backends/simt_backend.h"
 #include "backends/ttaplus_backend.h"
+#include "common/loop_exceptions.h"
 #include "robocore/ray_batch_recorded.h"
 
 namespace rc {
@@ -117,17 +117,11 @@ std::vector<BatchCost> PriceAll(const std::vector<const Backend*>& backends, con
   for (const Backend* b : backends) b->AnnouncePricing(record, context);
   context.ComputeExpected();
   std::vector<BatchCost> costs(backends.size());
-  std::vector<std::exception_ptr> errors(backends.size());
+  LoopExceptions exceptions(backends.size());
 #pragma omp parallel for schedule(dynamic, 1)
-  for (long i = 0; i < static_cast<long>(backends.size()); ++i) {
-    try {
-      costs[i] = backends[i]->Price(record, context);
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  for (long i = 0; i < static_cast<long>(backends.size()); ++i)
+    exceptions.Run(static_cast<std::size_t>(i), [&] { costs[i] = backends[i]->Price(record, context); });
+  exceptions.RethrowFirst();
   return costs;
 }
 

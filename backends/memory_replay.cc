@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <exception>
 #include <stdexcept>
 
 #include <omp.h>
@@ -12,6 +11,7 @@
 #include "backends/cache_model.h"
 #include "backends/key_ranks.h"
 #include "backends/warp_nodes.h"
+#include "common/loop_exceptions.h"
 
 namespace rc {
 namespace {
@@ -465,11 +465,10 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // and its own request count): a caller that replays several patterns at
   // once (PricingContext::ComputeExpected) lets an idle thread take SMs of
   // this estimate; anywhere else they run in turn on the calling thread.
-  // As in ReplayMemory's loop, no exception may leave a task.
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(gpu.sms));
+  LoopExceptions exceptions(static_cast<std::size_t>(gpu.sms));
 #pragma omp taskloop grainsize(1) default(shared)
   for (int sm = 0; sm < gpu.sms; ++sm) {
-    try {
+    exceptions.Run(static_cast<std::size_t>(sm), [&] {
       profile.sm_sector_requests[sm] +=
           static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
       std::vector<std::uint32_t> mine;
@@ -492,12 +491,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
         WriteBorrowedCycles(mine.data(), lane_nodes, mine.size(), twin_rates.data() + t * lanes, twin_lanes[t],
                             mean_extra, l1_latency, owner_cycles.data() + std::size_t{w} * lanes);
       }
-    } catch (...) {
-      errors[static_cast<std::size_t>(sm)] = std::current_exception();
-    }
+    });
   }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  exceptions.RethrowFirst();
   const double scale = static_cast<double>(all_units) / static_cast<double>(kept_units);
   MemoryCounters& c = profile.totals;
   auto scaled = [&](std::uint64_t v) {
@@ -626,12 +622,10 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   }
   std::vector<SmMisses> sms(gpu.sms);
   const std::size_t wave = static_cast<std::size_t>(std::max(1, pattern.warps_per_wave));
-  // An exception may not leave an OpenMP loop (it would end the process):
-  // each SM keeps its own, and the first is rethrown after the loop.
-  std::vector<std::exception_ptr> errors(replayed.size());
+  LoopExceptions exceptions(replayed.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < static_cast<int>(replayed.size()); ++i) {
-    try {
+    exceptions.Run(static_cast<std::size_t>(i), [&] {
       const int sm = replayed[i];
       const std::vector<std::uint32_t>& list = skips_blocks ? kept_warps[sm] : sm_warps[sm];
       // Room for as many misses as the SM's warps fetch nodes (every miss,
@@ -643,12 +637,9 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
       SmReplay replay(record, gpu, pattern, caches, sm, steps, sms[sm]);
       for (std::size_t lo = 0; lo < list.size(); lo += wave)
         replay.Wave(list.data() + lo, std::min(wave, list.size() - lo));
-    } catch (...) {
-      errors[static_cast<std::size_t>(i)] = std::current_exception();
-    }
+    });
   }
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  exceptions.RethrowFirst();
 
   std::size_t rounds = 0;
   for (const SmMisses& s : sms) rounds = std::max(rounds, s.wave_end.size());

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "delibot/synthetic_world.h"
+#include "robocore/address_sample.h"
 #include "robocore/ray_batch.h"
 #include "robocore/ray_cast.h"
 #include "workloads/delibot/delibot_run.h"
@@ -38,8 +39,8 @@ TEST(OpenMpLoops, BeamModelFilterWithPricingAndHypotheses) {
   const test::SyntheticRun run = test::DriveThrough(g, test::RoomTour(), 0.2, 0.03, 5);
   DelibotSettings s = SmallRun(SensorModelKind::kBeam);
   s.price_backends = true;
-  s.ledger.replay_sms = 1;
-  s.ledger.replay_block_stride = 2;
+  s.ledger.replay_sms = kReplaySms;
+  s.ledger.replay_block_stride = kReplayBlockStride;
   s.mcl.hypothesis_floor.min_particles = 60;
   s.mcl.max_particle_count = 900;
   const DelibotResult threaded = RunDelibot(g, run.trace, &run.truth, s);
