@@ -80,10 +80,9 @@ struct LaneRecording {
   // for a query that fetched nothing (robocore/kernel_record.h). Null: not
   // wanted.
   std::uint8_t* last_exits = nullptr;
-  // A word per sector, numbered from the footprint's begin: set to 1 for
-  // every fetched node's sector (a word, not a bit, so that an AVX-512 group
-  // marks its eight sectors with one scatter). Null: not wanted.
-  std::uint32_t* touched = nullptr;
+  // A byte per sector, numbered from the footprint's begin: set to 1 for
+  // every fetched node's sector. Null: not wanted.
+  std::uint8_t* touched = nullptr;
   std::uint64_t offset = 0;         // bytes from the footprint's begin to the fetched structure
   std::uint32_t element_bytes = 1;  // bytes per fetched node
   int sector_shift = 5;             // log2(sector bytes)

@@ -26,11 +26,11 @@ struct LastFetchVisitor {
   }
 };
 
-// Also marks, in a word per sector of the footprint (LaneRecording::touched),
+// Also marks, in a byte per sector of the footprint (LaneRecording::touched),
 // the sector of every fetch (a sampled record counts the sectors the whole
 // batch touched).
 struct MarkingVisitor : LastFetchVisitor {
-  std::uint32_t* touched = nullptr;
+  std::uint8_t* touched = nullptr;
   std::uint64_t offset[2];  // region base - footprint begin
   std::uint32_t element_bytes[2];
   int sector_shift = 5;
@@ -47,7 +47,7 @@ struct MarkingVisitor : LastFetchVisitor {
 // structure, so an index names its node (KeptBlockNodes).
 struct RecordingVisitor : LastFetchVisitor {
   std::vector<std::uint32_t>* out = nullptr;
-  std::uint32_t* touched = nullptr;
+  std::uint8_t* touched = nullptr;
   FetchKind kept_kind = FetchKind::kGridCell;  // the structure whose nodes `out` indexes
   std::uint64_t offset[2];
   std::uint32_t element_bytes[2];
@@ -235,14 +235,14 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   last_exit.assign(launch.count, kNoExit);
   record.node_exits.clear();
   KeptBlockNodes kept_nodes(static_cast<std::size_t>(blocks));
-  // A sample also counts the sectors the whole batch touches: one bitset of
-  // the footprint's sectors per thread, ORed together afterwards.
+  // A sample also counts the sectors the whole batch touches: a byte per
+  // sector of the footprint per thread, ORed together afterwards.
   const bool mark = !sample.KeepsAll();
   int sector_shift = 0;
   while ((1 << sector_shift) < sample.sector_bytes) ++sector_shift;
   const std::uint64_t footprint_begin = record.footprint_begin();
   const std::uint64_t sectors = mark ? ((record.footprint_end() - footprint_begin) >> sector_shift) + 1 : 0;
-  std::vector<std::vector<std::uint32_t>> touched;
+  std::vector<std::vector<std::uint8_t>> touched;
   RecordingVisitor prototype{};
   for (const MemoryRegion& r : record.regions) {
     const int k = static_cast<int>(r.kind);
@@ -291,7 +291,7 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
 #pragma omp parallel
   {
-    std::vector<std::uint32_t> mine(mark ? sectors : 0, 0);
+    std::vector<std::uint8_t> mine(mark ? sectors : 0, 0);
     LaneBatchWork lane_work;
 #pragma omp for schedule(dynamic, 1)
     for (long j = 0; j < static_cast<long>(segments.size()); ++j) {
@@ -338,7 +338,7 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
   }
   record.touched_sectors = 0;
   if (mark) {
-    std::vector<std::uint32_t>& all = touched.front();
+    std::vector<std::uint8_t>& all = touched.front();
     for (std::size_t t = 1; t < touched.size(); ++t)
       for (std::uint64_t w = 0; w < sectors; ++w) all[w] |= touched[t][w];
     for (std::uint64_t w = 0; w < sectors; ++w) record.touched_sectors += all[w] != 0;

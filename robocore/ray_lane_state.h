@@ -267,6 +267,42 @@ struct SectorOfCell {
   }
 };
 
+// Sectors a lane kernel fetched from, queued as it steps and marked in a
+// recording's touched bytes a few thousand at a time (Mark). A step appends
+// its group's sectors with one vector store. Marking each step's sectors at
+// once cost more, whether by an AVX-512 scatter or by a store per lane
+// (docs/pricing.md, "Touched sectors in a queue").
+class SectorQueue {
+ public:
+  static constexpr std::size_t kCapacity = 4096;  // entries queued before they are marked
+  static constexpr std::size_t kMaxAppend = 16;   // entries one Append may write
+
+  explicit SectorQueue(std::uint8_t* touched)
+      : touched_(touched), entries_(touched ? kCapacity + kMaxAppend : 0), at_(entries_.data()) {}
+  // Where the next entries go: room for kMaxAppend.
+  std::uint32_t* end() { return at_; }
+  // The `count` entries just written at end() join the queue.
+  void Append(std::size_t count) {
+    at_ += count;
+    if (__builtin_expect(at_ >= entries_.data() + kCapacity, 0)) Mark();
+  }
+  // Marks every queued sector and empties the queue. A recording's marks are
+  // complete only after its last Mark. Not inlined: in the lane loop it
+  // would crowd the steps' registers.
+  [[gnu::noinline]] void Mark() {
+    std::uint8_t* const touched = touched_;
+    const std::uint32_t* const end = at_;
+#pragma GCC unroll 8
+    for (const std::uint32_t* e = entries_.data(); e < end; ++e) touched[*e] = 1;
+    at_ = entries_.data();
+  }
+
+ private:
+  std::uint8_t* touched_;
+  std::vector<std::uint32_t> entries_;
+  std::uint32_t* at_;
+};
+
 // The instruction-set kernels (ray_lanes_avx512.cc, ray_lanes_avx2.cc):
 // CastRayLanes for queries [0, count), count > 0, with `scene` as the lanes
 // read it; the caller has checked that the CPU runs the instruction set.

@@ -148,7 +148,7 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
         // sectors are non-negative 32-bit values (SectorOfCell).
         const std::uint64_t low = static_cast<std::uint64_t>(_mm_cvtsi128_si64(sector));
         const std::uint64_t high = static_cast<std::uint64_t>(_mm_extract_epi64(sector, 1));
-        std::uint32_t* const touched = rec.touched;
+        std::uint8_t* const touched = rec.touched;
         touched[static_cast<std::uint32_t>(low)] = 1;
         touched[low >> 32] = 1;
         touched[static_cast<std::uint32_t>(high)] = 1;
@@ -162,6 +162,8 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
     }
     if (rec.nodes) LogNodes<kWidth>(s, index, fetch, first, *rec.nodes);
   }
+  // Record marks as it goes: nothing is pending.
+  void FinishRecording() {}
 
  private:
   static constexpr unsigned kAllLanes = (1u << kWidth) - 1;
@@ -175,7 +177,7 @@ class Avx2Kernel : public LaneSteps<Avx2Vec> {
 
 RC_LANES_TARGET void CastLanesAvx2(RayCastMethod method, const LaneScene& scene, const RayQuery* queries,
                                    std::size_t count, RayHit* hits, const LaneRecording* recording) {
-  const Avx2Kernel kernel(scene, recording);
+  Avx2Kernel kernel(scene, recording);
   RunLanes(method, kernel, scene, queries, count, hits, recording);
 }
 

@@ -153,7 +153,7 @@ TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
       for (std::size_t q = 0; q < batch.queries.size(); ++q)
         for (std::uint32_t index : ScalarVisits(scene, batch, q))
           expected.insert((offset + std::uint64_t{index} * element_bytes) / 32);
-      std::vector<std::uint32_t> touched((offset + grid.cell_count() * element_bytes) / 32 + 1, 0);
+      std::vector<std::uint8_t> touched((offset + grid.cell_count() * element_bytes) / 32 + 1, 0);
       LaneRecording rec;
       rec.touched = touched.data();
       rec.offset = offset;
