@@ -114,6 +114,7 @@ class Avx512Kernel : public LaneSteps<Avx512Vec> {
                              _mm256_srl_epi32(step.index, _mm_cvtsi32_si128(sector_of_.index_shift)));
         const __m256i lead = _mm256_permutexvar_epi32(_mm256_set1_epi32(__builtin_ctz(fetch)), sector);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(sectors_.end()), _mm256_mask_mov_epi32(lead, m, sector));
+        static_assert(kWidth <= SectorQueue::kMaxAppend);
         sectors_.Append(kWidth);
       } else {
         const __m512i index = _mm512_cvtepu32_epi64(step.index);

@@ -16,6 +16,7 @@
 
 #include "robocore/ray_batch_lanes.h"
 #include "robocore/ray_batch_recorded.h"
+#include "robocore/ray_lane_state.h"
 #include "robocore/robocore_api.h"
 #include "robocore/shipped_programs.h"
 #include "support/simd_levels.h"
@@ -140,7 +141,9 @@ TEST_P(RecordTest, TouchedSectorsAndExitsAreTheScalarKernels) {
 // The lanes find a fetched cell's sector with a 32-bit shift where the
 // structure starts on a sector, and in 64 bits where it does not (AVX-512),
 // or one lane at a time (AVX2): every instruction set this CPU runs marks
-// exactly the sectors of the cells the scalar kernel visits.
+// exactly the sectors of the cells the scalar kernel visits. The batch
+// fetches more nodes than AVX-512's queue of sectors holds, so the queue is
+// marked both when full and at the end.
 TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
   const OccupancyGrid grid = test::RoomGrid(200, 150, 0.05, 0.01, 5);
   const RayCastScene scene(grid, GetParam());
@@ -165,6 +168,9 @@ TEST_P(RecordTest, TheLanesMarkTheVisitedCellsSectorsAtAnyOffset) {
       for (std::size_t s = 0; s < touched.size(); ++s)
         if (touched[s] != 0) marked.insert(s);
       EXPECT_EQ(marked, expected) << ToString(isa) << ", offset " << offset;
+      std::size_t fetches = 0;
+      for (const RayHit& hit : hits) fetches += hit.nodes;
+      EXPECT_GT(fetches, 2 * ray_lanes::SectorQueue::kCapacity);
     }
 }
 
