@@ -439,9 +439,9 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // The twin of the unkept warp at position k of SM sm's list: the same
   // warp of the nearest kept block round at or before its own, on a sampled
   // SM chosen by this SM's number.
-  auto twin_of = [&](int sm, std::size_t k) {
+  auto twin_of = [&](std::size_t sm, std::size_t k) {
     const std::size_t kept_position = sample.KeptRoundAtOrBefore(k / per_block) * per_block + k % per_block;
-    return (kept_position * replayed.size() + static_cast<std::size_t>(sm) % replayed.size()) % twins.size();
+    return (kept_position * replayed.size() + sm % replayed.size()) % twins.size();
   };
   // Per thread, every twin's lanes' rates by rank of node count (a twin
   // lends to a warp of every unsampled SM), found before the SMs borrow
@@ -466,9 +466,10 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // once (PricingContext::ComputeExpected) lets an idle thread take SMs of
   // this estimate; anywhere else they run in turn on the calling thread.
   LoopExceptions exceptions(static_cast<std::size_t>(gpu.sms));
+  const auto sms = static_cast<std::size_t>(gpu.sms);
 #pragma omp taskloop grainsize(1) default(shared)
-  for (int sm = 0; sm < gpu.sms; ++sm) {
-    exceptions.Run(static_cast<std::size_t>(sm), [&] {
+  for (std::size_t sm = 0; sm < sms; ++sm) {
+    exceptions.Run(sm, [&] {
       profile.sm_sector_requests[sm] +=
           static_cast<std::uint64_t>(std::llround(requests_per_unit * static_cast<double>(unkept_units[sm])));
       std::vector<std::uint32_t> mine;

@@ -19,8 +19,9 @@ TEST(MpinetLikeScenes, OctreesHave1000To2000NodesAtTheFirstLadderStepThatReaches
     EXPECT_GE(octree.octree_nodes, kMinOctreeNodes) << ToString(kind);
     EXPECT_LE(octree.octree_nodes, kMaxOctreeNodes) << ToString(kind);
     const double coarser = octree.resolution_m * std::pow(2.0, 0.25);
-    if (coarser <= kCoarsestResolution * 1.0001)
+    if (coarser <= kCoarsestResolution * 1.0001) {
       EXPECT_LT(VoxelizeScene(MakeMpinetLikeScene(kind, 7), coarser).octree_nodes, kMinOctreeNodes) << ToString(kind);
+    }
     // The box tree holds every occupied leaf, so it has more nodes than cells.
     EXPECT_GT(octree.tree.nodes.size(), octree.octree_nodes) << ToString(kind);
   }
