@@ -279,6 +279,9 @@ class SectorQueue {
 
   explicit SectorQueue(std::uint8_t* touched)
       : touched_(touched), entries_(touched ? kCapacity + kMaxAppend : 0), at_(entries_.data()) {}
+  // Not copyable: the write position points into the queue's own entries.
+  SectorQueue(const SectorQueue&) = delete;
+  SectorQueue& operator=(const SectorQueue&) = delete;
   // Where the next entries go: room for kMaxAppend.
   std::uint32_t* end() { return at_; }
   // The `count` entries just written at end() join the queue.
