@@ -465,8 +465,8 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   // and its own request count): a caller that replays several patterns at
   // once (PricingContext::ComputeExpected) lets an idle thread take SMs of
   // this estimate; anywhere else they run in turn on the calling thread.
-  LoopExceptions exceptions(static_cast<std::size_t>(gpu.sms));
   const auto sms = static_cast<std::size_t>(gpu.sms);
+  LoopExceptions exceptions(sms);
 #pragma omp taskloop grainsize(1) default(shared)
   for (std::size_t sm = 0; sm < sms; ++sm) {
     exceptions.Run(sm, [&] {
