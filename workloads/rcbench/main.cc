@@ -1,6 +1,8 @@
 // rcbench: robotics kernels on modelled GPU backends.
 //
 // Exit codes: one table for every subcommand, common/exit_codes.h.
+#include <malloc.h>
+
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -17,6 +19,16 @@
 #include "workloads/rcbench/commands.h"
 
 int main(int argc, char** argv) {
+  // One malloc arena for every thread. A priced launch's buffers (a memory
+  // replay's per-query cycles, the record's kept nodes) are allocated by
+  // whichever OpenMP thread runs the task and freed after the launch; with
+  // an arena per thread, a buffer freed in one arena is not reused when the
+  // next launch's task lands on the other thread, so peak memory depended
+  // on scheduling (docs/pricing.md, "One malloc arena"). The hot loops do
+  // not allocate, so threads seldom wait on the shared arena. A failure
+  // (mallopt returns 0, or a sanitizer's allocator ignores it) changes
+  // memory use only, never a result.
+  mallopt(M_ARENA_MAX, 1);
   CLI::App app{"rcbench: robotics kernels (MCL ray casting, A*, RRT*) on modelled GPU backends"};
   app.require_subcommand(1);
   // Options of the top level (--max-memory) may follow the subcommand.
