@@ -5,7 +5,10 @@
 # workload, mode, wall (s), user + system CPU (s) and peak RSS (KB) from GNU
 # time, then per workload the medians' ratios and the median and largest of
 # the rounds' paired ratios (a round's priced run over its unpriced one,
-# which ran beside it and so saw the same load). CPU time is the
+# which ran beside it and so saw the same load), and the host's noise: the
+# unpriced runs' largest CPU time over their smallest (identical work, so
+# any spread is the host's; a single paired ratio strays from the median by
+# about as much). CPU time is the
 # load-independent measure on a shared machine; wall time is what a user
 # waits. The claim audit is off in both (--no-claim-audit): it prices
 # nothing, and its host time in both runs would make pricing's share look
@@ -50,8 +53,8 @@ runs = {}
 for line in open(sys.argv[1]):
     w, mode, wall, cpu, rss = line.split()
     runs.setdefault((w, mode), []).append((float(wall), float(cpu), int(rss)))
-print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio |")
-print("|---|---|---|---|---|---|---|---|---|")
+print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio | unpriced CPU spread |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for w in dict.fromkeys(k[0] for k in runs):
     p, u = runs[(w, "priced")], runs[(w, "unpriced")]
     med = lambda xs, i: statistics.median(x[i] for x in xs)
@@ -62,5 +65,6 @@ for w in dict.fromkeys(k[0] for k in runs):
         if scale == 1:
             paired = [x[i] / y[i] for x, y in zip(p, u)]
             cells.append(f"{statistics.median(paired):.2f}x, {max(paired):.2f}x")
+    cells.append(f"{max(x[1] for x in u) / min(x[1] for x in u):.2f}x")
     print(f"| {w} | " + " | ".join(cells) + " |")
 PY
