@@ -1,14 +1,15 @@
 // rcbench: robotics kernels on modelled GPU backends.
 //
 // Exit codes: one table for every subcommand, common/exit_codes.h.
-#include <malloc.h>
-
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#if defined(__GLIBC__)  // defined by the headers above
+#include <malloc.h>
+#endif
 
 #include <CLI/CLI.hpp>
 
@@ -27,8 +28,11 @@ int main(int argc, char** argv) {
   // on scheduling (docs/pricing.md, "One malloc arena"). The hot loops do
   // not allocate, so threads seldom wait on the shared arena. A failure
   // (mallopt returns 0, or a sanitizer's allocator ignores it) changes
-  // memory use only, never a result.
+  // memory use only, never a result. glibc only: other C libraries have no
+  // arena per thread to share.
+#if defined(__GLIBC__)
   mallopt(M_ARENA_MAX, 1);
+#endif
   CLI::App app{"rcbench: robotics kernels (MCL ray casting, A*, RRT*) on modelled GPU backends"};
   app.require_subcommand(1);
   // Options of the top level (--max-memory) may follow the subcommand.
