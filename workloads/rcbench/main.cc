@@ -20,16 +20,11 @@
 #include "workloads/rcbench/commands.h"
 
 int main(int argc, char** argv) {
-  // One malloc arena for every thread. A priced launch's buffers (a memory
-  // replay's per-query cycles, the record's kept nodes) are allocated by
-  // whichever OpenMP thread runs the task and freed after the launch; with
-  // an arena per thread, a buffer freed in one arena is not reused when the
-  // next launch's task lands on the other thread, so peak memory depended
-  // on scheduling (docs/pricing.md, "One malloc arena"). The hot loops do
-  // not allocate, so threads seldom wait on the shared arena. A failure
-  // (mallopt returns 0, or a sanitizer's allocator ignores it) changes
-  // memory use only, never a result. glibc only: other C libraries have no
-  // arena per thread to share.
+  // One malloc arena for every thread: a priced launch's buffers are
+  // allocated by whichever OpenMP thread runs its task, and with an arena
+  // per thread a buffer freed in one was not reused by the next launch on
+  // the other, so peak memory depended on scheduling (docs/pricing.md, "One
+  // malloc arena"). Memory use only: a failed call changes no result.
 #if defined(__GLIBC__)
   mallopt(M_ARENA_MAX, 1);
 #endif
