@@ -32,10 +32,12 @@ void WriteL1Cycles(const KernelRecord& record, std::size_t w, std::size_t lanes,
 // waits for the L1, and one with a miss waits for its slowest miss: the
 // owner is charged the L1 latency per group up front, and the difference
 // when the group's last miss has been through the L2.
+// The per-miss and per-request buffers below are written in full as they
+// grow, so they grow without a zero fill (UninitializedVector).
 struct SmMisses {
-  std::vector<std::uint32_t> sector;
-  std::vector<std::uint32_t> owner;     // the query (per thread) or warp (coalesced)
-  std::vector<std::uint8_t> group_end;  // 1 on the last miss of its group
+  UninitializedVector<std::uint32_t> sector;
+  UninitializedVector<std::uint32_t> owner;     // the query (per thread) or warp (coalesced)
+  UninitializedVector<std::uint8_t> group_end;  // 1 on the last miss of its group
   std::vector<std::uint32_t> wave_end;  // per wave: one past its last miss
   std::uint64_t requests = 0, l2_hits = 0, dram = 0;
 
@@ -103,8 +105,8 @@ class SmReplay {
 
  private:
   // Buffers only grow: a shorter wave leaves the tail unused.
-  template <class T>
-  static void Grow(std::vector<T>& v, std::size_t n) {
+  template <class Vector>
+  static void Grow(Vector& v, std::size_t n) {
     if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
   }
 
@@ -316,8 +318,8 @@ class SmReplay {
   std::vector<const std::uint64_t*> lane_addresses_;
   std::vector<std::uint32_t> lane_nodes_, lane_owner_;
   std::vector<std::uint32_t> step_start_, cursor_;
-  std::vector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
-  std::vector<std::uint64_t> address_;
+  UninitializedVector<std::uint32_t> owner_, sector_, misses_, request_sector_, request_group_;
+  UninitializedVector<std::uint64_t> address_;
   static constexpr int kRecentBits = 10;
   std::array<std::uint64_t, std::size_t{1} << kRecentBits> recent_;  // WalkCoalesced: (group, sector) per slot
 };
@@ -362,8 +364,7 @@ void EstimateUnsampled(const KernelRecord& record, const GpuParams& gpu, const A
   const std::size_t n = record.query_count();
   const std::size_t lanes = static_cast<std::size_t>(gpu.warp_size);
   const std::size_t per_block = static_cast<std::size_t>(gpu.warps_per_block);
-  std::vector<std::uint64_t>& owner_cycles =
-      pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
+  MemoryCycles& owner_cycles = pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   auto extra_of_query = [&](std::size_t q) { return owner_cycles[q] - l1_latency * record.nodes(q); };
 
   std::vector<std::uint64_t> unkept_units(gpu.sms, 0);
@@ -592,9 +593,10 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
   if (pattern.coalesced) warp_steps.assign(steps.begin(), steps.end());
   const std::vector<std::uint64_t>& units = pattern.coalesced ? warp_steps : warp_nodes.lane_nodes;
   const std::uint64_t* offsets = record.fetch_offsets.data();
-  std::vector<std::uint64_t>& owner_cycles =
-      pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
+  MemoryCycles& owner_cycles = pattern.coalesced ? profile.warp_memory_cycles : profile.query_memory_cycles;
   // Through a pointer: push_back stored the vector's end at every entry.
+  // Every entry is written below (or, for unkept queries, by
+  // EstimateUnsampled): resize leaves them uninitialized (MemoryCycles).
   owner_cycles.resize(pattern.coalesced ? warps : n);
   std::uint64_t* first_cycles = owner_cycles.data();
   if (pattern.coalesced) {

@@ -28,6 +28,7 @@
 
 #include "backends/gpu_params.h"
 #include "backends/warp_nodes.h"
+#include "common/uninitialized_vector.h"
 #include "robocore/kernel_record.h"
 
 namespace rc {
@@ -46,11 +47,15 @@ struct MemoryCounters {
   MemoryCounters& operator+=(const MemoryCounters& more);
 };
 
+// Per warp or per query: the replay writes every entry (no zero fill
+// first, a pass over megabytes per record).
+using MemoryCycles = UninitializedVector<std::uint64_t>;
+
 struct MemoryProfile {
   // Coalesced: per warp, the sum over its steps of the slowest sector.
-  std::vector<std::uint64_t> warp_memory_cycles;
+  MemoryCycles warp_memory_cycles;
   // Per thread: per query, the sum of its fetches' latencies.
-  std::vector<std::uint64_t> query_memory_cycles;
+  MemoryCycles query_memory_cycles;
   std::vector<std::uint64_t> sm_sector_requests;  // per SM
   MemoryCounters totals;
   std::string l1_model;

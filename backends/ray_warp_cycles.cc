@@ -8,7 +8,7 @@
 namespace rc {
 
 std::vector<RayWarpCycles> CountRayWarpCycles(const KernelRecord& record, const GpuParams& gpu, int exits,
-                                              const std::vector<std::uint64_t>& memory_cycles,
+                                              const MemoryCycles& memory_cycles,
                                               const std::vector<RayPassCosts>& costs) {
   const std::size_t n = record.query_count();
   if (!record.exits_per_query()) throw std::logic_error("CountRayWarpCycles: the record keeps no exit per query");

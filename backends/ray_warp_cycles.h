@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backends/gpu_params.h"
+#include "backends/memory_replay.h"
 #include "backends/ray_query_cycles.h"
 #include "robocore/kernel_record.h"
 
@@ -26,7 +27,7 @@ struct RayWarpCycles {
 // keeps an exit per query (exits_per_query()); memory_cycles has one entry
 // per query.
 std::vector<RayWarpCycles> CountRayWarpCycles(const KernelRecord& record, const GpuParams& gpu, int exits,
-                                              const std::vector<std::uint64_t>& memory_cycles,
+                                              const MemoryCycles& memory_cycles,
                                               const std::vector<RayPassCosts>& costs);
 
 }  // namespace rc

@@ -30,7 +30,7 @@ TEST(RayWarpCycles, OnePassForManyUnitsGivesEachWhatItsOwnPassGives) {
   ASSERT_TRUE(record.exits_per_query());
   GpuParams gpu;
   gpu.sms = 3;
-  const std::vector<std::uint64_t> memory = ReplayMemory(record, gpu, AccessPattern{4, false}).query_memory_cycles;
+  const MemoryCycles memory = ReplayMemory(record, gpu, AccessPattern{4, false}).query_memory_cycles;
   std::vector<RayPassCosts> costs;
   for (int k = 0; k < kMaxRayCostsPerPass + 3; ++k) costs.push_back(UnitCosts(k));
   const std::vector<RayWarpCycles> together = CountRayWarpCycles(record, gpu, 2, memory, costs);
