@@ -8,7 +8,11 @@
 # which ran beside it and so saw the same load), and the host's noise: the
 # unpriced runs' largest CPU time over their smallest (identical work, so
 # any spread is the host's; a single paired ratio strays from the median by
-# about as much). CPU time is the
+# about as much). The paired median comes with a distribution-free
+# confidence interval, the order statistics (k-th smallest and k-th
+# largest paired ratio) whose binomial coverage is at least 95% (at least
+# six rounds; fewer give the widest interval and say its coverage): the
+# goal is met with confidence when the interval's top is below it. CPU time is the
 # load-independent measure on a shared machine; wall time is what a user
 # waits. The claim audit is off in both (--no-claim-audit): it prices
 # nothing, and its host time in both runs would make pricing's share look
@@ -48,13 +52,23 @@ for round in $(seq "$ROUNDS"); do
 done
 
 python3 - runs.txt <<'PY'
-import statistics, sys
+import math, statistics, sys
+
+def median_interval(xs):
+    """The k-th smallest and k-th largest of xs, the largest k whose coverage of the
+    median, 1 - 2 P(Binomial(n, 1/2) < k), is at least 95%, and that coverage."""
+    xs, n = sorted(xs), len(xs)
+    coverage = lambda k: 1 - 2 * sum(math.comb(n, i) for i in range(k)) / 2**n
+    k = 1
+    while k + 1 <= (n + 1) // 2 and coverage(k + 1) >= 0.95:
+        k += 1
+    return xs[k - 1], xs[n - k], coverage(k)
 runs = {}
 for line in open(sys.argv[1]):
     w, mode, wall, cpu, rss = line.split()
     runs.setdefault((w, mode), []).append((float(wall), float(cpu), int(rss)))
-print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio | unpriced CPU spread |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | paired median's interval (coverage) | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio | unpriced CPU spread |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for w in dict.fromkeys(k[0] for k in runs):
     p, u = runs[(w, "priced")], runs[(w, "unpriced")]
     med = lambda xs, i: statistics.median(x[i] for x in xs)
@@ -65,6 +79,9 @@ for w in dict.fromkeys(k[0] for k in runs):
         if scale == 1:
             paired = [x[i] / y[i] for x, y in zip(p, u)]
             cells.append(f"{statistics.median(paired):.2f}x, {max(paired):.2f}x")
+            if i == 1:
+                lo, hi, coverage = median_interval(paired)
+                cells.append(f"{lo:.2f}-{hi:.2f}x ({100 * coverage:.0f}%)")
     cells.append(f"{max(x[1] for x in u) / min(x[1] for x in u):.2f}x")
     print(f"| {w} | " + " | ".join(cells) + " |")
 PY
