@@ -289,6 +289,19 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
     segments[last].queries += size;
   }
   const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
+  // Per block, its queries' nodes, summed by the task that cast it while its
+  // hits are in that thread's caches: the fetch offsets are then written
+  // block by block in parallel (a serial pass over every query's hit, read
+  // from the other threads' caches, showed as one thread's work while the
+  // others waited).
+  std::vector<std::uint64_t> block_nodes(static_cast<std::size_t>(blocks));
+  auto sum_blocks = [&](const std::vector<long>& cast) {
+    for (long b : cast) {
+      std::uint64_t sum = 0;
+      for (long i = b * block; i < std::min(n, (b + 1) * block); ++i) sum += hits[i].nodes;
+      block_nodes[static_cast<std::size_t>(b)] = sum;
+    }
+  };
 #pragma omp parallel
   {
     std::vector<std::uint8_t> mine(mark ? sectors : 0, 0);
@@ -332,26 +345,42 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
           if (hits[i].nodes > 0) last_exit[i] = LastPassExit(scene, marking);
         }
       }
+      sum_blocks(seg.blocks);
     }
 #pragma omp critical(rc_touched_sectors)
     touched.push_back(std::move(mine));
   }
-  record.touched_sectors = 0;
+  // The threads' touched sectors ORed and counted, a range of sectors each.
+  std::uint64_t touched_count = 0;
   if (mark) {
-    std::vector<std::uint8_t>& all = touched.front();
-    for (std::size_t t = 1; t < touched.size(); ++t)
-      for (std::uint64_t w = 0; w < sectors; ++w) all[w] |= touched[t][w];
-    for (std::uint64_t w = 0; w < sectors; ++w) record.touched_sectors += all[w] != 0;
+    constexpr long kSectorChunk = 1 << 14;
+    const long chunks = static_cast<long>((sectors + kSectorChunk - 1) / kSectorChunk);
+#pragma omp parallel for schedule(static) reduction(+ : touched_count)
+    for (long c = 0; c < chunks; ++c) {
+      const long lo = c * kSectorChunk, hi = std::min(static_cast<long>(sectors), lo + kSectorChunk);
+      std::uint8_t* all = touched.front().data();
+      for (std::size_t t = 1; t < touched.size(); ++t)
+        for (long w = lo; w < hi; ++w) all[w] |= touched[t][w];
+      for (long w = lo; w < hi; ++w) touched_count += all[w] != 0;
+    }
   }
+  record.touched_sectors = touched_count;
 
   // Prefix sums, every entry written: resize, not assign, so that a reused
-  // record's vectors are not first filled with zeros. The running sum stays
-  // in a register: reading each entry back would wait on its store.
+  // record's vectors are not first filled with zeros. Each block's from its
+  // base (the blocks' sums before it), in parallel; within a block the
+  // running sum stays in a register: reading each entry back would wait on
+  // its store.
+  std::vector<std::uint64_t> block_base(static_cast<std::size_t>(blocks) + 1, 0);
+  for (long b = 0; b < blocks; ++b) block_base[b + 1] = block_base[b] + block_nodes[b];
   record.fetch_offsets.resize(launch.count + 1);
   std::uint64_t* offsets = record.fetch_offsets.data();
-  std::uint64_t sum = 0;
   offsets[0] = 0;
-  for (long i = 0; i < n; ++i) offsets[i + 1] = sum += hits[i].nodes;
+#pragma omp parallel for schedule(static)
+  for (long b = 0; b < blocks; ++b) {
+    std::uint64_t sum = block_base[b];
+    for (long i = b * block; i < std::min(n, (b + 1) * block); ++i) offsets[i + 1] = sum += hits[i].nodes;
+  }
   record.address_sample = sample;
   if (sample.KeepsAll())
     record.address_offsets.clear();
