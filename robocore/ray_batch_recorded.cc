@@ -289,17 +289,17 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
     segments[last].queries += size;
   }
   const MemoryRegion& fetched = record.regions.front();  // a ray kernel fetches one structure
-  // Per block, its queries' nodes, summed by the task that cast it while its
-  // hits are in that thread's caches: the fetch offsets are then written
-  // block by block in parallel (a serial pass over every query's hit, read
-  // from the other threads' caches, showed as one thread's work while the
-  // others waited).
-  std::vector<std::uint64_t> block_nodes(static_cast<std::size_t>(blocks));
+  // Where each block's fetches begin (entry b; the last entry is the total):
+  // each block's node sum is written at b + 1 by the task that cast it,
+  // while its hits are in that thread's caches, and summed up after the
+  // cast, so that the fetch offsets can be written block by block in
+  // parallel (docs/pricing.md, "A launch's record finished in parallel").
+  std::vector<std::uint64_t> block_base(static_cast<std::size_t>(blocks) + 1, 0);
   auto sum_blocks = [&](const std::vector<long>& cast) {
     for (long b : cast) {
       std::uint64_t sum = 0;
       for (long i = b * block; i < std::min(n, (b + 1) * block); ++i) sum += hits[i].nodes;
-      block_nodes[static_cast<std::size_t>(b)] = sum;
+      block_base[static_cast<std::size_t>(b) + 1] = sum;
     }
   };
 #pragma omp parallel
@@ -368,11 +368,9 @@ void RecordLaunch(const RayCastScene& scene, const LaunchQueries& launch, RayHit
 
   // Prefix sums, every entry written: resize, not assign, so that a reused
   // record's vectors are not first filled with zeros. Each block's from its
-  // base (the blocks' sums before it), in parallel; within a block the
-  // running sum stays in a register: reading each entry back would wait on
-  // its store.
-  std::vector<std::uint64_t> block_base(static_cast<std::size_t>(blocks) + 1, 0);
-  for (long b = 0; b < blocks; ++b) block_base[b + 1] = block_base[b] + block_nodes[b];
+  // base, in parallel; within a block the running sum stays in a register:
+  // reading each entry back would wait on its store.
+  for (long b = 0; b < blocks; ++b) block_base[b + 1] += block_base[b];
   record.fetch_offsets.resize(launch.count + 1);
   std::uint64_t* offsets = record.fetch_offsets.data();
   offsets[0] = 0;
