@@ -24,13 +24,15 @@ int main(int argc, char** argv) {
   // allocated by whichever OpenMP thread runs its task, and with an arena
   // per thread a buffer freed in one was not reused by the next launch on
   // the other, so peak memory depended on scheduling (docs/pricing.md, "One
-  // malloc arena"). Memory use only: a failed call changes no result.
+  // malloc arena").
   //
   // Buffers below 4 MiB come from the heap, and the heap keeps up to 256 MiB
   // of freed memory instead of returning it to the kernel: a priced launch
   // allocates and frees per-query buffers of a few MiB, and with glibc's
   // defaults each was mapped afresh and page-faulted again, launch after
   // launch (docs/pricing.md, "Freed buffers kept for the next launch").
+  //
+  // Host time and memory only: a failed call changes no result.
 #if defined(__GLIBC__)
   mallopt(M_ARENA_MAX, 1);
   mallopt(M_MMAP_THRESHOLD, 4 << 20);
