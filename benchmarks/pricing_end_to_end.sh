@@ -37,6 +37,15 @@ declare -A ARGS=(
 workloads=(demo beam_model)
 [ -f "$DATA/wean/wean.dat" ] && workloads+=(wean_180_beams) || echo "no $DATA/wean: the Wean workload is skipped"
 
+# The host first: pricing's ratio moved by several percent from one 2-core
+# machine to another with the code unchanged (docs/pricing.md), so a table
+# means little without it.
+model=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
+family=$(awk -F': ' '/^cpu family/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
+cpu_model=$(awk -F': ' '/^model[[:space:]]*:/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
+avx512=no; grep -qw avx512f /proc/cpuinfo 2>/dev/null && avx512=yes
+echo "host: ${model:-unknown CPU} (family ${family:-?}, model ${cpu_model:-?}), $(nproc) cores, AVX-512 $avx512; threads $THREADS; rounds $ROUNDS"
+
 : > runs.txt
 for round in $(seq "$ROUNDS"); do
   for w in "${workloads[@]}"; do
