@@ -40,11 +40,12 @@ workloads=(demo beam_model)
 # The host first: pricing's ratio moved by several percent from one 2-core
 # machine to another with the code unchanged (docs/pricing.md), so a table
 # means little without it.
-model=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-family=$(awk -F': ' '/^cpu family/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-cpu_model=$(awk -F': ' '/^model[[:space:]]*:/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-avx512=no; grep -qw avx512f /proc/cpuinfo 2>/dev/null && avx512=yes
-echo "host: ${model:-unknown CPU} (family ${family:-?}, model ${cpu_model:-?}), $(nproc) cores, AVX-512 $avx512; threads $THREADS; rounds $ROUNDS"
+cpu=$(awk -F': ' '
+  /^model name/ && !name { name = $2 } /^cpu family/ && !family { family = $2 }
+  /^model[[:space:]]*:/ && !model { model = $2 } /^flags/ && / avx512f / { avx512 = "yes" }
+  END { printf "%s (family %s, model %s), AVX-512 %s", name ? name : "unknown CPU", family ? family : "?",
+        model ? model : "?", avx512 ? avx512 : "no" }' /proc/cpuinfo 2>/dev/null || echo "unknown CPU")
+echo "host: $cpu, $(nproc) cores; threads $THREADS; rounds $ROUNDS"
 
 : > runs.txt
 for round in $(seq "$ROUNDS"); do

@@ -1,8 +1,8 @@
 // The exit profile (ProfileExits, memory_replay.h) against its definition:
 // per query, its passes without an exit first, then each exit value's
 // passes in the order the query first reached it. Every query length from
-// 0 to 130 passes, exit alphabets from one value to every byte, queries at
-// the record's very end, at 1 and 2 threads (each tallies its own range).
+// 0 to 130 passes, exit alphabets from one value to every byte, at 1 and 2
+// threads (each thread tallies its own range of queries).
 #include <algorithm>
 #include <cstdint>
 #include <random>
@@ -65,6 +65,7 @@ KernelRecord RecordOfExits(std::mt19937& rng, int alphabet) {
 
 TEST(ExitProfile, EqualsItsDefinitionAtEveryQueryLength) {
   std::mt19937 rng(11);
+  const int threads_before = omp_get_max_threads();  // restored for the tests after this one
   // One exit value and "no exit", a few values (SACT's axes), and every
   // byte value but kNoExit.
   for (int alphabet : {1, 4, 16, 255}) {
@@ -83,6 +84,7 @@ TEST(ExitProfile, EqualsItsDefinitionAtEveryQueryLength) {
       }
     }
   }
+  omp_set_num_threads(threads_before);
 }
 
 }  // namespace
