@@ -18,13 +18,18 @@
 # nothing, and its host time in both runs would make pricing's share look
 # smaller than it is. The workloads: the demo; the demo with the beam model,
 # whose first update casts 25 million rays (the costliest to price); Wean
-# with every beam.
+# with every beam; CarriBot on RoWild's Intel query (its car footprint, 8
+# headings, scales 1 and 2, as scripts/carribot_vs_rowild.py poses it);
+# MoveBot's default (RRT* on the LoCoBot obstacles). The last four need the
+# shared data and are skipped without it.
 # Usage: [THREADS=n] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
 set -euo pipefail
 RCBENCH="$(realpath "${1:-build/rcbench}")"
 DATA="$(realpath "${2:-../shared/data}")"
 ROUNDS="${3:-3}"
 THREADS="${THREADS:-1}"
+# carribot and movebot take OpenMP's thread count (they have no --threads).
+export OMP_THREAD_LIMIT="$THREADS"
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"
@@ -34,8 +39,22 @@ declare -A ARGS=(
   [beam_model]="delibot --threads $THREADS --no-claim-audit --sensor-model beam"
   [wean_180_beams]="delibot --threads $THREADS --no-claim-audit --map $DATA/wean/wean.dat --trace $DATA/wean/robotdata1.log --particles 2000 --beam-step 1 --max-records 100"
 )
+# RoWild's query: start, goal and the (5,2)-cell offset in scale-1 cells,
+# the 4 x 10-cell car in metres at the scale's cell size.
+intel_query() {
+  local cell; cell=$(awk -v s="$1" 'BEGIN { print 1 / s }')
+  echo "carribot --map $DATA/intel/Intel.map --map-scale $1 --start 227,33 --goal 59,217 --offset 5,2" \
+    "--start-heading 0 --goal-heading 0 --footprint $(awk -v c="$cell" 'BEGIN { print 4 * c "x" 10 * c }')" \
+    "--headings 8 --path path.txt"
+}
+ARGS[carribot_intel_1]="$(intel_query 1)"
+ARGS[carribot_intel_2]="$(intel_query 2)"
+ARGS[movebot]="movebot --obstacles $DATA/movebot/locobot_obs.txt"
 workloads=(demo beam_model)
 [ -f "$DATA/wean/wean.dat" ] && workloads+=(wean_180_beams) || echo "no $DATA/wean: the Wean workload is skipped"
+[ -f "$DATA/intel/Intel.map" ] && workloads+=(carribot_intel_1 carribot_intel_2) ||
+  echo "no $DATA/intel: the CarriBot workloads are skipped"
+[ -f "$DATA/movebot/locobot_obs.txt" ] && workloads+=(movebot) || echo "no $DATA/movebot: the MoveBot workload is skipped"
 
 # The host first: pricing's ratio moved by several percent from one 2-core
 # machine to another with the code unchanged (docs/pricing.md), so a table

@@ -74,19 +74,10 @@ TEST(CacheHierarchy, SetAssociativeL2EvictsWithinASet) {
 
 // Property: the L1 (timestamp LRU, by level or through the hierarchy) agrees with a
 // plain list LRU of lines with sector masks on random streams with reuse.
-TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
-  GpuParams gpu;
-  gpu.l1_bytes = 16 * gpu.line_bytes;
-  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
-  RandomStream s(17, StreamPurpose::kTest, 0, 0);
-  std::vector<std::uint32_t> stream;
-  // Long enough that the history is compacted several times.
-  for (int i = 0; i < 100000; ++i) {
-    // Mostly near recent lines, sometimes anywhere: hits and evictions.
-    const int line = s.Uniform() < 0.8 ? static_cast<int>(s.Uniform() * 20) : static_cast<int>(s.Uniform() * lines);
-    stream.push_back(
-        static_cast<std::uint32_t>(line * sectors_per_line + static_cast<int>(s.Uniform() * sectors_per_line)));
-  }
+// Hit (1) or miss (0) of each access of `stream` (sectors) in a fully
+// associative LRU cache of `capacity` lines, sector-filled: a list.
+std::vector<std::uint8_t> ReferenceLru(const std::vector<std::uint32_t>& stream, int sectors_per_line,
+                                       std::size_t capacity) {
   std::list<std::pair<int, unsigned>> lru;  // (line, sector mask), most recent first
   std::vector<std::uint8_t> expected;
   for (std::uint32_t sector : stream) {
@@ -99,12 +90,38 @@ TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
       hit = it->second & bit;
       mask |= it->second;
       lru.erase(it);
-    } else if (static_cast<int>(lru.size()) == 16) {
+    } else if (lru.size() == capacity) {
       lru.pop_back();
     }
     lru.emplace_front(line, mask);
     expected.push_back(hit);
   }
+  return expected;
+}
+
+// Mostly near recent lines, sometimes anywhere (hits and evictions), each
+// line chosen for a run of 1 to `max_run` accesses to its sectors (a run
+// repeats the most recently used line). Long enough that the history is
+// compacted several times.
+std::vector<std::uint32_t> LineStream(int lines, int sectors_per_line, int max_run, std::uint64_t seed) {
+  RandomStream s(seed, StreamPurpose::kTest, 0, 0);
+  std::vector<std::uint32_t> stream;
+  while (stream.size() < 100000) {
+    const int line = s.Uniform() < 0.8 ? static_cast<int>(s.Uniform() * 20) : static_cast<int>(s.Uniform() * lines);
+    const int run = max_run > 1 ? 1 + static_cast<int>(s.Uniform() * max_run) : 1;
+    for (int k = 0; k < run; ++k)
+      stream.push_back(
+          static_cast<std::uint32_t>(line * sectors_per_line + static_cast<int>(s.Uniform() * sectors_per_line)));
+  }
+  return stream;
+}
+
+TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
+  GpuParams gpu;
+  gpu.l1_bytes = 16 * gpu.line_bytes;
+  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
+  const std::vector<std::uint32_t> stream = LineStream(lines, sectors_per_line, 1, 17);
+  const std::vector<std::uint8_t> expected = ReferenceLru(stream, sectors_per_line, 16);
   CacheHierarchy levels(gpu, kBase, kBase + lines * 128);
   std::vector<std::uint8_t> got(stream.size());
   for (std::size_t i = 0; i < stream.size(); ++i) got[i] = levels.L1(0).Access(stream[i]);
@@ -114,6 +131,30 @@ TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
   for (std::size_t i = 0; i < stream.size(); ++i)
     mismatches += (single.Access(0, kBase + std::uint64_t{stream[i]} * 32) == MemoryLevel::kL1) != (expected[i] != 0);
   EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(std::count(expected.begin(), expected.end(), 0), 1000);  // evictions happened
+}
+
+// Runs of accesses to one line (the most recently used, again and again,
+// as neighbouring rays fetch), driven through AccessAll in waves of 1 to
+// 300 accesses as the replay drives it; a wave's first access may repeat
+// the previous wave's last line.
+TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRunsOfRepeatsInWaves) {
+  GpuParams gpu;
+  gpu.l1_bytes = 16 * gpu.line_bytes;
+  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
+  const std::vector<std::uint32_t> stream = LineStream(lines, sectors_per_line, 6, 23);
+  const std::vector<std::uint8_t> expected = ReferenceLru(stream, sectors_per_line, 16);
+  CacheHierarchy levels(gpu, kBase, kBase + lines * 128);
+  std::vector<std::uint8_t> got(stream.size(), 1);
+  std::vector<std::uint32_t> misses(stream.size());
+  RandomStream waves(29, StreamPurpose::kTest, 0, 0);
+  for (std::size_t lo = 0; lo < stream.size();) {
+    const std::size_t n = std::min(stream.size() - lo, 1 + static_cast<std::size_t>(waves.Uniform() * 300));
+    const std::size_t m = levels.L1(0).AccessAll(stream.data() + lo, n, misses.data());
+    for (std::size_t j = 0; j < m; ++j) got[lo + misses[j]] = 0;
+    lo += n;
+  }
+  EXPECT_EQ(got, expected);
   EXPECT_GT(std::count(expected.begin(), expected.end(), 0), 1000);  // evictions happened
 }
 
