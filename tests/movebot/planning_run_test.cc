@@ -9,6 +9,7 @@
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 
+#include "robocore/address_sample.h"
 #include "support/test_data.h"
 #include "workloads/movebot/arm_validity.h"
 #include "workloads/movebot/movebot_run.h"
@@ -223,6 +224,38 @@ TEST(MoveBotPlanning, PricedRowsCarryEveryBackendsCycles) {
     for (const BatchCost& c : row.collision_pricing.costs) EXPECT_GT(c.cycles, 0u) << c.backend;
     EXPECT_EQ(row.collision_pricing.costs.front().queries, row.collision.queries);
   }
+}
+
+// The collision records take the ledger's address sample (--replay-sms,
+// --replay-block-stride), as every workload's do: the sampled run says so
+// and prices each backend within the sampled replay's stated error of the
+// exact one (6%, tests/backends/sampled_pricing_test.cc), with identical
+// queries. It once replayed every SM whatever the flags said.
+TEST(MoveBotPlanning, CollisionRecordsTakeTheLedgersAddressSample) {
+  // A tree of one box is priced alike by any sample: the LoCoBot scene's 15 nodes.
+  RC_REQUIRE_SHARED_DATA("movebot/locobot_obs.txt");
+  const ArmScene scene = ArmScene::FromObstacles(ReadObstacleFile(test::SharedDataPath("movebot/locobot_obs.txt")));
+  const LocobotArm arm;
+  MoveBotSettings sampled = FastSettings(500, 2);
+  sampled.price_backends = true;
+  sampled.ledger.replay_sms = kReplaySms;
+  sampled.ledger.replay_block_stride = kReplayBlockStride;
+  MoveBotSettings exact = sampled;
+  exact.ledger.replay_sms = 0;
+  ArmCollisionChecker a(arm, scene), b(arm, scene);
+  const MoveBotResult rs = RunMoveBot(a, sampled);
+  const MoveBotResult re = RunMoveBot(b, exact);
+  EXPECT_EQ(rs.collision_pricing.replay_sms, kReplaySms);
+  EXPECT_EQ(re.collision_pricing.replay_sms, 0);
+  ASSERT_EQ(rs.collision_pricing.static_total_cycles.size(), re.collision_pricing.static_total_cycles.size());
+  bool any_differs = false;
+  for (std::size_t k = 0; k < re.collision_pricing.static_total_cycles.size(); ++k) {
+    const double e = re.collision_pricing.static_total_cycles[k], v = rs.collision_pricing.static_total_cycles[k];
+    EXPECT_NEAR(v, e, 0.06 * e) << rs.collision_pricing.backends[k];
+    any_differs = any_differs || v != e;
+  }
+  EXPECT_TRUE(any_differs);  // the sample was replayed, not every SM
+  EXPECT_EQ(a.totals().queries, b.totals().queries);
 }
 
 }  // namespace

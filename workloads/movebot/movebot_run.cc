@@ -136,7 +136,10 @@ MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& se
     row.best_cost_rad = planner->bestCost().value();
     if (collision_ledger) {
       std::optional<KernelRecord> collision_record;
-      if (collision_work.query_count() > 0) collision_record = SactKernelRecord(collision_work);
+      // The ledger's address sample (--replay-sms, --replay-block-stride),
+      // as every workload's records take it.
+      if (collision_work.query_count() > 0)
+        collision_record = SactKernelRecord(collision_work, nullptr, collision_ledger->RecordSample());
       collision_ledger->BeginIteration();
       row.collision_pricing = collision_ledger->EndIteration(collision_record ? &*collision_record : nullptr);
       nn_ledger->BeginIteration();
