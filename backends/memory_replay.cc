@@ -728,6 +728,7 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
 }
 
 ExitProfile ProfileExits(const KernelRecord& record) {
+  if (record.tallied_exits) return *record.tallied_exits;
   const std::size_t n = record.query_count();
   const std::uint64_t* offsets = record.fetch_offsets.data();
   if (record.exits_per_query()) {
@@ -754,9 +755,7 @@ ExitProfile ProfileExits(const KernelRecord& record) {
   const std::uint8_t* exits = record.node_exits.data();
   // One pass over the exits: each thread tallies a contiguous range of
   // queries into its own lists, which are then concatenated in query order
-  // (the profile does not depend on the thread count). Per query: a count
-  // per exit value, "no exit" first (most passes have none), then the rare
-  // exits in first-seen order.
+  // (the profile does not depend on the thread count).
   struct Part {
     std::vector<std::uint32_t> sizes;  // per query of the range
     std::vector<std::uint8_t> variant;
@@ -773,28 +772,10 @@ ExitProfile ProfileExits(const KernelRecord& record) {
     part.sizes.reserve(last - first);
     part.variant.reserve(2 * (last - first));
     part.passes.reserve(2 * (last - first));
-    std::array<std::uint32_t, 256> count{};
-    std::array<std::uint8_t, 256> seen{};
+    ExitTally tally;
     for (std::size_t q = first; q < last; ++q) {
-      std::uint32_t distinct = 0;
-      for (std::uint64_t i = offsets[q]; i < offsets[q + 1]; ++i) {
-        const std::uint8_t e = exits[i];
-        if (count[e]++ == 0) seen[distinct++] = e;
-      }
-      const std::size_t before = part.variant.size();
-      if (count[kNoExit] > 0) {
-        part.variant.push_back(0);
-        part.passes.push_back(count[kNoExit]);
-        count[kNoExit] = 0;
-      }
-      for (std::uint32_t i = 0; i < distinct; ++i) {
-        const std::uint8_t e = seen[i];
-        if (e == kNoExit) continue;
-        part.variant.push_back(static_cast<std::uint8_t>(1 + e));
-        part.passes.push_back(count[e]);
-        count[e] = 0;
-      }
-      part.sizes.push_back(static_cast<std::uint32_t>(part.variant.size() - before));
+      for (std::uint64_t i = offsets[q]; i < offsets[q + 1]; ++i) tally.Add(exits[i]);
+      part.sizes.push_back(tally.Append(part.variant, part.passes));
     }
   }
   ExitProfile profile;

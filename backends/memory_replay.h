@@ -29,6 +29,7 @@
 #include "backends/gpu_params.h"
 #include "backends/warp_nodes.h"
 #include "common/uninitialized_vector.h"
+#include "robocore/exit_profile.h"
 #include "robocore/kernel_record.h"
 
 namespace rc {
@@ -74,15 +75,8 @@ MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, con
 MemoryProfile ReplayMemory(const KernelRecord& record, const GpuParams& gpu, const AccessPattern& pattern,
                            const WarpNodeCounts& warp_nodes);
 
-// Per query, how many of its loop passes ended at each exit: pairs of
-// (variant, passes) in CSR form, variant 0 = no exit, 1 + j = RETURN_IF j.
-// A ray has at most two variants (every pass but the last has none), so a
-// backend prices a query's passes in O(1) instead of O(nodes).
-struct ExitProfile {
-  std::vector<std::uint32_t> offsets{0};  // per query + 1
-  std::vector<std::uint8_t> variant;
-  std::vector<std::uint32_t> passes;
-};
+// The record's exit profile (robocore/exit_profile.h): its tallied exits
+// when the recorder kept them so, else tallied from its exits.
 ExitProfile ProfileExits(const KernelRecord& record);
 
 }  // namespace rc

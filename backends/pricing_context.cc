@@ -54,6 +54,7 @@ std::shared_ptr<const MemoryProfile> PricingContext::Memory(const GpuParams& gpu
 }
 
 std::shared_ptr<const ExitProfile> PricingContext::Exits() {
+  if (record_.tallied_exits) return record_.tallied_exits;  // the recorder's, not copied
   return Once(mutex_, exits_, "exits", [&] { return ProfileExits(record_); });
 }
 

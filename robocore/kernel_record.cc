@@ -46,11 +46,13 @@ void KernelRecord::Validate() const {
   if ((leaf == nullptr) != (leaf_kind == LeafProgramKind::kNone)) fail("leaf program and leaf kind disagree");
   if (scalar_bytes != 4 && scalar_bytes != 8) fail("scalar_bytes must be 4 (float) or 8 (double)");
   if (fetch_offsets.empty() || fetch_offsets.front() != 0) fail("offsets must start at 0");
-  if (exits_per_query() ? (last_exits.size() != query_count() || !node_exits.empty())
-                        : node_exits.size() != fetch_offsets.back())
-    fail("one exit per fetch (or, last-pass exits, one per query) expected");
+  if (exits_tallied() ? !node_exits.empty() || !last_exits.empty()
+      : exits_per_query() ? (last_exits.size() != query_count() || !node_exits.empty())
+                          : node_exits.size() != fetch_offsets.back())
+    fail("one exit per fetch (or, last-pass exits, one per query; or tallied exits alone) expected");
   for (std::size_t i = 1; i < fetch_offsets.size(); ++i)
     if (fetch_offsets[i] < fetch_offsets[i - 1]) fail("offsets decrease");
+  if (exits_tallied()) ValidateTalliedExits();
   if (!sampled()) {
     if (!address_sample.KeepsAll()) fail("a sample without address offsets");
     if (fetch_offsets.back() != fetch_addresses.size()) fail("offsets do not end at the fetch count");
@@ -63,6 +65,11 @@ void KernelRecord::Validate() const {
   // Branch-free scans first (records hold millions of fetches); the slow
   // search for the culprit only when one fails.
   const int returns = program->ReturnIfCount(ProgramSection::kLoop);
+  if (exits_tallied())
+    for (const std::uint8_t v : tallied_exits->variant)
+      if (v > returns)
+        fail("a tallied exit names RETURN_IF #" + std::to_string(v - 1) + " but the loop of '" + program->name() +
+             "' has " + std::to_string(returns));
   const std::vector<std::uint8_t>& exits = exits_per_query() ? last_exits : node_exits;
   std::uint8_t highest = 0;  // 1 + the highest RETURN_IF named (kNoExit + 1 wraps to 0)
   for (const std::uint8_t e : exits) highest = std::max(highest, static_cast<std::uint8_t>(e + 1));
@@ -82,6 +89,20 @@ void KernelRecord::Validate() const {
     bool inside = false;
     for (const MemoryRegion& r : regions) inside = inside || (a >= r.base && a + node_bytes <= r.base + r.bytes());
     if (!inside) fail("address " + std::to_string(a) + " lies outside every region");
+  }
+}
+
+void KernelRecord::ValidateTalliedExits() const {
+  auto fail = [](const std::string& what) { throw std::logic_error("kernel record: tallied exits: " + what); };
+  const ExitProfile& t = *tallied_exits;
+  if (t.offsets.size() != fetch_offsets.size() || t.offsets.front() != 0) fail("one offset per query plus one expected");
+  if (t.offsets.back() != t.variant.size() || t.variant.size() != t.passes.size())
+    fail("offsets do not end at the variant and pass counts");
+  for (std::size_t q = 0; q < query_count(); ++q) {
+    if (t.offsets[q + 1] < t.offsets[q]) fail("offsets decrease");
+    std::uint64_t passes = 0;
+    for (std::uint32_t i = t.offsets[q]; i < t.offsets[q + 1]; ++i) passes += t.passes[i];
+    if (passes != nodes(q)) fail("query " + std::to_string(q) + "'s passes do not add up to its node count");
   }
 }
 

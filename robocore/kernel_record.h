@@ -14,16 +14,19 @@
 // robocore/address_sample.h): node counts and exits are always kept for
 // every query, which is all the cost models need besides the memory replay.
 //
-// Memory: 1 byte per fetch (exit) + 8 bytes per kept address + 8 bytes per
-// query (+ 8 per block of queries with a sample). A Wean-sized DeliBot update (90,000 rays,
-// about 26 nodes each) records about 21 MB with every address, 5 MB with
-// one SM of eight sampled.
+// Memory: 1 byte per fetch (its exit; none with exits per query or tallied)
+// + 8 bytes per kept address + 8 bytes per query (+ 8 per block of queries
+// with a sample). A Wean-sized DeliBot update (90,000 rays, about 26 nodes
+// each) records about 21 MB with every address, 5 MB with one SM of eight
+// sampled.
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "robocore/address_sample.h"
+#include "robocore/exit_profile.h"
 #include "robocore/micro_program.h"
 #include "robocore/ray_cast.h"
 #include "robocore/section_timing.h"
@@ -97,12 +100,19 @@ struct KernelRecord {
   std::uint8_t scalar_bytes = 8;
 
   std::vector<std::uint64_t> fetch_offsets{0};  // size queries + 1
-  // The RETURN_IF that fired in each node's pass, or kNoExit: per fetch in
-  // node_exits; or, for kernels whose loop can exit only in a query's last
-  // pass (the ray casts), per query in last_exits (kNoExit for a query
-  // without nodes), node_exits then empty. ExitAt reads either.
+  // The RETURN_IF that fired in each node's pass, or kNoExit, in one of
+  // three forms (the other two then empty or null):
+  //   node_exits     per fetch;
+  //   last_exits     per query, for kernels whose loop can exit only in a
+  //                  query's last pass (the ray casts; kNoExit for a query
+  //                  without nodes);
+  //   tallied_exits  per query, its passes counted by exit as the kernel ran
+  //                  (CollideBatchRecorded): what the cost models price,
+  //                  without a byte per fetch, but not which pass exited.
+  // ExitAt reads the first two.
   std::vector<std::uint8_t> node_exits;
   std::vector<std::uint8_t> last_exits;
+  std::shared_ptr<const ExitProfile> tallied_exits;
   std::vector<std::uint64_t> fetch_addresses;  // device byte addresses of the kept queries
   // Which queries' addresses are kept. With every query kept
   // (address_sample.KeepsAll()), address_offsets is empty and query i's
@@ -126,8 +136,11 @@ struct KernelRecord {
   std::uint64_t total_nodes() const { return fetch_offsets.back(); }
   bool sampled() const { return !address_offsets.empty(); }
   bool exits_per_query() const { return !last_exits.empty(); }
-  // The exit of query q's pass over its k-th node (k < nodes(q)).
+  bool exits_tallied() const { return tallied_exits != nullptr; }
+  // The exit of query q's pass over its k-th node (k < nodes(q)); not for a
+  // record with tallied exits, which keeps no pass's own exit (throws).
   std::uint8_t ExitAt(std::size_t query, std::uint32_t k) const {
+    if (exits_tallied()) throw std::logic_error("ExitAt: a record with tallied exits keeps no pass's own exit");
     if (exits_per_query()) return k + 1 == nodes(query) ? last_exits[query] : kNoExit;
     return node_exits[fetch_offsets[query] + k];
   }
@@ -155,6 +168,11 @@ struct KernelRecord {
   // keep exactly the queries its sample names), an address lies outside
   // every region, or an exit names a RETURN_IF the loop does not have.
   void Validate() const;
+
+ private:
+  // Validate's checks of tallied_exits: a profile per query whose passes add
+  // up to its node count.
+  void ValidateTalliedExits() const;
 };
 
 // A sampled record's address_offsets for these fetch offsets (queries + 1

@@ -16,40 +16,39 @@ bool Fail(std::string* why, const std::string& reason) {
 
 std::uint8_t SactExitOf(const NodeVisit& v) { return v.exit >= 0 ? static_cast<std::uint8_t>(v.exit) : kNoExit; }
 
-// A bitset over the sectors of a node array: which ones a batch touched
-// (every sector of every fetched node), numbered from the array's base.
+// Which sectors of a node array a batch touched (every sector of every
+// fetched node), numbered from the array's base. Marked a bit per node as
+// the visits happen (a shift and an OR in the traversal, no address
+// arithmetic), turned into sectors once, when counted.
 class TouchedSectors {
  public:
-  TouchedSectors(std::uint64_t node_count, std::uint64_t node_bytes, int sector_bytes) : node_bytes_(node_bytes) {
+  TouchedSectors(std::uint64_t node_count, std::uint64_t node_bytes, int sector_bytes)
+      : node_count_(node_count), node_bytes_(node_bytes), nodes_((node_count + 63) / 64, 0) {
     while ((1 << shift_) < sector_bytes) ++shift_;
-    const std::uint64_t sectors =
-        node_bytes == 0 || node_count == 0 ? 0 : ((node_count * node_bytes - 1) >> shift_) + 1;
-    bits_.assign((sectors + 63) / 64, 0);
   }
-  void Mark(std::uint32_t node) {
-    const std::uint64_t offset = std::uint64_t{node} * node_bytes_;
-    const std::uint64_t first = offset >> shift_, last = (offset + node_bytes_ - 1) >> shift_;
-    if (first == last || ((first ^ last) >> 6) != 0) {
-      for (std::uint64_t s = first; s <= last; ++s) bits_[s >> 6] |= std::uint64_t{1} << (s & 63);
-      return;
-    }
-    // The node's sectors share one word (the common case): one mask.
-    const std::uint64_t span = last - first + 1;
-    bits_[first >> 6] |= ((span == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << span) - 1)) << (first & 63);
-  }
+  void Mark(std::uint32_t node) { nodes_[node >> 6] |= std::uint64_t{1} << (node & 63); }
   void Merge(const TouchedSectors& other) {
-    for (std::size_t w = 0; w < bits_.size(); ++w) bits_[w] |= other.bits_[w];
+    for (std::size_t w = 0; w < nodes_.size(); ++w) nodes_[w] |= other.nodes_[w];
   }
   std::uint64_t Count() const {
+    const std::uint64_t sectors =
+        node_bytes_ == 0 || node_count_ == 0 ? 0 : ((node_count_ * node_bytes_ - 1) >> shift_) + 1;
+    std::vector<std::uint64_t> touched((sectors + 63) / 64, 0);
+    for (std::size_t w = 0; w < nodes_.size(); ++w)
+      for (std::uint64_t bits = nodes_[w]; bits != 0; bits &= bits - 1) {
+        const std::uint64_t first = (w * 64 + static_cast<std::uint64_t>(__builtin_ctzll(bits))) * node_bytes_;
+        for (std::uint64_t s = first >> shift_; s <= (first + node_bytes_ - 1) >> shift_; ++s)
+          touched[s >> 6] |= std::uint64_t{1} << (s & 63);
+      }
     std::uint64_t n = 0;
-    for (const std::uint64_t b : bits_) n += static_cast<std::uint64_t>(__builtin_popcountll(b));
+    for (const std::uint64_t b : touched) n += static_cast<std::uint64_t>(__builtin_popcountll(b));
     return n;
   }
 
  private:
-  std::uint64_t node_bytes_;
+  std::uint64_t node_count_, node_bytes_;
   int shift_ = 0;
-  std::vector<std::uint64_t> bits_;
+  std::vector<std::uint64_t> nodes_;  // a bit per node
 };
 
 // The batch as a record: query i's fetches are its visits, in order
@@ -174,14 +173,21 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   outcomes->resize(obbs.size());
   const std::uint64_t node_count = tree.nodes().size();
   const std::uint32_t node_bytes = tree.node_bytes();
-  // Per block: its queries' exits and, for a kept block, their addresses.
-  std::vector<std::vector<std::uint8_t>> block_exits(record ? static_cast<std::size_t>(blocks) : 0);
+  // Per block: its queries' exit tallies (pairs of variant and passes) and,
+  // for a kept block, their addresses; per query, how many pairs it has.
+  struct BlockTallies {
+    std::vector<std::uint8_t> variant;
+    std::vector<std::uint32_t> passes;
+  };
+  std::vector<BlockTallies> block_tallies(record ? static_cast<std::size_t>(blocks) : 0);
+  std::vector<std::uint32_t> query_pairs(record ? obbs.size() : 0);
   std::vector<std::vector<std::uint64_t>> block_addresses(record ? static_cast<std::size_t>(blocks) : 0);
   const bool mark = record && !sample.KeepsAll();
   std::vector<TouchedSectors> touched;
 #pragma omp parallel if (blocks > 1)
   {
     std::vector<std::uint32_t> scratch;
+    ExitTally tally;
     TouchedSectors mine(mark ? node_count : 0, node_bytes, sample.sector_bytes);
 #pragma omp for schedule(dynamic, 1)
     for (long b = 0; b < blocks; ++b) {
@@ -192,18 +198,23 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
               tree, obbs[i], options, [](const NodeVisit&) {}, &scratch);
         continue;
       }
-      // Each visit kept as it happens: its exit, in a sampled record its
-      // sectors marked as touched, and in a kept block its address.
-      std::vector<std::uint8_t>& exits = block_exits[b];
+      // Each visit kept as it happens: its exit tallied, in a sampled record
+      // its sectors marked as touched, and in a kept block its address. A
+      // query's tally joins the block's lists when the query ends.
+      BlockTallies& tallies = block_tallies[b];
       std::vector<std::uint64_t>& addresses = block_addresses[b];
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
-      auto record_visit = [&](const NodeVisit& v) {  // keep and mark are fixed for the block
-        exits.push_back(SactExitOf(v));
+      // keep and mark are fixed for the block: copied, not read back after
+      // every store.
+      auto record_visit = [&, keep, mark](const NodeVisit& v) {
+        tally.Add(SactExitOf(v));
         if (mark) mine.Mark(v.node);
         if (keep) addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
       };
-      for (long i = lo; i < hi; ++i)
+      for (long i = lo; i < hi; ++i) {
         (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
+        query_pairs[i] = tally.Append(tallies.variant, tallies.passes);
+      }
     }
     if (mark) {
 #pragma omp critical(rc_collision_touched_sectors)
@@ -225,21 +236,31 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   std::uint64_t sum = 0;
   for (long i = 0; i < n; ++i) record->fetch_offsets[i + 1] = sum += (*outcomes)[i].nodes_visited;
   record->last_exits.clear();
-  record->node_exits.resize(record->fetch_offsets.back());
+  record->node_exits.clear();
+  auto exits = std::make_shared<ExitProfile>();
+  exits->offsets.resize(obbs.size() + 1);
+  exits->offsets[0] = 0;
+  std::uint32_t pairs = 0;
+  for (long i = 0; i < n; ++i) exits->offsets[i + 1] = pairs += query_pairs[i];
+  exits->variant.resize(pairs);
+  exits->passes.resize(pairs);
   record->address_sample = sample;
   record->address_offsets.clear();
   if (!sample.KeepsAll()) record->address_offsets = KeptAddressOffsets(record->fetch_offsets, sample);
-  std::vector<std::uint64_t> exit_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(exit_start);
+  std::vector<std::uint64_t> pair_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(pair_start);
   for (long b = 0; b < blocks; ++b) {
-    exit_start[b + 1] = exit_start[b] + block_exits[b].size();
+    pair_start[b + 1] = pair_start[b] + block_tallies[b].variant.size();
     address_start[b + 1] = address_start[b] + block_addresses[b].size();
   }
   record->fetch_addresses.resize(address_start.back());
 #pragma omp parallel for schedule(static) if (blocks > 1)
   for (long b = 0; b < blocks; ++b) {
-    std::copy(block_exits[b].begin(), block_exits[b].end(), record->node_exits.begin() + exit_start[b]);
+    const BlockTallies& t = block_tallies[b];
+    std::copy(t.variant.begin(), t.variant.end(), exits->variant.begin() + static_cast<long>(pair_start[b]));
+    std::copy(t.passes.begin(), t.passes.end(), exits->passes.begin() + static_cast<long>(pair_start[b]));
     std::copy(block_addresses[b].begin(), block_addresses[b].end(), record->fetch_addresses.begin() + address_start[b]);
   }
+  record->tallied_exits = std::move(exits);
   record->touched_sectors = 0;
   if (mark) {
     for (std::size_t t = 1; t < touched.size(); ++t) touched.front().Merge(touched[t]);

@@ -24,6 +24,7 @@
 // shipped programs); rc_collision itself never links rc_robocore.
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "robocore/address_sample.h"
@@ -57,10 +58,13 @@ KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const
 // CollideBatch and SactKernelRecord in one pass, without keeping the visits
 // (8 bytes each): the same outcomes, and, when `record` is given, the record
 // SactKernelRecord(CollideBatch(tree, obbs, options, base_address), nullptr,
-// sample) returns, array for array. Parallel with OpenMP over blocks of the
-// sample's placement (warp_size x warps_per_block queries); each block's
-// exits and kept addresses go to a buffer of its own, joined in launch
-// order, so neither the outcomes nor the record depend on the thread count.
+// sample) returns, array for array, except that its exits are tallied per
+// query as the traversal runs (KernelRecord::tallied_exits, equal to
+// ProfileExits of that record) instead of kept a byte per visit. Parallel
+// with OpenMP over blocks of the sample's placement (warp_size x
+// warps_per_block queries); each block's tallies and kept addresses go to a
+// buffer of its own, joined in launch order, so neither the outcomes nor
+// the record depend on the thread count.
 // Without `record`, only the outcomes (and their node counts) are computed.
 // Buffers in `outcomes` and `record` are reused. Throws
 // std::invalid_argument for invalid SACT options or sphere pre-tests (the
@@ -87,6 +91,9 @@ KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<con
 // (backends/calibration/sact_datapath_variants.h).
 template <typename Remap>
 KernelRecord WithProgram(const KernelRecord& record, std::shared_ptr<const MicroProgram> program, Remap&& remap) {
+  if (record.exits_tallied())
+    throw std::invalid_argument("WithProgram: a record with tallied exits (CollideBatchRecorded) keeps no pass's own "
+                                "exit to remap; price the variant on SactKernelRecord's record");
   KernelRecord out = record;
   out.program = std::move(program);
   for (std::uint8_t& exit : out.node_exits) exit = remap(exit);

@@ -373,6 +373,37 @@ TEST(KernelRecord, ValidateCatchesInconsistentRecords) {
   EXPECT_THROW(two_regions.Validate(), std::logic_error);
 }
 
+// Tallied exits (CollideBatchRecorded's form): a profile per query whose
+// passes add up to its node count, naming only the loop's RETURN_IFs, and
+// no per-fetch exit beside it; ExitAt has no pass to name and refuses.
+TEST(KernelRecord, ValidateChecksTalliedExits) {
+  const auto program = ShippedStepProgram(StepProgramKind::kDdaStep);
+  KernelRecordBuilder builder(program, StepProgramKind::kDdaStep, test::ByteRegion(4096, 64));
+  builder.AddQuery({4096, 4097, 4098}, {kNoExit, 1, kNoExit});
+  builder.AddQuery({}, {});
+  const KernelRecord with_node_exits = builder.Build();
+  auto tallied = [&](ExitProfile profile) {
+    KernelRecord r = with_node_exits;
+    r.node_exits.clear();
+    r.tallied_exits = std::make_shared<const ExitProfile>(std::move(profile));
+    return r;
+  };
+  const ExitProfile good{{0, 2, 2}, {0, 2}, {2, 1}};  // two quiet passes, one at RETURN_IF #1; none
+  EXPECT_NO_THROW(tallied(good).Validate());
+  EXPECT_THROW(tallied(good).ExitAt(0, 0), std::logic_error);
+  ExitProfile short_passes = good;
+  short_passes.passes[0] = 1;
+  EXPECT_THROW(tallied(short_passes).Validate(), std::logic_error);
+  ExitProfile unknown_exit = good;
+  unknown_exit.variant[1] = 3;  // RETURN_IF #2: the dda loop has #0 and #1 only
+  EXPECT_THROW(tallied(unknown_exit).Validate(), std::logic_error);
+  ExitProfile one_query_short{{0, 2}, {0, 2}, {2, 1}};
+  EXPECT_THROW(tallied(one_query_short).Validate(), std::logic_error);
+  KernelRecord both = tallied(good);
+  both.node_exits = with_node_exits.node_exits;
+  EXPECT_THROW(both.Validate(), std::logic_error);
+}
+
 TEST(RoboCoreApi, ExecuteRecordsTheConfiguredProgramAndChecksTheDecode) {
   const OccupancyGrid grid = test::RoomGrid(40, 40, 0.1, 0.05, 3);
   const RayCastScene scene(grid, RayCastMethod::kMarch);
