@@ -64,7 +64,8 @@ cpu=$(awk -F': ' '
   /^model[[:space:]]*:/ && !model { model = $2 } /^flags/ && / avx512f / { avx512 = "yes" }
   END { printf "%s (family %s, model %s), AVX-512 %s", name ? name : "unknown CPU", family ? family : "?",
         model ? model : "?", avx512 ? avx512 : "no" }' /proc/cpuinfo 2>/dev/null || echo "unknown CPU")
-echo "host: $cpu, $(nproc) cores; threads $THREADS; rounds $ROUNDS"
+# nproc honours OMP_THREAD_LIMIT, set above: the cores without it.
+echo "host: $cpu, $(env -u OMP_THREAD_LIMIT -u OMP_NUM_THREADS nproc) cores; threads $THREADS; rounds $ROUNDS"
 
 : > runs.txt
 for round in $(seq "$ROUNDS"); do
