@@ -116,12 +116,29 @@ std::vector<std::uint32_t> LineStream(int lines, int sectors_per_line, int max_r
   return stream;
 }
 
-TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
+// A 16-line L1 (fully associative: the footprint of 64 lines exceeds it),
+// a LineStream over the footprint and the reference's answers.
+struct LruCase {
   GpuParams gpu;
-  gpu.l1_bytes = 16 * gpu.line_bytes;
-  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
-  const std::vector<std::uint32_t> stream = LineStream(lines, sectors_per_line, 1, 17);
-  const std::vector<std::uint8_t> expected = ReferenceLru(stream, sectors_per_line, 16);
+  int lines = 64;
+  std::vector<std::uint32_t> stream;
+  std::vector<std::uint8_t> expected;
+};
+LruCase MakeLruCase(int max_run, std::uint64_t seed) {
+  LruCase c;
+  c.gpu.l1_bytes = 16 * c.gpu.line_bytes;
+  const int sectors_per_line = c.gpu.line_bytes / c.gpu.sector_bytes;
+  c.stream = LineStream(c.lines, sectors_per_line, max_run, seed);
+  c.expected = ReferenceLru(c.stream, sectors_per_line, 16);
+  return c;
+}
+
+TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
+  const LruCase c = MakeLruCase(1, 17);
+  const GpuParams& gpu = c.gpu;
+  const int lines = c.lines;
+  const std::vector<std::uint32_t>& stream = c.stream;
+  const std::vector<std::uint8_t>& expected = c.expected;
   CacheHierarchy levels(gpu, kBase, kBase + lines * 128);
   std::vector<std::uint8_t> got(stream.size());
   for (std::size_t i = 0; i < stream.size(); ++i) got[i] = levels.L1(0).Access(stream[i]);
@@ -139,12 +156,10 @@ TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRandomStreams) {
 // 300 accesses as the replay drives it; a wave's first access may repeat
 // the previous wave's last line.
 TEST(CacheHierarchy, L1AgreesWithAReferenceLruOnRunsOfRepeatsInWaves) {
-  GpuParams gpu;
-  gpu.l1_bytes = 16 * gpu.line_bytes;
-  const int lines = 64, sectors_per_line = gpu.line_bytes / gpu.sector_bytes;
-  const std::vector<std::uint32_t> stream = LineStream(lines, sectors_per_line, 6, 23);
-  const std::vector<std::uint8_t> expected = ReferenceLru(stream, sectors_per_line, 16);
-  CacheHierarchy levels(gpu, kBase, kBase + lines * 128);
+  const LruCase c = MakeLruCase(6, 23);
+  const std::vector<std::uint32_t>& stream = c.stream;
+  const std::vector<std::uint8_t>& expected = c.expected;
+  CacheHierarchy levels(c.gpu, kBase, kBase + c.lines * 128);
   std::vector<std::uint8_t> got(stream.size(), 1);
   std::vector<std::uint32_t> misses(stream.size());
   RandomStream waves(29, StreamPurpose::kTest, 0, 0);
