@@ -99,7 +99,7 @@ void KernelRecord::ValidateTalliedExits() const {
   if (t.offsets.back() != t.variant.size() || t.variant.size() != t.passes.size())
     fail("offsets do not end at the variant and pass counts");
   for (std::size_t q = 0; q < query_count(); ++q) {
-    if (t.offsets[q + 1] < t.offsets[q]) fail("offsets decrease");
+    if (t.offsets[q + 1] < t.offsets[q] || t.offsets[q + 1] > t.variant.size()) fail("offsets decrease");
     std::uint64_t passes = 0;
     for (std::uint32_t i = t.offsets[q]; i < t.offsets[q + 1]; ++i) passes += t.passes[i];
     if (passes != nodes(q)) fail("query " + std::to_string(q) + "'s passes do not add up to its node count");

@@ -397,6 +397,8 @@ TEST(KernelRecord, ValidateChecksTalliedExits) {
   ExitProfile unknown_exit = good;
   unknown_exit.variant[1] = 3;  // RETURN_IF #2: the dda loop has #0 and #1 only
   EXPECT_THROW(tallied(unknown_exit).Validate(), std::logic_error);
+  ExitProfile past_the_end{{0, 5, 2}, {0, 2}, {2, 1}};  // an offset beyond the lists, though the last is right
+  EXPECT_THROW(tallied(past_the_end).Validate(), std::logic_error);
   ExitProfile one_query_short{{0, 2}, {0, 2}, {2, 1}};
   EXPECT_THROW(tallied(one_query_short).Validate(), std::logic_error);
   KernelRecord both = tallied(good);
