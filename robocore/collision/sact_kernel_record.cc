@@ -238,8 +238,7 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   record->last_exits.clear();
   record->node_exits.clear();
   auto exits = std::make_shared<ExitProfile>();
-  exits->offsets.resize(obbs.size() + 1);
-  exits->offsets[0] = 0;
+  exits->offsets.resize(obbs.size() + 1);  // offsets[0] is 0 already
   std::uint32_t pairs = 0;
   for (long i = 0; i < n; ++i) exits->offsets[i + 1] = pairs += query_pairs[i];
   exits->variant.resize(pairs);
