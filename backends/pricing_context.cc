@@ -69,13 +69,13 @@ void PricingContext::ExpectMemory(const GpuParams& gpu, const AccessPattern& pat
   expected_memory_.emplace(MemoryKey(gpu, pattern), ExpectedMemory{gpu, pattern});
 }
 
-void PricingContext::ExpectRayWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits,
+void PricingContext::ExpectUnitWarps(const GpuParams& gpu, const AccessPattern& pattern, int exits,
                                     const RayPassCosts& costs) {
   std::lock_guard<std::mutex> lock(mutex_);
   expected_memory_.emplace(MemoryKey(gpu, pattern), ExpectedMemory{gpu, pattern});
-  ExpectedRays& expected =
-      expected_rays_
-          .emplace(MemoryKey(gpu, pattern) + " | " + std::to_string(exits), ExpectedRays{gpu, pattern, exits, {}})
+  ExpectedUnitWarps& expected =
+      expected_unit_warps_
+          .emplace(MemoryKey(gpu, pattern) + " | " + std::to_string(exits), ExpectedUnitWarps{gpu, pattern, exits, {}})
           .first->second;
   if (std::find(expected.costs.begin(), expected.costs.end(), costs) == expected.costs.end())
     expected.costs.push_back(costs);
@@ -83,11 +83,11 @@ void PricingContext::ExpectRayWarps(const GpuParams& gpu, const AccessPattern& p
 
 void PricingContext::ComputeExpected() {
   std::vector<ExpectedMemory> memory;
-  std::vector<ExpectedRays> rays;
+  std::vector<ExpectedUnitWarps> unit_warps;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (const auto& [key, m] : expected_memory_) memory.push_back(m);
-    for (const auto& [key, r] : expected_rays_) rays.push_back(r);
+    for (const auto& [key, u] : expected_unit_warps_) unit_warps.push_back(u);
   }
   // Each result keeps its computation's exception (Once), which reaches the
   // backend that asks for it; here it is only started.
@@ -111,30 +111,35 @@ void PricingContext::ComputeExpected() {
 #pragma omp task default(shared) firstprivate(i)
     ahead([&] { Memory(memory[i].gpu, memory[i].pattern); });
   }
-  for (const ExpectedRays& r : rays)
-    if (!r.costs.empty()) ahead([&] { RayWarps(r.gpu, r.pattern, r.exits, r.costs.front()); });
+  for (const ExpectedUnitWarps& u : unit_warps)
+    if (!u.costs.empty()) ahead([&] { UnitWarps(u.gpu, u.pattern, u.exits, u.costs.front()); });
 }
 
-std::shared_ptr<const RayWarpCycles> PricingContext::RayWarps(const GpuParams& gpu, const AccessPattern& pattern,
-                                                              int exits, const RayPassCosts& costs) {
+std::shared_ptr<const UnitWarpCycles> PricingContext::UnitWarps(const GpuParams& gpu, const AccessPattern& pattern,
+                                                                int exits, const RayPassCosts& costs) {
+  auto count = [&](const std::vector<RayPassCosts>& all) {
+    const MemoryCycles& memory = Memory(gpu, pattern)->query_memory_cycles;
+    if (record_.exits_per_query()) return CountRayWarpCycles(record_, gpu, exits, memory, all);
+    return CountProfileWarpCycles(record_, *Exits(), gpu, exits, memory, all);
+  };
   const std::string key = MemoryKey(gpu, pattern) + " | " + std::to_string(exits);
-  const auto group = Once(mutex_, ray_groups_, key, [&] {
-    RayWarpGroup g;
+  const auto group = Once(mutex_, unit_warp_groups_, key, [&] {
+    UnitWarpGroup g;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      const auto expected = expected_rays_.find(key);
-      if (expected != expected_rays_.end()) g.costs = expected->second.costs;
+      const auto expected = expected_unit_warps_.find(key);
+      if (expected != expected_unit_warps_.end()) g.costs = expected->second.costs;
     }
     if (std::find(g.costs.begin(), g.costs.end(), costs) == g.costs.end()) g.costs.push_back(costs);
-    for (RayWarpCycles& c : CountRayWarpCycles(record_, gpu, exits, Memory(gpu, pattern)->query_memory_cycles, g.costs))
-      g.cycles.push_back(std::make_shared<const RayWarpCycles>(std::move(c)));
+    for (UnitWarpCycles& c : count(g.costs))
+      g.cycles.push_back(std::make_shared<const UnitWarpCycles>(std::move(c)));
     return g;
   });
   for (std::size_t k = 0; k < group->costs.size(); ++k)
     if (group->costs[k] == costs) return group->cycles[k];
   // Announced after the pass (or never): a pass of its own.
-  return std::make_shared<const RayWarpCycles>(
-      std::move(CountRayWarpCycles(record_, gpu, exits, Memory(gpu, pattern)->query_memory_cycles, {costs}).front()));
+  return std::make_shared<const UnitWarpCycles>(
+      std::move(count({costs}).front()));
 }
 
 }  // namespace rc

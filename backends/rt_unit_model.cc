@@ -6,7 +6,7 @@
 #include "backends/energy_model.h"
 #include "backends/modelled_backend.h"
 #include "backends/ray_query_cycles.h"
-#include "backends/ray_warp_cycles.h"
+#include "backends/rt_warp_cycles.h"
 #include "backends/warp_schedule.h"
 
 namespace rc {
@@ -34,9 +34,9 @@ struct Tally {
   }
 };
 
-// A ray record's per-query costs on this timing (ray_query_cycles.h): the
+// A query's costs on this timing (ray_query_cycles.h, rt_warp_cycles.h): the
 // loop's variants are 0 = no exit, 1 + j = RETURN_IF j.
-RayPassCosts RayCostsOf(const ProgramTiming& timing) {
+RayPassCosts PassCostsOf(const ProgramTiming& timing) {
   RayPassCosts costs;
   costs.once_cycles = timing.once().cycles;
   costs.quiet_pass_cycles = timing.loop.Cost(kNoExit).cycles;
@@ -51,9 +51,8 @@ RayPassCosts RayCostsOf(const ProgramTiming& timing) {
 void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing) {
   const AccessPattern pattern = RtUnitAccessPattern(*pricing.unit);
   context.ExpectMemory(*pricing.gpu, pattern);
-  if (!record.exits_per_query()) return;
   const ProgramTiming timing(*record.program, record.leaf.get(), pricing.datapath);
-  context.ExpectRayWarps(*pricing.gpu, pattern, timing.loop.return_count(), RayCostsOf(timing));
+  context.ExpectUnitWarps(*pricing.gpu, pattern, timing.loop.return_count(), PassCostsOf(timing));
 }
 
 AccessPattern RtUnitAccessPattern(const RtUnitParams& unit) {
@@ -79,7 +78,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   const AccessPattern pattern = RtUnitAccessPattern(unit);
   const auto memory = context.Memory(gpu, pattern);
 
-  const RayPassCosts costs = RayCostsOf(timing);
+  const RayPassCosts costs = PassCostsOf(timing);
   const int variants = timing.loop.return_count() + 1;  // exit variants: 0 = no exit, 1 + j = RETURN_IF j
 
   const std::size_t n = record.query_count();
@@ -90,51 +89,25 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
   std::vector<std::vector<std::uint64_t>> sm_warp_cycles(gpu.sms);
   std::vector<std::vector<std::uint64_t>> sm_variant_passes(gpu.sms, std::vector<std::uint64_t>(variants, 0));
   std::vector<std::uint64_t> sm_threads(gpu.sms, 0);
-  // A ray record keeps one exit per query, which prices a query in O(1)
-  // without the exit profile, in one pass shared with the other units
-  // (ray_warp_cycles.h); other records go through the profile. Both sum the
-  // same integer products.
-  if (record.exits_per_query()) {
-    const auto rays = context.RayWarps(gpu, pattern, variants - 1, costs);
-    // A full warp's intake, divided once: only a launch's last warp may be
-    // partial.
-    const std::uint64_t full_warp_intake = CeilDiv(static_cast<std::uint64_t>(gpu.warp_size), intake_per_cycle);
-    for (int sm = 0; sm < gpu.sms; ++sm) {
-      sm_warp_cycles[sm].reserve(sm_warps[sm].size());
-      for (std::uint32_t w : sm_warps[sm]) {
-        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
-        const std::size_t threads = std::min(n, lo + gpu.warp_size) - lo;
-        const std::uint64_t intake =
-            threads == static_cast<std::size_t>(gpu.warp_size) ? full_warp_intake : CeilDiv(threads, intake_per_cycle);
-        sm_threads[sm] += threads;
-        sm_warp_cycles[sm].push_back(intake + rays->slowest[w]);
-      }
-      std::copy_n(rays->sm_passes.begin() + static_cast<long>(sm) * variants, variants, sm_variant_passes[sm].begin());
+  // One pass over the queries, shared with the other units pricing this
+  // record (rt_warp_cycles.h): a ray record's exit per query prices a query
+  // in O(1), any other record's exit profile in O(its variants).
+  const auto unit_warps = context.UnitWarps(gpu, pattern, variants - 1, costs);
+  // A full warp's intake, divided once: only a launch's last warp may be
+  // partial.
+  const std::uint64_t full_warp_intake = CeilDiv(static_cast<std::uint64_t>(gpu.warp_size), intake_per_cycle);
+  for (int sm = 0; sm < gpu.sms; ++sm) {
+    sm_warp_cycles[sm].reserve(sm_warps[sm].size());
+    for (std::uint32_t w : sm_warps[sm]) {
+      const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+      const std::size_t threads = std::min(n, lo + gpu.warp_size) - lo;
+      const std::uint64_t intake =
+          threads == static_cast<std::size_t>(gpu.warp_size) ? full_warp_intake : CeilDiv(threads, intake_per_cycle);
+      sm_threads[sm] += threads;
+      sm_warp_cycles[sm].push_back(intake + unit_warps->slowest[w]);
     }
-  } else {
-    const auto exits = context.Exits();
-    // Loop-pass cost per exit variant.
-    std::vector<std::uint64_t> pass_cycles(variants, costs.quiet_pass_cycles);
-    for (int v = 1; v < variants; ++v) pass_cycles[v] = costs.last_pass_cycles[v - 1];
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int sm = 0; sm < gpu.sms; ++sm) {
-      std::vector<std::uint64_t>& passes = sm_variant_passes[sm];
-      for (std::uint32_t w : sm_warps[sm]) {
-        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
-        const std::size_t hi = std::min(n, lo + gpu.warp_size);
-        std::uint64_t slowest = 0;
-        for (std::size_t q = lo; q < hi; ++q) {
-          std::uint64_t cycles = costs.once_cycles + memory->query_memory_cycles[q];
-          for (std::uint32_t i = exits->offsets[q]; i < exits->offsets[q + 1]; ++i) {
-            cycles += exits->passes[i] * pass_cycles[exits->variant[i]];
-            passes[exits->variant[i]] += exits->passes[i];
-          }
-          slowest = std::max(slowest, cycles);
-        }
-        sm_threads[sm] += hi - lo;
-        sm_warp_cycles[sm].push_back(CeilDiv(hi - lo, intake_per_cycle) + slowest);
-      }
-    }
+    std::copy_n(unit_warps->sm_passes.begin() + static_cast<long>(sm) * variants, variants,
+                sm_variant_passes[sm].begin());
   }
 
   BatchCost cost = ModelledBatchCost(backend_name, record, gpu, *memory);

@@ -45,7 +45,7 @@ BatchCost PriceOnRtUnit(const KernelRecord& record, PricingContext& context, con
                         const std::string& backend_name);
 
 // Tells the context what PriceOnRtUnit will ask of it for this record (its
-// memory replay, and for a ray record PricingContext::ExpectRayWarps), so
+// memory replay, and PricingContext::ExpectUnitWarps), so
 // that the replay runs beside the other backends' and the units pricing one
 // record share one pass over its queries. Prices do not depend on it.
 void AnnounceRtUnit(const KernelRecord& record, PricingContext& context, const RtUnitPricing& pricing);

@@ -30,7 +30,7 @@ DelibotSettings SmallRun(SensorModelKind model) {
 // loops), ray_batch_recorded.cc (the recorded casts), and the pricing of
 // every update: backend.cc (PriceAll), pricing_context.cc (the replays'
 // tasks), memory_replay.cc (two loops and the sampled estimate's tasks),
-// ray_warp_cycles.cc and rt_unit_model.cc. The replay is sampled as the
+// rt_warp_cycles.cc and rt_unit_model.cc. The replay is sampled as the
 // CLI's defaults sample it (one SM, every second block), so that the
 // estimate's tasks run; every priced cost must not depend on the threads.
 TEST(OpenMpLoops, BeamModelFilterWithPricingAndHypotheses) {

@@ -1,0 +1,116 @@
+#include "backends/rt_warp_cycles.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+
+#include "backends/memory_replay.h"
+
+namespace rc {
+
+std::vector<UnitWarpCycles> CountRayWarpCycles(const KernelRecord& record, const GpuParams& gpu, int exits,
+                                               const MemoryCycles& memory_cycles,
+                                               const std::vector<RayPassCosts>& costs) {
+  const std::size_t n = record.query_count();
+  if (!record.exits_per_query()) throw std::logic_error("CountRayWarpCycles: the record keeps no exit per query");
+  if (memory_cycles.size() != n) throw std::logic_error("CountRayWarpCycles: memory cycles for another record");
+  if (exits < 0 || exits > 255) throw std::logic_error("CountRayWarpCycles: exits must be 0 to 255");
+  const std::size_t warps = WarpCount(record, gpu);
+  const std::size_t per_sm = static_cast<std::size_t>(exits) + 1;
+  std::vector<UnitWarpCycles> out(costs.size());
+  for (UnitWarpCycles& c : out) {
+    c.slowest.assign(warps, 0);
+    c.sm_passes.assign(static_cast<std::size_t>(gpu.sms) * per_sm, 0);
+  }
+  RayQueryArrays arrays;
+  arrays.fetch_offsets = record.fetch_offsets.data();
+  arrays.last_exits = record.last_exits.data();
+  arrays.memory_cycles = memory_cycles.data();
+  arrays.exits = exits;
+  const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
+  for (std::size_t first = 0; first < costs.size(); first += kMaxRayCostsPerPass) {
+    const int count = static_cast<int>(std::min<std::size_t>(kMaxRayCostsPerPass, costs.size() - first));
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int sm = 0; sm < gpu.sms; ++sm) {
+      RayPassTally tally;
+      std::uint64_t slowest[kMaxRayCostsPerPass];
+      for (std::uint32_t w : sm_warps[sm]) {
+        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+        SlowestRayQueries(arrays, costs.data() + first, count, lo, std::min(n, lo + gpu.warp_size), slowest, tally);
+        for (int k = 0; k < count; ++k) out[first + k].slowest[w] = slowest[k];
+      }
+      for (int k = 0; k < count; ++k) {
+        std::uint64_t* passes = out[first + k].sm_passes.data() + static_cast<std::size_t>(sm) * per_sm;
+        passes[0] = tally.quiet;
+        for (int j = 0; j < exits; ++j) passes[1 + j] = tally.exit[j];
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<UnitWarpCycles> CountProfileWarpCycles(const KernelRecord& record, const ExitProfile& profile,
+                                                   const GpuParams& gpu, int exits, const MemoryCycles& memory_cycles,
+                                                   const std::vector<RayPassCosts>& costs) {
+  const std::size_t n = record.query_count();
+  if (profile.offsets.size() != n + 1) throw std::logic_error("CountProfileWarpCycles: exit profile of another record");
+  if (memory_cycles.size() != n) throw std::logic_error("CountProfileWarpCycles: memory cycles for another record");
+  if (exits < 0 || exits > 255) throw std::logic_error("CountProfileWarpCycles: exits must be 0 to 255");
+  if (!profile.variant.empty() && *std::max_element(profile.variant.begin(), profile.variant.end()) > exits)
+    throw std::logic_error("CountProfileWarpCycles: the profile has an exit the program's loop does not");
+  const std::size_t warps = WarpCount(record, gpu);
+  const std::size_t per_sm = static_cast<std::size_t>(exits) + 1;
+  std::vector<UnitWarpCycles> out(costs.size());
+  for (UnitWarpCycles& c : out) {
+    c.slowest.assign(warps, 0);
+    c.sm_passes.assign(static_cast<std::size_t>(gpu.sms) * per_sm, 0);
+  }
+  const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
+  const std::uint32_t* offsets = profile.offsets.data();
+  const std::uint8_t* variant = profile.variant.data();
+  const std::uint32_t* passes = profile.passes.data();
+  for (std::size_t first = 0; first < costs.size(); first += kMaxRayCostsPerPass) {
+    const int count = static_cast<int>(std::min<std::size_t>(kMaxRayCostsPerPass, costs.size() - first));
+    // A pass's cycles by variant, the units side by side in all
+    // kMaxRayCostsPerPass lanes (those past `count` cost 0), so that the
+    // lanes' loops have a fixed width the compiler unrolls into vectors.
+    // Pass counts and a pass's cycles fit 32 bits; their products are 64.
+    std::uint64_t once[kMaxRayCostsPerPass] = {};
+    for (int k = 0; k < count; ++k) once[k] = costs[first + k].once_cycles;
+    std::vector<std::uint32_t> pass_cycles(per_sm * kMaxRayCostsPerPass, 0);
+    for (std::size_t v = 0; v < per_sm; ++v)
+      for (int k = 0; k < count; ++k) {
+        const RayPassCosts& c = costs[first + k];
+        const std::uint64_t cycles = v == 0 ? c.quiet_pass_cycles : c.last_pass_cycles[v - 1];
+        if (cycles > UINT32_MAX) throw std::logic_error("CountProfileWarpCycles: a pass of more than 2^32 cycles");
+        pass_cycles[v * kMaxRayCostsPerPass + k] = static_cast<std::uint32_t>(cycles);
+      }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int sm = 0; sm < gpu.sms; ++sm) {
+      std::vector<std::uint64_t> sm_passes(per_sm, 0);
+      for (std::uint32_t w : sm_warps[sm]) {
+        const std::size_t lo = static_cast<std::size_t>(w) * gpu.warp_size;
+        const std::size_t hi = std::min(n, lo + gpu.warp_size);
+        std::uint64_t slowest[kMaxRayCostsPerPass] = {};
+        for (std::size_t q = lo; q < hi; ++q) {
+          std::uint64_t cycles[kMaxRayCostsPerPass];
+          for (int k = 0; k < kMaxRayCostsPerPass; ++k) cycles[k] = once[k] + memory_cycles[q];
+          for (std::uint32_t i = offsets[q]; i < offsets[q + 1]; ++i) {
+            const std::uint64_t p = passes[i];
+            const std::uint32_t* c = pass_cycles.data() + std::size_t{variant[i]} * kMaxRayCostsPerPass;
+            sm_passes[variant[i]] += p;
+            for (int k = 0; k < kMaxRayCostsPerPass; ++k) cycles[k] += p * c[k];
+          }
+          for (int k = 0; k < kMaxRayCostsPerPass; ++k) slowest[k] = std::max(slowest[k], cycles[k]);
+        }
+        for (int k = 0; k < count; ++k) out[first + k].slowest[w] = slowest[k];
+      }
+      for (int k = 0; k < count; ++k)
+        std::copy(sm_passes.begin(), sm_passes.end(),
+                  out[first + k].sm_passes.begin() + static_cast<long>(static_cast<std::size_t>(sm) * per_sm));
+    }
+  }
+  return out;
+}
+
+}  // namespace rc
