@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <omp.h>
+
 #include "robocore/shipped_programs.h"
 
 namespace rc {
@@ -173,15 +175,23 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   outcomes->resize(obbs.size());
   const std::uint64_t node_count = tree.nodes().size();
   const std::uint32_t node_bytes = tree.node_bytes();
-  // Per block: its queries' exit tallies (pairs of variant and passes) and,
-  // for a kept block, their addresses; per query, how many pairs it has.
-  struct BlockTallies {
+  // Per thread, the exit tallies (pairs of variant and passes) of the
+  // queries of its blocks and the addresses of its kept blocks, each block's
+  // in one span; per query, how many pairs it has. A thread's lists are its
+  // own cache lines: threads take adjacent blocks, and growing lists that
+  // shared a line would bounce it between cores at every query.
+  struct alignas(64) ThreadLists {
     std::vector<std::uint8_t> variant;
     std::vector<std::uint32_t> passes;
+    std::vector<std::uint64_t> addresses;
   };
-  std::vector<BlockTallies> block_tallies(record ? static_cast<std::size_t>(blocks) : 0);
+  struct BlockSpan {
+    const ThreadLists* lists = nullptr;
+    std::size_t pair_begin = 0, pair_end = 0, address_begin = 0, address_end = 0;
+  };
+  std::vector<ThreadLists> thread_lists(record ? static_cast<std::size_t>(std::max(1, omp_get_max_threads())) : 0);
+  std::vector<BlockSpan> block_spans(record ? static_cast<std::size_t>(blocks) : 0);
   std::vector<std::uint32_t> query_pairs(record ? obbs.size() : 0);
-  std::vector<std::vector<std::uint64_t>> block_addresses(record ? static_cast<std::size_t>(blocks) : 0);
   const bool mark = record && !sample.KeepsAll();
   std::vector<TouchedSectors> touched;
 #pragma omp parallel if (blocks > 1)
@@ -200,21 +210,24 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
       }
       // Each visit kept as it happens: its exit tallied, in a sampled record
       // its sectors marked as touched, and in a kept block its address. A
-      // query's tally joins the block's lists when the query ends.
-      BlockTallies& tallies = block_tallies[b];
-      std::vector<std::uint64_t>& addresses = block_addresses[b];
+      // query's tally joins the thread's lists when the query ends.
+      ThreadLists& lists = thread_lists[static_cast<std::size_t>(omp_get_thread_num())];
+      BlockSpan span{&lists, lists.variant.size(), 0, lists.addresses.size(), 0};
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
       // keep and mark are fixed for the block: copied, not read back after
       // every store.
       auto record_visit = [&, keep, mark](const NodeVisit& v) {
         tally.Add(SactExitOf(v));
         if (mark) mine.Mark(v.node);
-        if (keep) addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
+        if (keep) lists.addresses.push_back(base_address + std::uint64_t{v.node} * node_bytes);
       };
       for (long i = lo; i < hi; ++i) {
         (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
-        query_pairs[i] = tally.Append(tallies.variant, tallies.passes);
+        query_pairs[i] = tally.Append(lists.variant, lists.passes);
       }
+      span.pair_end = lists.variant.size();
+      span.address_end = lists.addresses.size();
+      block_spans[b] = span;
     }
     if (mark) {
 #pragma omp critical(rc_collision_touched_sectors)
@@ -248,16 +261,22 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   if (!sample.KeepsAll()) record->address_offsets = KeptAddressOffsets(record->fetch_offsets, sample);
   std::vector<std::uint64_t> pair_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(pair_start);
   for (long b = 0; b < blocks; ++b) {
-    pair_start[b + 1] = pair_start[b] + block_tallies[b].variant.size();
-    address_start[b + 1] = address_start[b] + block_addresses[b].size();
+    const BlockSpan& span = block_spans[b];
+    pair_start[b + 1] = pair_start[b] + (span.pair_end - span.pair_begin);
+    address_start[b + 1] = address_start[b] + (span.address_end - span.address_begin);
   }
   record->fetch_addresses.resize(address_start.back());
 #pragma omp parallel for schedule(static) if (blocks > 1)
   for (long b = 0; b < blocks; ++b) {
-    const BlockTallies& t = block_tallies[b];
-    std::copy(t.variant.begin(), t.variant.end(), exits->variant.begin() + static_cast<long>(pair_start[b]));
-    std::copy(t.passes.begin(), t.passes.end(), exits->passes.begin() + static_cast<long>(pair_start[b]));
-    std::copy(block_addresses[b].begin(), block_addresses[b].end(), record->fetch_addresses.begin() + address_start[b]);
+    const BlockSpan& span = block_spans[b];
+    const ThreadLists& t = *span.lists;
+    std::copy(t.variant.begin() + static_cast<long>(span.pair_begin), t.variant.begin() + static_cast<long>(span.pair_end),
+              exits->variant.begin() + static_cast<long>(pair_start[b]));
+    std::copy(t.passes.begin() + static_cast<long>(span.pair_begin), t.passes.begin() + static_cast<long>(span.pair_end),
+              exits->passes.begin() + static_cast<long>(pair_start[b]));
+    std::copy(t.addresses.begin() + static_cast<long>(span.address_begin),
+              t.addresses.begin() + static_cast<long>(span.address_end),
+              record->fetch_addresses.begin() + static_cast<long>(address_start[b]));
   }
   record->tallied_exits = std::move(exits);
   record->touched_sectors = 0;
