@@ -756,7 +756,7 @@ ExitProfile ProfileExits(const KernelRecord& record) {
   // One pass over the exits: each thread tallies a contiguous range of
   // queries into its own lists, which are then concatenated in query order
   // (the profile does not depend on the thread count).
-  struct Part {
+  struct alignas(64) Part {  // a thread's own cache lines: its lists grow query by query
     std::vector<std::uint32_t> sizes;  // per query of the range
     std::vector<std::uint8_t> variant;
     std::vector<std::uint32_t> passes;

@@ -30,27 +30,36 @@ class ExitTally {
   void Add(std::uint8_t exit) {
     if (count_[exit]++ == 0) seen_[distinct_++] = exit;
   }
-  // Appends this query's pairs to `variant` and `passes` (vectors, or
-  // anything with push_back) and returns how many.
-  template <class Variants, class Passes>
-  std::uint32_t Append(Variants& variant, Passes& passes) {
+  // How many pairs this query appends: one per distinct exit it met.
+  std::uint32_t pairs() const { return distinct_; }
+  // Writes this query's pairs to variant[0, pairs()) and passes[0,
+  // pairs()), which must have room, and returns how many. Raw pointers: a
+  // recorder writing straight into its lists needs no reload of a vector's
+  // end after every byte it stores.
+  std::uint32_t Write(std::uint8_t* variant, std::uint32_t* passes) {
     std::uint32_t pairs = 0;
     if (count_[kNoExit] > 0) {
-      variant.push_back(0);
-      passes.push_back(count_[kNoExit]);
+      variant[pairs] = 0;
+      passes[pairs++] = count_[kNoExit];
       count_[kNoExit] = 0;
-      ++pairs;
     }
     for (std::uint32_t i = 0; i < distinct_; ++i) {
       const std::uint8_t e = seen_[i];
       if (e == kNoExit) continue;
-      variant.push_back(static_cast<std::uint8_t>(1 + e));
-      passes.push_back(count_[e]);
+      variant[pairs] = static_cast<std::uint8_t>(1 + e);
+      passes[pairs++] = count_[e];
       count_[e] = 0;
-      ++pairs;
     }
     distinct_ = 0;
     return pairs;
+  }
+  // Appends this query's pairs to the vectors `variant` and `passes` and
+  // returns how many.
+  std::uint32_t Append(std::vector<std::uint8_t>& variant, std::vector<std::uint32_t>& passes) {
+    const std::size_t at = variant.size();
+    variant.resize(at + distinct_);
+    passes.resize(at + distinct_);
+    return Write(variant.data() + at, passes.data() + at);
   }
 
  private:

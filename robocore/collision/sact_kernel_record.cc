@@ -181,8 +181,11 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   // own cache lines: threads take adjacent blocks, and growing lists that
   // shared a line would bounce it between cores at every query.
   struct alignas(64) ThreadLists {
+    // The first `pairs` entries are written; the rest is room, so that a
+    // query's pairs go in through raw pointers (ExitTally::Write).
     std::vector<std::uint8_t> variant;
     std::vector<std::uint32_t> passes;
+    std::size_t pairs = 0;
     std::vector<std::uint64_t> addresses;
   };
   struct BlockSpan {
@@ -212,7 +215,8 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
       // its sectors marked as touched, and in a kept block its address. A
       // query's tally joins the thread's lists when the query ends.
       ThreadLists& lists = thread_lists[static_cast<std::size_t>(omp_get_thread_num())];
-      BlockSpan span{&lists, lists.variant.size(), 0, lists.addresses.size(), 0};
+      BlockSpan span{&lists, lists.pairs, 0, lists.addresses.size(), 0};
+      std::size_t pairs = lists.pairs;
       const bool keep = sample.KeepsQuery(static_cast<std::size_t>(lo));
       // keep and mark are fixed for the block: copied, not read back after
       // every store.
@@ -223,9 +227,15 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
       };
       for (long i = lo; i < hi; ++i) {
         (*outcomes)[i] = CollideObbVisiting(tree, obbs[i], options, record_visit, &scratch);
-        query_pairs[i] = tally.Append(lists.variant, lists.passes);
+        if (pairs + tally.pairs() > lists.variant.size()) {
+          const std::size_t room = std::max<std::size_t>(2 * lists.variant.size(), pairs + 256);
+          lists.variant.resize(room);
+          lists.passes.resize(room);
+        }
+        query_pairs[i] = tally.Write(lists.variant.data() + pairs, lists.passes.data() + pairs);
+        pairs += query_pairs[i];
       }
-      span.pair_end = lists.variant.size();
+      lists.pairs = span.pair_end = pairs;
       span.address_end = lists.addresses.size();
       block_spans[b] = span;
     }
