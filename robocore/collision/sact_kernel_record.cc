@@ -264,29 +264,47 @@ void CollideBatchRecorded(const FlatBoxTree<Scalar>& tree, const std::vector<Obb
   exits->offsets.resize(obbs.size() + 1);  // offsets[0] is 0 already
   std::uint32_t pairs = 0;
   for (long i = 0; i < n; ++i) exits->offsets[i + 1] = pairs += query_pairs[i];
-  exits->variant.resize(pairs);
-  exits->passes.resize(pairs);
   record->address_sample = sample;
   record->address_offsets.clear();
   if (!sample.KeepsAll()) record->address_offsets = KeptAddressOffsets(record->fetch_offsets, sample);
   std::vector<std::uint64_t> pair_start(static_cast<std::size_t>(blocks) + 1, 0), address_start(pair_start);
+  // Whether every block's span already sits where the record wants it, in
+  // the first thread's lists (one thread took every block, in order).
+  bool in_place = true;
   for (long b = 0; b < blocks; ++b) {
     const BlockSpan& span = block_spans[b];
+    in_place = in_place && span.lists == &thread_lists.front() && span.pair_begin == pair_start[b] &&
+               span.address_begin == address_start[b];
     pair_start[b + 1] = pair_start[b] + (span.pair_end - span.pair_begin);
     address_start[b + 1] = address_start[b] + (span.address_end - span.address_begin);
   }
-  record->fetch_addresses.resize(address_start.back());
+  if (in_place) {
+    // The lists are the arrays: moved, not copied (their room past the
+    // written pairs cut off).
+    ThreadLists& t = thread_lists.front();
+    t.variant.resize(pairs);
+    t.passes.resize(pairs);
+    t.addresses.resize(address_start.back());
+    exits->variant = std::move(t.variant);
+    exits->passes = std::move(t.passes);
+    record->fetch_addresses = std::move(t.addresses);
+  } else {
+    exits->variant.resize(pairs);
+    exits->passes.resize(pairs);
+    record->fetch_addresses.resize(address_start.back());
 #pragma omp parallel for schedule(static) if (blocks > 1)
-  for (long b = 0; b < blocks; ++b) {
-    const BlockSpan& span = block_spans[b];
-    const ThreadLists& t = *span.lists;
-    std::copy(t.variant.begin() + static_cast<long>(span.pair_begin), t.variant.begin() + static_cast<long>(span.pair_end),
-              exits->variant.begin() + static_cast<long>(pair_start[b]));
-    std::copy(t.passes.begin() + static_cast<long>(span.pair_begin), t.passes.begin() + static_cast<long>(span.pair_end),
-              exits->passes.begin() + static_cast<long>(pair_start[b]));
-    std::copy(t.addresses.begin() + static_cast<long>(span.address_begin),
-              t.addresses.begin() + static_cast<long>(span.address_end),
-              record->fetch_addresses.begin() + static_cast<long>(address_start[b]));
+    for (long b = 0; b < blocks; ++b) {
+      const BlockSpan& span = block_spans[b];
+      const ThreadLists& t = *span.lists;
+      std::copy(t.variant.begin() + static_cast<long>(span.pair_begin),
+                t.variant.begin() + static_cast<long>(span.pair_end),
+                exits->variant.begin() + static_cast<long>(pair_start[b]));
+      std::copy(t.passes.begin() + static_cast<long>(span.pair_begin), t.passes.begin() + static_cast<long>(span.pair_end),
+                exits->passes.begin() + static_cast<long>(pair_start[b]));
+      std::copy(t.addresses.begin() + static_cast<long>(span.address_begin),
+                t.addresses.begin() + static_cast<long>(span.address_end),
+                record->fetch_addresses.begin() + static_cast<long>(address_start[b]));
+    }
   }
   record->tallied_exits = std::move(exits);
   record->touched_sectors = 0;

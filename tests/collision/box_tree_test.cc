@@ -149,7 +149,9 @@ ExitProfile TallyByHand(const KernelRecord& record) {
 // CollideBatchRecorded (the traversal and the record in one parallel pass)
 // returns the outcomes CollideBatch returns and the record SactKernelRecord
 // builds from that batch, array for array (its exits tallied), with every address kept, with
-// one SM of 8 sampled and with every second block of it, at 1 and 2 threads.
+// one SM of 8 sampled and with every second block of it, at 1 and 2 threads
+// (at one, the thread's lists become the record's arrays; at two, blocks
+// are copied from both threads' lists).
 TEST(TreeTraversal, RecordedBatchEqualsTheBatchsRecordAtAnyThreadCount) {
   const std::vector<Aabbd> scene = test::RandomScene(80, 21);
   const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
