@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include <omp.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
@@ -145,6 +146,11 @@ MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& se
       nn_ledger->BeginIteration();
       row.nn_pricing = nn_ledger->EndIteration(row.nn.record ? &*row.nn.record : nullptr);
       row.priced = true;
+      // The planner's next batch runs on this thread alone, for far longer
+      // than pricing's parallel loops. libgomp's idle workers would spin
+      // through its start (GOMP_SPINCOUNT) and burn CPU that no work needs:
+      // they are let go, and the next batch's pricing starts them again.
+      omp_pause_resource_all(omp_pause_soft);
     }
     row.nn.record.reset();
     result.rows.push_back(std::move(row));
