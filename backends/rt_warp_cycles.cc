@@ -7,6 +7,21 @@
 #include "backends/memory_replay.h"
 
 namespace rc {
+namespace {
+
+// Each unit's counts before a pass: no warp's slowest query yet, no pass on
+// any SM (variants per SM).
+std::vector<UnitWarpCycles> ZeroUnitWarpCycles(std::size_t units, std::size_t warps, const GpuParams& gpu,
+                                               std::size_t variants) {
+  std::vector<UnitWarpCycles> out(units);
+  for (UnitWarpCycles& c : out) {
+    c.slowest.assign(warps, 0);
+    c.sm_passes.assign(static_cast<std::size_t>(gpu.sms) * variants, 0);
+  }
+  return out;
+}
+
+}  // namespace
 
 std::vector<UnitWarpCycles> CountRayWarpCycles(const KernelRecord& record, const GpuParams& gpu, int exits,
                                                const MemoryCycles& memory_cycles,
@@ -17,11 +32,7 @@ std::vector<UnitWarpCycles> CountRayWarpCycles(const KernelRecord& record, const
   if (exits < 0 || exits > 255) throw std::logic_error("CountRayWarpCycles: exits must be 0 to 255");
   const std::size_t warps = WarpCount(record, gpu);
   const std::size_t per_sm = static_cast<std::size_t>(exits) + 1;
-  std::vector<UnitWarpCycles> out(costs.size());
-  for (UnitWarpCycles& c : out) {
-    c.slowest.assign(warps, 0);
-    c.sm_passes.assign(static_cast<std::size_t>(gpu.sms) * per_sm, 0);
-  }
+  std::vector<UnitWarpCycles> out = ZeroUnitWarpCycles(costs.size(), warps, gpu, per_sm);
   RayQueryArrays arrays;
   arrays.fetch_offsets = record.fetch_offsets.data();
   arrays.last_exits = record.last_exits.data();
@@ -99,11 +110,7 @@ std::vector<UnitWarpCycles> CountProfileWarpCycles(const KernelRecord& record, c
     throw std::logic_error("CountProfileWarpCycles: the profile has an exit the program's loop does not");
   const std::size_t warps = WarpCount(record, gpu);
   const std::size_t variants = static_cast<std::size_t>(exits) + 1;
-  std::vector<UnitWarpCycles> out(costs.size());
-  for (UnitWarpCycles& c : out) {
-    c.slowest.assign(warps, 0);
-    c.sm_passes.assign(static_cast<std::size_t>(gpu.sms) * variants, 0);
-  }
+  std::vector<UnitWarpCycles> out = ZeroUnitWarpCycles(costs.size(), warps, gpu, variants);
   const std::vector<std::vector<std::uint32_t>> sm_warps = WarpsBySm(warps, gpu);
   for (std::size_t first = 0; first < costs.size(); first += kMaxRayCostsPerPass) {
     const int count = static_cast<int>(std::min<std::size_t>(kMaxRayCostsPerPass, costs.size() - first));
