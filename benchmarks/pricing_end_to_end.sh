@@ -19,10 +19,13 @@
 # smaller than it is. The workloads: the demo; the demo with the beam model,
 # whose first update casts 25 million rays (the costliest to price); Wean
 # with every beam; CarriBot on RoWild's Intel query (its car footprint, 8
-# headings, scales 1 and 2, as scripts/carribot_vs_rowild.py poses it);
-# MoveBot's default (RRT* on the LoCoBot obstacles). The last four need the
-# shared data and are skipped without it.
-# Usage: [THREADS=n] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
+# headings, scales 1, 2 and 4, as scripts/carribot_vs_rowild.py poses it);
+# MoveBot's default (RRT* on the LoCoBot obstacles). The last five need the
+# shared data and are skipped without it. WORKLOADS (names as in the table,
+# space-separated) runs a subset, for more rounds where an interval is wide.
+# Within a round the priced run goes first in odd rounds and second in even
+# ones, so that neither mode always follows the other.
+# Usage: [THREADS=n] [WORKLOADS="a b"] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
 set -euo pipefail
 RCBENCH="$(realpath "${1:-build/rcbench}")"
 DATA="$(realpath "${2:-../shared/data}")"
@@ -49,12 +52,22 @@ intel_query() {
 }
 ARGS[carribot_intel_1]="$(intel_query 1)"
 ARGS[carribot_intel_2]="$(intel_query 2)"
+ARGS[carribot_intel_4]="$(intel_query 4)"
 ARGS[movebot]="movebot --obstacles $DATA/movebot/locobot_obs.txt"
 workloads=(demo beam_model)
 [ -f "$DATA/wean/wean.dat" ] && workloads+=(wean_180_beams) || echo "no $DATA/wean: the Wean workload is skipped"
-[ -f "$DATA/intel/Intel.map" ] && workloads+=(carribot_intel_1 carribot_intel_2) ||
+[ -f "$DATA/intel/Intel.map" ] && workloads+=(carribot_intel_1 carribot_intel_2 carribot_intel_4) ||
   echo "no $DATA/intel: the CarriBot workloads are skipped"
 [ -f "$DATA/movebot/locobot_obs.txt" ] && workloads+=(movebot) || echo "no $DATA/movebot: the MoveBot workload is skipped"
+if [ -n "${WORKLOADS:-}" ]; then
+  chosen=()
+  for w in $WORKLOADS; do
+    [ -n "${ARGS[$w]:-}" ] || { echo "WORKLOADS: no workload '$w' (known: ${!ARGS[*]})" >&2; exit 2; }
+    for have in "${workloads[@]}"; do [ "$have" = "$w" ] && chosen+=("$w"); done
+  done
+  [ "${#chosen[@]}" -gt 0 ] || { echo "WORKLOADS: none of '$WORKLOADS' can run here" >&2; exit 2; }
+  workloads=("${chosen[@]}")
+fi
 
 # The host first: pricing's ratio moved by several percent from one 2-core
 # machine to another with the code unchanged (docs/pricing.md), so a table
@@ -70,7 +83,8 @@ echo "host: $cpu, $(env -u OMP_THREAD_LIMIT -u OMP_NUM_THREADS nproc) cores; thr
 : > runs.txt
 for round in $(seq "$ROUNDS"); do
   for w in "${workloads[@]}"; do
-    for mode in priced unpriced; do
+    modes=(priced unpriced); (( round % 2 == 0 )) && modes=(unpriced priced)
+    for mode in "${modes[@]}"; do
       flag=""; [ "$mode" = unpriced ] && flag="--no-pricing"
       # shellcheck disable=SC2086
       /usr/bin/time -f "%e %U %S %M" -o time.txt "$RCBENCH" ${ARGS[$w]} $flag >/dev/null 2>&1
