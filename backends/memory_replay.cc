@@ -164,16 +164,30 @@ class SmReplay {
       const std::uint64_t begin = begin_;
       const int shift = sector_shift_;
       const bool coalesced = coalesced_;
-      Scatter([&](std::uint32_t at, std::uint64_t address, std::uint32_t lane_owner, std::uint32_t k) {
-        const auto s = static_cast<std::uint32_t>((address - begin) >> shift);
-        // Coalesced: the previous lane of the same warp step fetched the same
-        // sector, so this one adds no request; dropping it here (most
-        // neighbouring rays share a sector) spares the walk.
-        if (coalesced && at > step_start[k] && sector[at - 1] == s && owner[at - 1] == lane_owner) return false;
-        sector[at] = s;
-        owner[at] = lane_owner;
-        return true;
-      });
+      if (coalesced) {
+        Scatter([&](std::uint32_t at, std::uint64_t address, std::uint32_t lane_owner, std::uint32_t k) {
+          const auto s = static_cast<std::uint32_t>((address - begin) >> shift);
+          // The previous lane of the same warp step fetched the same sector,
+          // so this one adds no request; dropping it here (most neighbouring
+          // rays share a sector) spares the walk. Without a branch (whether
+          // neighbours share a sector is data, and mispredicted it cost more
+          // than the stores): the slot is written either way, and a repeat
+          // leaves it to the step's next fetch. It lies within step k's
+          // range, since this fetch is one of the step's. At slot 0 the
+          // comparison reads slot 0 and is masked off.
+          const std::uint32_t previous = at - (at > 0);
+          const bool repeat = (at > step_start[k]) & (sector[previous] == s) & (owner[previous] == lane_owner);
+          sector[at] = s;
+          owner[at] = lane_owner;
+          return !repeat;
+        });
+      } else {
+        Scatter([&](std::uint32_t at, std::uint64_t address, std::uint32_t lane_owner, std::uint32_t) {
+          sector[at] = static_cast<std::uint32_t>((address - begin) >> shift);
+          owner[at] = lane_owner;
+          return true;
+        });
+      }
     } else {
       Grow(address_, total);
       std::uint64_t* address = address_.data();
@@ -188,16 +202,15 @@ class SmReplay {
 
   // Offers each fetch of the wave's lanes its step's next slot:
   // write(slot, address, owner, step) fills it, or declines (false) and
-  // leaves the slot to the next fetch of that step. Afterwards step k's
-  // fetches are [step_start_[k], cursor_[k]).
+  // leaves the slot (which it may have written) to the next fetch of that
+  // step. Afterwards step k's fetches are [step_start_[k], cursor_[k]).
   template <class Write>
   void Scatter(Write write) {
     std::uint32_t* cursor = cursor_.data();
     for (std::size_t j = 0; j < lane_nodes_.size(); ++j) {
       const std::uint32_t lane_owner = lane_owner_[j], nodes = lane_nodes_[j];
       const std::uint64_t* a = lane_addresses_[j];
-      for (std::uint32_t k = 0; k < nodes; ++k)
-        if (write(cursor[k], a[k], lane_owner, k)) ++cursor[k];
+      for (std::uint32_t k = 0; k < nodes; ++k) cursor[k] += write(cursor[k], a[k], lane_owner, k) ? 1 : 0;
     }
   }
 
