@@ -25,12 +25,26 @@
 # space-separated) runs a subset, for more rounds where an interval is wide.
 # Within a round the priced run goes first in odd rounds and second in even
 # ones, so that neither mode always follows the other.
-# Usage: [THREADS=n] [WORKLOADS="a b"] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
+# With THREADS > 1, the round trip of a cache line between the first two
+# cores (benchmarks/core_to_core_latency, built beside rcbench) is measured
+# before and after each pair, and the pairs are also summarised by where the
+# host had put the cores: "near" when both round trips were under FAR_NS,
+# "far" when both were at or over it (a pair that saw both is left out of
+# that split). On a virtual machine the placement changes between runs, and
+# a priced run's threads read each other's records: docs/pricing.md, "Where
+# the host puts the two cores".
+# Usage: [THREADS=n] [WORKLOADS="a b"] [FAR_NS=ns] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
 set -euo pipefail
 RCBENCH="$(realpath "${1:-build/rcbench}")"
 DATA="$(realpath "${2:-../shared/data}")"
 ROUNDS="${3:-3}"
 THREADS="${THREADS:-1}"
+# ns, 1-10000: the round trip at and above which the cores count as far
+# apart. Source: the project's 2-core EPYC measured 52-88 ns in one
+# placement and 322-368 ns in the other; 200 lies between them.
+FAR_NS="${FAR_NS:-200}"
+PROBE="$(dirname "$RCBENCH")/benchmarks/core_to_core_latency"
+probe() { if [ "$THREADS" -gt 1 ] && [ -x "$PROBE" ]; then "$PROBE" 2>/dev/null || echo -; else echo -; fi; }
 # carribot and movebot take OpenMP's thread count (they have no --threads).
 export OMP_THREAD_LIMIT="$THREADS"
 WORK="$(mktemp -d)"
@@ -84,18 +98,22 @@ echo "host: $cpu, $(env -u OMP_THREAD_LIMIT -u OMP_NUM_THREADS nproc) cores; thr
 for round in $(seq "$ROUNDS"); do
   for w in "${workloads[@]}"; do
     modes=(priced unpriced); (( round % 2 == 0 )) && modes=(unpriced priced)
+    before=$(probe)
     for mode in "${modes[@]}"; do
       flag=""; [ "$mode" = unpriced ] && flag="--no-pricing"
       # shellcheck disable=SC2086
       /usr/bin/time -f "%e %U %S %M" -o time.txt "$RCBENCH" ${ARGS[$w]} $flag >/dev/null 2>&1
       read -r wall user sys rss < time.txt
       cpu=$(awk -v u="$user" -v s="$sys" 'BEGIN { print u + s }')
-      echo "$w $mode $wall $cpu $rss" | tee -a runs.txt
+      echo "$w $mode $wall $cpu $rss" >> pair.txt
     done
+    after=$(probe)
+    while read -r line; do echo "$line $before $after" | tee -a runs.txt; done < pair.txt
+    rm pair.txt
   done
 done
 
-python3 - runs.txt <<'PY'
+python3 - runs.txt "$FAR_NS" <<'PY'
 import math, statistics, sys
 
 def median_interval(xs):
@@ -107,10 +125,17 @@ def median_interval(xs):
     while k + 1 <= (n + 1) // 2 and coverage(k + 1) >= 0.95:
         k += 1
     return xs[k - 1], xs[n - k], coverage(k)
-runs = {}
+runs, placement = {}, {}
+far_ns = float(sys.argv[2])
 for line in open(sys.argv[1]):
-    w, mode, wall, cpu, rss = line.split()
+    w, mode, wall, cpu, rss, before, after = line.split()
     runs.setdefault((w, mode), []).append((float(wall), float(cpu), int(rss)))
+    if mode == "priced":
+        trips = [float(t) for t in (before, after) if t != "-"]
+        where = None
+        if len(trips) == 2:
+            where = "near" if max(trips) < far_ns else "far" if min(trips) >= far_ns else None
+        placement.setdefault(w, []).append(where)
 print("\n| workload | CPU priced / unpriced (s) | ratio | paired: median, largest | paired median's interval (coverage) | wall priced / unpriced (s) | ratio | paired: median, largest | peak RSS priced / unpriced (MB) | ratio | unpriced CPU spread |")
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 for w in dict.fromkeys(k[0] for k in runs):
@@ -128,4 +153,19 @@ for w in dict.fromkeys(k[0] for k in runs):
                 cells.append(f"{lo:.2f}-{hi:.2f}x ({100 * coverage:.0f}%)")
     cells.append(f"{max(x[1] for x in u) / min(x[1] for x in u):.2f}x")
     print(f"| {w} | " + " | ".join(cells) + " |")
+if any(where for ws in placement.values() for where in ws):
+    print(f"\nBy where the host had put the cores (round trip under {far_ns:.0f} ns: near; CPU time):")
+    print("\n| workload | near: pairs, paired median (interval) | far: pairs, paired median (interval) |")
+    print("|---|---|---|")
+    for w in dict.fromkeys(k[0] for k in runs):
+        p, u = runs[(w, "priced")], runs[(w, "unpriced")]
+        cells = []
+        for side in ("near", "far"):
+            paired = [x[1] / y[1] for x, y, where in zip(p, u, placement[w]) if where == side]
+            if not paired:
+                cells.append("0")
+                continue
+            lo, hi, coverage = median_interval(paired)
+            cells.append(f"{len(paired)}, {statistics.median(paired):.2f}x ({lo:.2f}-{hi:.2f}x, {100 * coverage:.0f}%)")
+        print(f"| {w} | " + " | ".join(cells) + " |")
 PY
