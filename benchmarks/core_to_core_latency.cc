@@ -8,15 +8,13 @@
 // invalidate the other core's copies without first fetching the lines.
 //
 // Why: on a virtual machine the host places the two vCPUs, and where it puts
-// them decides what a line written by one thread costs the other. On the
-// project's 2-core EPYC the round trip was either about 60 ns or about
-// 350 ns, changing between runs of a few seconds, and a priced two-thread
-// run, whose threads read each other's records, spent 0.5-0.7 s more CPU in
-// the slow placement while an unpriced one did not move (docs/pricing.md,
-// "Where the host puts the two cores"). benchmarks/pricing_end_to_end.sh
-// runs this beside every pair of runs to say which placement each saw.
+// them decides what a line one thread writes over the other's copy costs;
+// a priced two-thread run does that every update (docs/pricing.md, "Where
+// the host puts the two cores"). benchmarks/pricing_end_to_end.sh runs this
+// beside every pair of runs to say which placement each saw.
 //
-// Exit status 0; 2 when fewer than two CPUs are available.
+// Exit status 0; 2 when fewer than two CPUs are available or a thread
+// cannot be pinned to its CPU (the figures would not be between two cores).
 #include <pthread.h>
 #include <sched.h>
 
@@ -51,19 +49,22 @@ bool PinTo(int cpu) {
   return pthread_setaffinity_np(pthread_self(), sizeof set, &set) == 0;
 }
 
+// False once a measuring thread could not be pinned to cpus[1]. The caller
+// pins itself to cpus[0] before measuring.
+std::atomic<bool> pinned_other{true};
+
 // Median round trip of the flag between cpus[0] and cpus[1], ns.
 double RoundTripNs(const std::vector<int>& cpus) {
   // The flag alone on its line: 1 = the other thread's turn, 0 = ours.
   alignas(64) std::atomic<int> flag{0};
   std::thread other([&] {
-    PinTo(cpus[1]);
+    pinned_other = PinTo(cpus[1]);
     for (long i = 0; i < static_cast<long>(kBatches) * kTripsPerBatch; ++i) {
       while (flag.load(std::memory_order_acquire) != 1) {
       }
       flag.store(0, std::memory_order_release);
     }
   });
-  PinTo(cpus[0]);
   std::vector<double> ns;
   for (int b = 0; b < kBatches; ++b) {
     const auto start = std::chrono::steady_clock::now();
@@ -111,7 +112,6 @@ StreamCost Stream(const std::vector<int>& cpus, bool cross, bool streaming) {
     read_s += Seconds(start);
     sink += sum;
   };
-  PinTo(cpus[0]);
   if (!cross) {
     for (int r = 0; r < kStreamRounds; ++r) {
       write(r);
@@ -120,7 +120,7 @@ StreamCost Stream(const std::vector<int>& cpus, bool cross, bool streaming) {
   } else {
     alignas(64) std::atomic<int> turn{0};  // 0: the writer's, 1: the reader's
     std::thread reader([&] {
-      PinTo(cpus[1]);
+      if (!PinTo(cpus[1])) pinned_other = false;
       for (int r = 0; r < kStreamRounds; ++r) {
         while (turn.load(std::memory_order_acquire) != 1) {
         }
@@ -159,7 +159,15 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "core_to_core_latency: needs two CPUs, this process may run on %zu\n", cpus.size());
     return 2;
   }
+  if (!PinTo(cpus[0])) {
+    std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[0]);
+    return 2;
+  }
   const double trip_ns = RoundTripNs(cpus);
+  if (!pinned_other) {
+    std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[1]);
+    return 2;
+  }
   if (!stream) {
     std::printf("%.0f\n", trip_ns);
     return 0;
@@ -169,6 +177,10 @@ int main(int argc, char** argv) {
   std::printf("2 MiB written over the other core's copy %.0f us (one core: %.0f us)\n", across.write_us,
               one.write_us);
   std::printf("2 MiB read after the other core wrote it %.0f us (one core: %.0f us)\n", across.read_us, one.read_us);
+  if (!pinned_other) {
+    std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[1]);
+    return 2;
+  }
 #if defined(__x86_64__)
   const StreamCost nt_across = Stream(cpus, true, true), nt_one = Stream(cpus, false, true);
   std::printf("the same with non-temporal stores:      written %.0f us (one core: %.0f us), read %.0f us (one core: %.0f us)\n",

@@ -31,8 +31,8 @@
 # host had put the cores: "near" when both round trips were under FAR_NS,
 # "far" when both were at or over it (a pair that saw both is left out of
 # that split). On a virtual machine the placement changes between runs, and
-# a priced run's threads read each other's records: docs/pricing.md, "Where
-# the host puts the two cores".
+# a priced run's threads write over what the other has read: docs/pricing.md,
+# "Where the host puts the two cores".
 # Usage: [THREADS=n] [WORKLOADS="a b"] [FAR_NS=ns] benchmarks/pricing_end_to_end.sh [rcbench] [shared data dir] [rounds]
 set -euo pipefail
 RCBENCH="$(realpath "${1:-build/rcbench}")"
@@ -43,6 +43,8 @@ THREADS="${THREADS:-1}"
 # apart. Source: the project's 2-core EPYC measured 52-88 ns in one
 # placement and 322-368 ns in the other; 200 lies between them.
 FAR_NS="${FAR_NS:-200}"
+[[ "$FAR_NS" =~ ^[0-9]+$ ]] && (( FAR_NS >= 1 && FAR_NS <= 10000 )) ||
+  { echo "FAR_NS: '$FAR_NS' is not a whole number of ns in 1-10000" >&2; exit 2; }
 PROBE="$(dirname "$RCBENCH")/benchmarks/core_to_core_latency"
 probe() { if [ "$THREADS" -gt 1 ] && [ -x "$PROBE" ]; then "$PROBE" 2>/dev/null || echo -; else echo -; fi; }
 # carribot and movebot take OpenMP's thread count (they have no --threads).
