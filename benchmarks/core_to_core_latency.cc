@@ -58,7 +58,7 @@ double RoundTripNs(const std::vector<int>& cpus) {
   // The flag alone on its line: 1 = the other thread's turn, 0 = ours.
   alignas(64) std::atomic<int> flag{0};
   std::thread other([&] {
-    pinned_other = PinTo(cpus[1]);
+    if (!PinTo(cpus[1])) pinned_other = false;
     for (long i = 0; i < static_cast<long>(kBatches) * kTripsPerBatch; ++i) {
       while (flag.load(std::memory_order_acquire) != 1) {
       }
@@ -83,7 +83,7 @@ double RoundTripNs(const std::vector<int>& cpus) {
 // Mean time per round of writing 2 MiB and of reading it, in us: with
 // `cross`, cpus[0] writes over what cpus[1] read in the round before and
 // cpus[1] reads what cpus[0] just wrote; without, cpus[0] does both. With
-// `streaming`, the writes are non-temporal (x86-64 only).
+// `streaming`, the writes are non-temporal on x86-64 (plain elsewhere).
 struct StreamCost {
   double write_us = 0, read_us = 0;
 };
@@ -93,16 +93,17 @@ StreamCost Stream(const std::vector<int>& cpus, bool cross, bool streaming) {
   double write_s = 0, read_s = 0;
   auto write = [&](int round) {
     const auto start = std::chrono::steady_clock::now();
-    if (streaming) {
 #if defined(__x86_64__)
+    if (streaming) {
       auto* out = reinterpret_cast<long long*>(data.data());
       for (std::size_t i = 0; i < data.size(); ++i)
         _mm_stream_si64(out + i, static_cast<long long>(i + static_cast<std::uint64_t>(round)));
       _mm_sfence();  // the stores reach memory before the reader is told
-#endif
-    } else {
-      for (std::size_t i = 0; i < data.size(); ++i) data[i] = i + static_cast<std::uint64_t>(round);
+      write_s += Seconds(start);
+      return;
     }
+#endif
+    for (std::size_t i = 0; i < data.size(); ++i) data[i] = i + static_cast<std::uint64_t>(round);
     write_s += Seconds(start);
   };
   auto read = [&] {
@@ -163,7 +164,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[0]);
     return 2;
   }
+  // Everything is measured before anything is printed, so that a thread
+  // that could not be pinned leaves no figures behind.
   const double trip_ns = RoundTripNs(cpus);
+  StreamCost across, one, nt_across, nt_one;
+  if (stream) {
+    across = Stream(cpus, true, false);
+    one = Stream(cpus, false, false);
+#if defined(__x86_64__)
+    nt_across = Stream(cpus, true, true);
+    nt_one = Stream(cpus, false, true);
+#endif
+  }
   if (!pinned_other) {
     std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[1]);
     return 2;
@@ -172,17 +184,11 @@ int main(int argc, char** argv) {
     std::printf("%.0f\n", trip_ns);
     return 0;
   }
-  const StreamCost across = Stream(cpus, true, false), one = Stream(cpus, false, false);
   std::printf("round trip                              %.0f ns\n", trip_ns);
   std::printf("2 MiB written over the other core's copy %.0f us (one core: %.0f us)\n", across.write_us,
               one.write_us);
   std::printf("2 MiB read after the other core wrote it %.0f us (one core: %.0f us)\n", across.read_us, one.read_us);
-  if (!pinned_other) {
-    std::fprintf(stderr, "core_to_core_latency: cannot pin a thread to CPU %d\n", cpus[1]);
-    return 2;
-  }
 #if defined(__x86_64__)
-  const StreamCost nt_across = Stream(cpus, true, true), nt_one = Stream(cpus, false, true);
   std::printf("the same with non-temporal stores:      written %.0f us (one core: %.0f us), read %.0f us (one core: %.0f us)\n",
               nt_across.write_us, nt_one.write_us, nt_across.read_us, nt_one.read_us);
 #endif
