@@ -70,7 +70,7 @@ void RoboCoreContext::ExecuteRoboCore(const RayBatch& queries, const RayCastScen
 template <typename Scalar>
 void RoboCoreContext::CheckCollisions(const std::vector<Obb<Scalar>>& obbs, const FlatBoxTree<Scalar>& tree,
                                       std::vector<CollisionResult>& results, KernelRecord& record,
-                                      const CollisionOptions<Scalar>& options) const {
+                                      const CollisionOptions<Scalar>& options, CollisionBatch* visits) const {
   std::string why;
   if (program_ && !KeepsSactExitContract(*program_, &why))
     throw std::invalid_argument("CheckCollisions: ConfigRoboCore's " + why);
@@ -84,7 +84,7 @@ void RoboCoreContext::CheckCollisions(const std::vector<Obb<Scalar>>& obbs, cons
   shape.node_count = tree.nodes().size();
   CheckLayout(TreeNodeRegion(shape));
 
-  const CollisionBatch batch = CollideBatch(tree, obbs, options);
+  CollisionBatch batch = CollideBatch(tree, obbs, options);
   KernelRecord out = SactKernelRecord(batch, program_);
   if (leaf_configured_) {
     out.leaf = leaf_;
@@ -96,13 +96,14 @@ void RoboCoreContext::CheckCollisions(const std::vector<Obb<Scalar>>& obbs, cons
     results[i] = CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box};
   }
   record = std::move(out);
+  if (visits) *visits = std::move(batch);
 }
 
 template void RoboCoreContext::CheckCollisions(const std::vector<Obb<float>>&, const FlatBoxTree<float>&,
                                                std::vector<CollisionResult>&, KernelRecord&,
-                                               const CollisionOptions<float>&) const;
+                                               const CollisionOptions<float>&, CollisionBatch*) const;
 template void RoboCoreContext::CheckCollisions(const std::vector<Obb<double>>&, const FlatBoxTree<double>&,
                                                std::vector<CollisionResult>&, KernelRecord&,
-                                               const CollisionOptions<double>&) const;
+                                               const CollisionOptions<double>&, CollisionBatch*) const;
 
 }  // namespace rc

@@ -74,11 +74,14 @@ class RoboCoreContext {
   // contract (a ray program), if ConfigDecode was called and has no
   // FetchKind::kTreeNode layout or one whose size is not the tree's node
   // size, if the options are invalid, or if they ask for sphere pre-tests
-  // (the SACT program has no section for them).
+  // (the SACT program has no section for them). With `visits` set, it also
+  // receives the batch the kernel ran (every visit's node, SACT stages and
+  // exit, which the record does not keep), so that a caller summarising the
+  // visits does not run the kernel again.
   template <typename Scalar>
   void CheckCollisions(const std::vector<Obb<Scalar>>& obbs, const FlatBoxTree<Scalar>& tree,
                        std::vector<CollisionResult>& results, KernelRecord& record,
-                       const CollisionOptions<Scalar>& options = {}) const;
+                       const CollisionOptions<Scalar>& options = {}, CollisionBatch* visits = nullptr) const;
 
  private:
   std::shared_ptr<const MicroProgram> program_;

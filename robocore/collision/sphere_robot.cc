@@ -93,24 +93,33 @@ SphereRobotBatch CollideSphereBatch(const FlatBoxTree<Scalar>& tree, const std::
   return out;
 }
 
+SphereRobotReport CompareSphereRobot(const SphereRobotBatch& spheres, const std::vector<TraversalOutcome>& exact) {
+  if (exact.size() != spheres.obb_collides.size())
+    throw std::invalid_argument("CompareSphereRobot: " + std::to_string(exact.size()) + " exact outcomes for " +
+                                std::to_string(spheres.obb_collides.size()) + " OBBs");
+  SphereRobotReport report;
+  report.spheres_per_obb = spheres.spheres_per_obb;
+  report.sphere_nodes = spheres.spheres.visits.size();
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    const bool sphere = spheres.obb_collides[k];
+    ++report.queries;
+    report.obb_collisions += exact[k].collides;
+    report.sphere_collisions += sphere;
+    report.false_collisions += sphere && !exact[k].collides;
+    report.missed_collisions += exact[k].collides && !sphere;
+    report.obb_nodes += exact[k].nodes_visited;
+  }
+  return report;
+}
+
 template <typename Scalar>
 SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                                      const CollisionOptions<Scalar>& options, int spheres_per_obb) {
-  const SphereRobotBatch spheres = CollideSphereBatch(tree, obbs, spheres_per_obb, options.order);
-  SphereRobotReport report;
-  report.spheres_per_obb = spheres_per_obb;
-  report.sphere_nodes = spheres.spheres.visits.size();
-  for (std::size_t k = 0; k < obbs.size(); ++k) {
-    const TraversalOutcome exact = CollideObb(tree, obbs[k], options);
-    const bool sphere = spheres.obb_collides[k];
-    ++report.queries;
-    report.obb_collisions += exact.collides;
-    report.sphere_collisions += sphere;
-    report.false_collisions += sphere && !exact.collides;
-    report.missed_collisions += exact.collides && !sphere;
-    report.obb_nodes += exact.nodes_visited;
-  }
-  return report;
+  std::vector<TraversalOutcome> exact;
+  exact.reserve(obbs.size());
+  std::vector<std::uint32_t> pending;
+  for (const Obb<Scalar>& obb : obbs) exact.push_back(CollideObb(tree, obb, options, nullptr, &pending));
+  return CompareSphereRobot(CollideSphereBatch(tree, obbs, spheres_per_obb, options.order), exact);
 }
 
 #define RC_INSTANTIATE(Scalar)                                                                                   \

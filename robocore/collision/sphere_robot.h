@@ -77,6 +77,14 @@ struct SphereRobotReport {
   }
 };
 
+// The sphere robot against the exact SACT, both already run: `exact` holds
+// one outcome per OBB of `spheres` (the SACT without sphere pre-tests), so
+// a caller that has both batches compares them without running either
+// kernel again. Throws std::invalid_argument if the counts disagree.
+SphereRobotReport CompareSphereRobot(const SphereRobotBatch& spheres, const std::vector<TraversalOutcome>& exact);
+
+// Runs both (CollideSphereBatch, then the SACT per OBB with `options`) and
+// compares them.
 template <typename Scalar>
 SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                                      const CollisionOptions<Scalar>& options, int spheres_per_obb = 1);

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -105,6 +106,22 @@ TEST(SphereProgram, SpheresAreConservativeAndTheFalseRateIsMeasured) {
   const auto one = CompareSphereRobot(tree, obbs, CollisionOptions<double>{}, 1);
   const auto four = CompareSphereRobot(tree, obbs, CollisionOptions<double>{}, 4);
   EXPECT_LT(four.false_collisions, one.false_collisions);
+
+  // From batches already run (how `rcbench collide` compares without running
+  // either kernel again): the same report; the exact outcomes must be one
+  // per OBB.
+  const SphereRobotBatch four_spheres = CollideSphereBatch(tree, obbs, 4, TraversalOrder::kDepthFirst);
+  const SphereRobotReport from_batches = CompareSphereRobot(four_spheres, sact.outcomes);
+  EXPECT_EQ(from_batches.spheres_per_obb, 4);
+  EXPECT_EQ(from_batches.queries, four.queries);
+  EXPECT_EQ(from_batches.obb_collisions, four.obb_collisions);
+  EXPECT_EQ(from_batches.sphere_collisions, four.sphere_collisions);
+  EXPECT_EQ(from_batches.false_collisions, four.false_collisions);
+  EXPECT_EQ(from_batches.missed_collisions, four.missed_collisions);
+  EXPECT_EQ(from_batches.obb_nodes, four.obb_nodes);
+  EXPECT_EQ(from_batches.sphere_nodes, four.sphere_nodes);
+  std::vector<TraversalOutcome> short_by_one(sact.outcomes.begin(), sact.outcomes.end() - 1);
+  EXPECT_THROW(CompareSphereRobot(four_spheres, short_by_one), std::invalid_argument);
 }
 
 TEST(SphereProgram, RecordsPriceOnEveryBackendBesideTheSact) {

@@ -99,6 +99,34 @@ TEST(CheckCollisions, ResultsAreCollideBatchsAndTheRecordIsSactKernelRecords) {
   EXPECT_EQ(record.node_bytes, 32u);
 }
 
+// The batch CheckCollisions hands back is the one it ran: CollideBatch's,
+// visit for visit, so a caller summarising the visits needs no second run.
+TEST(CheckCollisions, HandsBackTheBatchItRan) {
+  const Workload w = MakeWorkload(2);
+  CollisionOptions<double> bfs;
+  bfs.order = TraversalOrder::kBreadthFirst;
+  std::vector<CollisionResult> results;
+  KernelRecord record;
+  CollisionBatch visits;
+  RoboCoreContext().CheckCollisions(w.obbs, w.tree, results, record, bfs, &visits);
+  const CollisionBatch want = CollideBatch(w.tree, w.obbs, bfs);
+  EXPECT_EQ(visits.visit_offsets, want.visit_offsets);
+  ASSERT_EQ(visits.visits.size(), want.visits.size());
+  ASSERT_GT(visits.visits.size(), w.obbs.size());
+  for (std::size_t k = 0; k < want.visits.size(); ++k) {
+    EXPECT_EQ(visits.visits[k].node, want.visits[k].node) << k;
+    EXPECT_EQ(visits.visits[k].exit, want.visits[k].exit) << k;
+    EXPECT_EQ(visits.visits[k].axes_tested, want.visits[k].axes_tested) << k;
+    EXPECT_EQ(visits.visits[k].decided_by, want.visits[k].decided_by) << k;
+  }
+  ASSERT_EQ(visits.outcomes.size(), want.outcomes.size());
+  for (std::size_t i = 0; i < want.outcomes.size(); ++i) {
+    EXPECT_EQ(visits.outcomes[i].collides, want.outcomes[i].collides) << i;
+    EXPECT_EQ(visits.outcomes[i].nodes_visited, want.outcomes[i].nodes_visited) << i;
+  }
+  ExpectSameRecord(record, SactKernelRecord(visits));
+}
+
 TEST(CheckCollisions, RejectsAProgramWithoutASactSection) {
   const Workload w = MakeWorkload(2);
   std::vector<CollisionResult> results;

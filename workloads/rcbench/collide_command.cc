@@ -168,6 +168,18 @@ void PrintSummary(std::ostream& out, const CollisionSummary& s) {
   out << '\n';
 }
 
+// Each OBB's outcome under `options`, without keeping its visits (a
+// comparison needs the answers only).
+template <typename Scalar>
+std::vector<TraversalOutcome> Answers(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                      const CollisionOptions<Scalar>& options) {
+  std::vector<TraversalOutcome> out;
+  out.reserve(obbs.size());
+  std::vector<std::uint32_t> pending;
+  for (const Obb<Scalar>& obb : obbs) out.push_back(CollideObb(tree, obb, options, nullptr, &pending));
+  return out;
+}
+
 template <typename Scalar>
 void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<RobotObb>& robot) {
   const FlatBoxTree<Scalar> flat(tree);
@@ -183,29 +195,40 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
 
   const BackendParameters params =
       cli.backend_params_path.empty() ? BackendParameters{} : LoadBackendPreset(cli.backend_params_path).backend;
-  // The OBB batch through the RoboCore API; with sphere pre-tests (which the
-  // SACT program cannot price) the kernel runs directly and is not priced.
+  // Each kernel runs once (a scene builds only what it needs): the OBB
+  // batch through the RoboCore API, which also hands back its visits for
+  // the summary, or, with sphere pre-tests (which the SACT program cannot
+  // price), directly and unpriced; the sphere robot; and the artifact's
+  // convention below, answers only. Only with sphere pre-tests does the
+  // plain SACT run a second time, answers only, for the sphere comparison.
   std::vector<CollisionResult> results;
   KernelRecord record;
   std::vector<BatchCost> costs;
+  CollisionBatch batch;
   if (!options.sact.sphere_pretests) {
     RoboCoreContext robocore;
     robocore.ConfigRoboCore(ShippedStepProgram(StepProgramKind::kSactTest));
     robocore.ConfigDecode({{FetchKind::kTreeNode, flat.node_bytes()}});
-    robocore.CheckCollisions(obbs, flat, results, record, options);
+    robocore.CheckCollisions(obbs, flat, results, record, options, &batch);
     costs = PriceOnEveryBackend(record, params);
-  }
-  // The summary needs every visit's stages, which the record does not keep.
-  const CollisionBatch batch = CollideBatch(flat, obbs, options);
-  const CollisionSummary summary = Summarize(batch);
-  if (options.sact.sphere_pretests)
+  } else {
+    batch = CollideBatch(flat, obbs, options);
     for (const TraversalOutcome& q : batch.outcomes)
       results.push_back(CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box});
+  }
+  const CollisionSummary summary = Summarize(batch);
   const SphereRobotBatch sphere_batch = CollideSphereBatch(flat, obbs, cli.spheres_per_obb, options.order);
   const std::vector<BatchCost> sphere_costs = PriceOnEveryBackend(SphereKernelRecord(sphere_batch.spheres), params);
-  CollisionOptions<Scalar> exact_options = options;
-  exact_options.sact.sphere_pretests = false;
-  const SphereRobotReport spheres = CompareSphereRobot(flat, obbs, exact_options, cli.spheres_per_obb);
+  // The sphere robot is compared with the exact SACT: the batch above, or
+  // with sphere pre-tests the SACT alone, answers only.
+  std::vector<TraversalOutcome> exact;
+  if (options.sact.sphere_pretests) {
+    CollisionOptions<Scalar> exact_options = options;
+    exact_options.sact.sphere_pretests = false;
+    exact = Answers(flat, obbs, exact_options);
+  }
+  const SphereRobotReport spheres =
+      CompareSphereRobot(sphere_batch, options.sact.sphere_pretests ? exact : batch.outcomes);
   // Outputs only after the whole run succeeded.
   if (!cli.output_path.empty())
     WriteOutput(cli.output_path, cli.robot_model == "spheres" ? SphereResults(sphere_batch) : results);
@@ -239,9 +262,9 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   CollisionOptions<Scalar> artifact = options;
   artifact.sact.convention = TranslationConvention::kArtifactRows;
   artifact.sact.sphere_pretests = false;
-  const CollisionBatch wrong = CollideBatch(flat, obbs, artifact);
+  const std::vector<TraversalOutcome> wrong = Answers(flat, obbs, artifact);
   std::size_t differ = 0;
-  for (std::size_t i = 0; i < obbs.size(); ++i) differ += wrong.outcomes[i].collides != batch.outcomes[i].collides;
+  for (std::size_t i = 0; i < obbs.size(); ++i) differ += wrong[i].collides != batch.outcomes[i].collides;
   std::cout << "artifact SACT convention (translation on axis rows): " << differ << " of " << obbs.size()
             << " answers differ\n";
   if (!cli.output_path.empty()) std::cout << "output                  " << cli.output_path << "\n";
