@@ -410,5 +410,36 @@ class AccuracyAnalysis(unittest.TestCase):
         self.assertIn("| 2 / 1 / 1 / 1 | 3.0 | 1/3 |", md)
 
 
+class MoveBotCostAnalysis(unittest.TestCase):
+    """scripts/movebot_cost_study.py: the distribution per budget and
+    structure, and the seeds where the structures disagree (a cost apart,
+    or one exact where another is not); a failed point's seed is not
+    compared."""
+
+    def test_distribution_and_disagreements(self):
+        work = tempfile.mkdtemp(prefix="rc_movebot_cost_test_")
+        self.addCleanup(shutil.rmtree, work)
+        points = []
+
+        def point(iterations, nn, seed, exact, cost, status="ok"):
+            points.append({"point": f"{iterations}_{nn}_{seed}", "status": status, "folder": work,
+                           "workload": "movebot", "iterations": iterations, "nn": nn, "seed": seed,
+                           "result.exact_path": exact, "anytime.best_cost_rad": cost})
+
+        for nn in ("gnat", "p-ray", "p-sphere"):
+            point(2000, nn, 1, 0, 11.0)                                   # no exact path anywhere: agree
+            point(2000, nn, 2, 1, 9.0 + (1e-6 if nn == "p-ray" else 0))  # p-ray's cost apart
+            point(2000, nn, 3, 1 if nn != "gnat" else 0, 8.0)             # gnat not exact
+            point(5000, nn, 1, 1, 7.5, status="failed" if nn == "gnat" else "ok")
+            point(5000, nn, 2, 1, 7.0)
+            point(5000, nn, 3, 1, 8.0)
+        md = run_analysis(self, work, points, "movebot_cost_study")
+        self.assertIn("| 2000 | p-ray | 2/3 | 8.0 | 8.25 | 8.5 | 8.75 | 9.0 |", md)
+        self.assertIn("| 2000 | gnat | 1/3 | 9.0 | 9.0 | 9.0 | 9.0 | 9.0 |", md)
+        self.assertIn("| 5000 | gnat | 2/2 |", md)
+        self.assertIn("- 2000 iterations: structures disagree on 2 of 3 seeds (2, 3)", md)
+        self.assertIn("- 5000 iterations: structures disagree on 0 of 2 seeds (none)", md)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)
