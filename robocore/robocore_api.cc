@@ -91,10 +91,7 @@ void RoboCoreContext::CheckCollisions(const std::vector<Obb<Scalar>>& obbs, cons
     out.leaf_kind = leaf_ ? LeafProgramKind::kCustom : LeafProgramKind::kNone;
   }
   results.resize(batch.query_count());
-  for (std::size_t i = 0; i < batch.query_count(); ++i) {
-    const TraversalOutcome& q = batch.outcomes[i];
-    results[i] = CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box};
-  }
+  for (std::size_t i = 0; i < batch.query_count(); ++i) results[i] = ResultOf(batch.outcomes[i]);
   record = std::move(out);
   if (visits) *visits = std::move(batch);
 }

@@ -43,6 +43,11 @@ struct CollisionResult {
   std::uint32_t colliding_box = kNoBox;  // scene box index, kNoBox when free
 };
 
+// A traversal's outcome as CheckCollisions reports it.
+inline CollisionResult ResultOf(const TraversalOutcome& q) {
+  return CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box};
+}
+
 class RoboCoreContext {
  public:
   // A ray program keeps the ray-cast exit contract (kernel_record.h: loop

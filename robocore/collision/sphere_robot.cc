@@ -115,11 +115,8 @@ SphereRobotReport CompareSphereRobot(const SphereRobotBatch& spheres, const std:
 template <typename Scalar>
 SphereRobotReport CompareSphereRobot(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                                      const CollisionOptions<Scalar>& options, int spheres_per_obb) {
-  std::vector<TraversalOutcome> exact;
-  exact.reserve(obbs.size());
-  std::vector<std::uint32_t> pending;
-  for (const Obb<Scalar>& obb : obbs) exact.push_back(CollideObb(tree, obb, options, nullptr, &pending));
-  return CompareSphereRobot(CollideSphereBatch(tree, obbs, spheres_per_obb, options.order), exact);
+  return CompareSphereRobot(CollideSphereBatch(tree, obbs, spheres_per_obb, options.order),
+                            CollideAnswers(tree, obbs, options));
 }
 
 #define RC_INSTANTIATE(Scalar)                                                                                   \

@@ -64,6 +64,16 @@ CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<O
   return batch;
 }
 
+template <typename Scalar>
+std::vector<TraversalOutcome> CollideAnswers(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                             const CollisionOptions<Scalar>& options) {
+  std::vector<TraversalOutcome> out;
+  out.reserve(obbs.size());
+  std::vector<std::uint32_t> pending;
+  for (const Obb<Scalar>& obb : obbs) out.push_back(CollideObb(tree, obb, options, nullptr, &pending));
+  return out;
+}
+
 #define RC_INSTANTIATE(Scalar)                                                                                        \
   template TraversalOutcome CollideObb(const FlatBoxTree<Scalar>&, const Obb<Scalar>&,                                \
                                        const CollisionOptions<Scalar>&, std::vector<NodeVisit>*);                     \
@@ -74,7 +84,9 @@ CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<O
   template CollisionBatch CollideBatch(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,                   \
                                        const CollisionOptions<Scalar>&, std::uint64_t);                               \
   template void CollideBatchInto(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,                         \
-                                 const CollisionOptions<Scalar>&, CollisionBatch*, std::uint64_t);
+                                 const CollisionOptions<Scalar>&, CollisionBatch*, std::uint64_t);                    \
+  template std::vector<TraversalOutcome> CollideAnswers(const FlatBoxTree<Scalar>&, const std::vector<Obb<Scalar>>&,  \
+                                                        const CollisionOptions<Scalar>&);
 RC_INSTANTIATE(float)
 RC_INSTANTIATE(double)
 #undef RC_INSTANTIATE

@@ -92,6 +92,13 @@ template <typename Scalar>
 CollisionBatch CollideBatch(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
                             const CollisionOptions<Scalar>& options, std::uint64_t base_address = kDefaultTreeBase);
 
+// Each OBB's outcome, in input order, without keeping any visit: for a
+// caller that needs the answers only (a comparison), at none of a batch's
+// memory.
+template <typename Scalar>
+std::vector<TraversalOutcome> CollideAnswers(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
+                                             const CollisionOptions<Scalar>& options);
+
 // The same into `batch`, whose contents are replaced and whose buffers are
 // reused: a caller that launches many batches (a configuration space)
 // allocates and page-faults its visit buffer once instead of per launch.

@@ -146,6 +146,32 @@ ExitProfile TallyByHand(const KernelRecord& record) {
   return profile;
 }
 
+// CollideAnswers keeps no visit but gives CollideBatch's outcomes, OBB for
+// OBB, in either traversal order.
+TEST(TreeTraversal, AnswersAreTheBatchsOutcomes) {
+  const std::vector<Aabbd> scene = test::RandomScene(80, 23);
+  const FlatBoxTree<double> flat(BuildMedianSplitTree(scene));
+  std::vector<Obbd> obbs;
+  for (std::uint64_t q = 0; q < 500; ++q) obbs.push_back(test::SceneQuery(scene, 24, q));
+  for (const TraversalOrder order : {TraversalOrder::kDepthFirst, TraversalOrder::kBreadthFirst}) {
+    CollisionOptions<double> options;
+    options.order = order;
+    const CollisionBatch batch = CollideBatch(flat, obbs, options);
+    const std::vector<TraversalOutcome> answers = CollideAnswers(flat, obbs, options);
+    ASSERT_EQ(answers.size(), obbs.size());
+    std::size_t collisions = 0;
+    for (std::size_t q = 0; q < obbs.size(); ++q) {
+      EXPECT_EQ(answers[q].collides, batch.outcomes[q].collides) << q;
+      EXPECT_EQ(answers[q].nodes_visited, batch.outcomes[q].nodes_visited) << q;
+      EXPECT_EQ(answers[q].last_exit, batch.outcomes[q].last_exit) << q;
+      EXPECT_EQ(answers[q].colliding_box, batch.outcomes[q].colliding_box) << q;
+      collisions += answers[q].collides;
+    }
+    EXPECT_GT(collisions, 0u);
+    EXPECT_LT(collisions, obbs.size());
+  }
+}
+
 // CollideBatchRecorded (the traversal and the record in one parallel pass)
 // returns the outcomes CollideBatch returns and the record SactKernelRecord
 // builds from that batch, array for array (its exits tallied), with every address kept, with

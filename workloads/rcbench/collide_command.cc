@@ -168,18 +168,6 @@ void PrintSummary(std::ostream& out, const CollisionSummary& s) {
   out << '\n';
 }
 
-// Each OBB's outcome under `options`, without keeping its visits (a
-// comparison needs the answers only).
-template <typename Scalar>
-std::vector<TraversalOutcome> Answers(const FlatBoxTree<Scalar>& tree, const std::vector<Obb<Scalar>>& obbs,
-                                      const CollisionOptions<Scalar>& options) {
-  std::vector<TraversalOutcome> out;
-  out.reserve(obbs.size());
-  std::vector<std::uint32_t> pending;
-  for (const Obb<Scalar>& obb : obbs) out.push_back(CollideObb(tree, obb, options, nullptr, &pending));
-  return out;
-}
-
 template <typename Scalar>
 void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<RobotObb>& robot) {
   const FlatBoxTree<Scalar> flat(tree);
@@ -213,8 +201,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
     costs = PriceOnEveryBackend(record, params);
   } else {
     batch = CollideBatch(flat, obbs, options);
-    for (const TraversalOutcome& q : batch.outcomes)
-      results.push_back(CollisionResult{q.collides, q.nodes_visited, q.last_exit, q.colliding_box});
+    for (const TraversalOutcome& q : batch.outcomes) results.push_back(ResultOf(q));
   }
   const CollisionSummary summary = Summarize(batch);
   const SphereRobotBatch sphere_batch = CollideSphereBatch(flat, obbs, cli.spheres_per_obb, options.order);
@@ -225,7 +212,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   if (options.sact.sphere_pretests) {
     CollisionOptions<Scalar> exact_options = options;
     exact_options.sact.sphere_pretests = false;
-    exact = Answers(flat, obbs, exact_options);
+    exact = CollideAnswers(flat, obbs, exact_options);
   }
   const SphereRobotReport spheres =
       CompareSphereRobot(sphere_batch, options.sact.sphere_pretests ? exact : batch.outcomes);
@@ -262,7 +249,7 @@ void RunCollide(const CollideCli& cli, const BoxTree& tree, const std::vector<Ro
   CollisionOptions<Scalar> artifact = options;
   artifact.sact.convention = TranslationConvention::kArtifactRows;
   artifact.sact.sphere_pretests = false;
-  const std::vector<TraversalOutcome> wrong = Answers(flat, obbs, artifact);
+  const std::vector<TraversalOutcome> wrong = CollideAnswers(flat, obbs, artifact);
   std::size_t differ = 0;
   for (std::size_t i = 0; i < obbs.size(); ++i) differ += wrong[i].collides != batch.outcomes[i].collides;
   std::cout << "artifact SACT convention (translation on axis rows): " << differ << " of " << obbs.size()
