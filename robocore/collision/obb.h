@@ -36,4 +36,17 @@ struct Obb {
 using Obbd = Obb<double>;
 using Obbf = Obb<float>;
 
+// `box` expressed in the box frame of `frame` (frame's centre the origin,
+// its axes the coordinate axes). There `frame` is the axis-aligned box of
+// half extents frame.half centred at the origin: how a pair of OBBs becomes
+// the OBB/AABB pair that the SACT and the exact reference test.
+template <typename Scalar>
+Obb<Scalar> InFrameOf(const Obb<Scalar>& box, const Obb<Scalar>& frame) {
+  Obb<Scalar> local;
+  local.centre = frame.axes.transpose() * (box.centre - frame.centre);
+  local.axes = frame.axes.transpose() * box.axes;
+  local.half = box.half;
+  return local;
+}
+
 }  // namespace rc

@@ -82,14 +82,18 @@ printf '{"gpu": {"sms": 1e400}}' > overflow.json
 printf 'pos,joint,c_x,c_y,c_z,a_x1,a_y1,a_z1,a_x2,a_y2,a_z2,a_x3,a_y3,a_z3,h_x,h_y,h_z\n0,0,0,0,0.1,1,0,0,0,1,0,0,0,1,0.1,0.1,0.1\n' > one.csv
 code 1 "backends --backend-params 1e400" -- backends --backend-params overflow.json
 code 1 "collide --backend-params 1e400" -- collide --obbs one.csv --scene shelf --backend-params overflow.json
-# MoveBot: a start outside the joint limits is a bad command line, one in
-# collision with the scene bad input naming the scene's file.
+# MoveBot: a start outside the joint limits or folded into itself is a bad
+# command line, one in collision with the scene bad input naming the
+# scene's file.
 printf '0, 0, 0, 5, 5, 5, 0.1, 0.1, 0.1\n' > far.txt
 printf '0, 0, 0, 0, 0, 0.3, 2, 2, 2\n' > around.txt
 code 2 "movebot --start beyond a joint limit" -- movebot --obstacles far.txt --iterations 10 --start 2,0,0,0,0
 code 2 "movebot --start nan" -- movebot --obstacles far.txt --iterations 10 --start nan,0,0,0,0
 code 1 "movebot start in collision" -- movebot --obstacles around.txt --iterations 10
 grep -q "around.txt.*in collision" err.txt || { echo "FAIL movebot collision: file not named"; failures=$((failures + 1)); }
+code 2 "movebot goal in self-collision" -- movebot --obstacles far.txt --iterations 10 --goal 0,0,1.5,1.5,0
+grep -q "goal.*in self-collision: link 0 (upper arm) and link 2 (wrist) overlap" err.txt ||
+  { echo "FAIL movebot self-collision: links not named"; failures=$((failures + 1)); }
 # simulate on a map with no free cell: bad input, not an internal error.
 printf 'type octile\nheight 2\nwidth 2\nmap\n@@\n@@\n' > full.map
 code 1 "simulate no free cell" -- simulate --map full.map --output sim.log --records 3

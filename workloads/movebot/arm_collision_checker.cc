@@ -5,8 +5,14 @@
 
 namespace rc {
 
-ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& scene, CollisionOptions<double> options)
-    : arm_(arm), scene_(scene), options_(options), sweep_radii_(arm.SweepRadii()), work_(scene.NewBatch()) {
+ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& scene, CollisionOptions<double> options,
+                                         SelfCollisionCheck self)
+    : arm_(arm),
+      scene_(scene),
+      options_(options),
+      self_(self),
+      sweep_radii_(arm.SweepRadii()),
+      work_(scene.NewBatch()) {
   std::string error;
   if (!options_.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
 }
@@ -14,25 +20,52 @@ ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& 
 std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad) {
   std::vector<Obbd> obbs;
   obbs.reserve(configurations.size() * kArmLinkBoxes);
-  for (const ArmConfiguration& q : configurations) {
-    const auto links = arm_.LinkObbs(q);
+  std::vector<bool> out(configurations.size(), false);
+  std::uint64_t self_tests = 0, self_collisions = 0, self_only = 0;
+  // Against each other, a link's sweep counts only the joints between the
+  // two boxes (and only the second box grows, in the first's frame): the
+  // growth against the scene would make neighbours' neighbours touch.
+  const std::vector<double> self_growth =
+      self_ == SelfCollisionCheck::kOn && sweep_rad > 0 ? SelfSweepGrowth(arm_, sweep_rad) : std::vector<double>{};
+  for (std::size_t i = 0; i < configurations.size(); ++i) {
+    const auto links = arm_.LinkObbs(configurations[i]);
     for (int k = 0; k < kArmLinkBoxes; ++k) {
       obbs.push_back(links[k]);
       if (sweep_rad > 0) obbs.back().half.array() += sweep_radii_[k] * sweep_rad;
+    }
+    if (self_ == SelfCollisionCheck::kOn) {
+      const SelfCollision self = FindSelfCollision(links, arm_.description(), options_.sact, self_growth);
+      self_tests += self.tests;
+      if (self.found()) {
+        out[i] = true;
+        ++self_collisions;
+      }
     }
   }
   const std::uint64_t visits_before = work_.visits.size();
   const std::uint64_t queries_before = work_.query_count();
   const std::vector<bool> link_collides = scene_.Collide(obbs, options_, work_);
-  std::vector<bool> out(configurations.size(), false);
+  std::vector<bool> scene_collides(configurations.size(), false);
   for (std::size_t i = 0; i < link_collides.size(); ++i)
-    if (link_collides[i]) out[i / kArmLinkBoxes] = true;
+    if (link_collides[i]) scene_collides[i / kArmLinkBoxes] = true;
+  for (std::size_t i = 0; i < configurations.size(); ++i) {
+    if (out[i] && !scene_collides[i]) ++self_only;
+    out[i] = out[i] || scene_collides[i];
+  }
   for (CollisionWorkCounters* c : {&since_take_, &totals_}) {
     c->configurations += configurations.size();
     c->queries += work_.query_count() - queries_before;
     c->nodes += work_.visits.size() - visits_before;
+    c->self_tests += self_tests;
+    c->self_collisions += self_collisions;
+    c->self_only += self_only;
   }
   return out;
+}
+
+SelfCollision ArmCollisionChecker::SelfCollisionOf(const ArmConfiguration& q) const {
+  if (self_ == SelfCollisionCheck::kOff) return {};
+  return FindSelfCollision(arm_.LinkObbs(q), arm_.description(), options_.sact);
 }
 
 CollisionBatch ArmCollisionChecker::TakeWork() {

@@ -4,7 +4,10 @@
 // OBBs go to the collision kernel as one CollisionBatch (every query is a
 // link OBB against one scene frame, arm_scene.h). Every batch is appended
 // to a work log that the planner's timeline takes once per row, so each
-// row prices exactly the kernel work of its iterations.
+// row prices exactly the kernel work of its iterations. Unless told not
+// to (RoWild's arm tests none), the link boxes are also tested against
+// each other on the host (arm_self_collision.h); every configuration goes
+// to the kernel either way, so its work does not depend on that choice.
 //
 // Not thread-safe (OMPL's RRTstar calls it from one thread).
 #include <array>
@@ -13,25 +16,32 @@
 
 #include "robocore/collision/tree_collision.h"
 #include "workloads/movebot/arm_scene.h"
+#include "workloads/movebot/arm_self_collision.h"
 #include "workloads/movebot/locobot_arm.h"
 
 namespace rc {
 
 struct CollisionWorkCounters {
-  std::uint64_t configurations = 0;  // arm configurations checked
-  std::uint64_t queries = 0;         // link-OBB x frame queries sent to the kernel
-  std::uint64_t nodes = 0;           // node fetches (one SACT each)
+  std::uint64_t configurations = 0;   // arm configurations checked
+  std::uint64_t queries = 0;          // link-OBB x frame queries sent to the kernel
+  std::uint64_t nodes = 0;            // node fetches (one SACT each)
+  std::uint64_t self_tests = 0;       // link-box pairs tested on the host (one SACT each)
+  std::uint64_t self_collisions = 0;  // configurations whose link boxes overlap each other
+  std::uint64_t self_only = 0;        // of those, the ones clear of the scene
 };
 
 class ArmCollisionChecker {
  public:
-  ArmCollisionChecker(const LocobotArm& arm, const ArmScene& scene, CollisionOptions<double> options = {});
+  ArmCollisionChecker(const LocobotArm& arm, const ArmScene& scene, CollisionOptions<double> options = {},
+                      SelfCollisionCheck self = SelfCollisionCheck::kOn);
 
   // One kernel batch; returns, per configuration, whether any link overlaps
-  // an obstacle (touching counts). With sweep_rad > 0 every link box is
-  // grown by SweepRadii()[k] * sweep_rad in each half extent: it then
-  // contains everything the link sweeps while the configuration moves up
-  // to sweep_rad (joint-space distance) along a straight line from it.
+  // an obstacle or (when checked) another link (touching counts). With
+  // sweep_rad > 0 every link box is grown by SweepRadii()[k] * sweep_rad in
+  // each half extent: it then contains everything the link sweeps while the
+  // configuration moves up to sweep_rad (joint-space distance) along a
+  // straight line from it; against each other, the pairs' second boxes are
+  // grown by SelfSweepGrowth instead (arm_self_collision.h).
   std::vector<bool> Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad = 0.0);
   bool Collides(const ArmConfiguration& q) { return Collides(std::vector<ArmConfiguration>{q}).front(); }
 
@@ -43,11 +53,16 @@ class ArmCollisionChecker {
 
   const LocobotArm& arm() const { return arm_; }
   const ArmScene& scene() const { return scene_; }
+  bool checks_self_collision() const { return self_ == SelfCollisionCheck::kOn; }
+  // The first pair of q's link boxes that overlap each other (none found
+  // when self-collision is not checked); counts nothing.
+  SelfCollision SelfCollisionOf(const ArmConfiguration& q) const;
 
  private:
   const LocobotArm& arm_;
   const ArmScene& scene_;
   CollisionOptions<double> options_;
+  SelfCollisionCheck self_;
   std::array<double, kArmLinkBoxes> sweep_radii_;
   CollisionBatch work_;
   CollisionWorkCounters since_take_, totals_;

@@ -1,5 +1,6 @@
 #include "workloads/movebot/locobot_arm.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rc {
@@ -20,11 +21,15 @@ const ArmDescription& LocobotArmDescription() {
     // Link boxes: frame index (RoWild cIdx), centre offset (cDesc xyz, rpy
     // all zero) and full size (cDim, "LWH").
     a.links = {{
-        {1, {0.0, 0.0, 0.09}, {0.05, 0.05, 0.25}},       // upper arm
-        {2, {0.075, 0.0, 0.0}, {0.25, 0.05, 0.05}},      // forearm
-        {3, {0.027, -0.012, 0.0}, {0.07, 0.076, 0.05}},  // wrist
-        {4, {0.055, 0.0, 0.01}, {0.11, 0.11, 0.07}},     // hand and gripper
+        {1, {0.0, 0.0, 0.09}, {0.05, 0.05, 0.25}, "upper arm"},
+        {2, {0.075, 0.0, 0.0}, {0.25, 0.05, 0.05}, "forearm"},
+        {3, {0.027, -0.012, 0.0}, {0.07, 0.076, 0.05}, "wrist"},
+        {4, {0.055, 0.0, 0.01}, {0.11, 0.11, 0.07}, "hand"},  // hand and gripper
     }};
+    // Every pair of boxes not on neighbouring frames (locobot_arm.h says
+    // why): the upper arm against the wrist and the hand, the forearm
+    // against the hand.
+    a.self_collision_pairs = {{0, 2}, {0, 3}, {1, 3}};
     a.joint_min_rad = -M_PI / 2;  // RoWild qMin; REFERENCE.md section 3
     a.joint_max_rad = M_PI / 2;
     a.source = "RoWild MoveBot (cmu-roboarch/rowild cpu/src/locobot/locobot.h, from the LoCoBot URDF)";
@@ -73,17 +78,19 @@ std::array<Obbd, kArmLinkBoxes> LocobotArm::LinkObbs(const ArmConfiguration& q) 
 
 std::array<double, kArmLinkBoxes> LocobotArm::SweepRadii() const {
   std::array<double, kArmLinkBoxes> out{};
-  for (int k = 0; k < kArmLinkBoxes; ++k) {
-    const ArmLinkBox& box = description_.links[k];
-    double sum_sq = 0;
-    for (int j = 0; j <= box.frame && j < kArmJoints; ++j) {
-      double r = box.offset.norm() + box.size.norm() / 2;
-      for (int i = j + 1; i <= box.frame; ++i) r += description_.frames[i].link_translation.norm();
-      sum_sq += r * r;
-    }
-    out[k] = std::sqrt(sum_sq);
-  }
+  for (int k = 0; k < kArmLinkBoxes; ++k) out[k] = SweepRadius(k, -1);
   return out;
+}
+
+double LocobotArm::SweepRadius(int k, int frame) const {
+  const ArmLinkBox& box = description_.links[k];
+  double sum_sq = 0;
+  for (int j = std::max(frame + 1, 0); j <= box.frame && j < kArmJoints; ++j) {
+    double r = box.offset.norm() + box.size.norm() / 2;
+    for (int i = j + 1; i <= box.frame; ++i) r += description_.frames[i].link_translation.norm();
+    sum_sq += r * r;
+  }
+  return std::sqrt(sum_sq);
 }
 
 }  // namespace rc

@@ -16,11 +16,15 @@
 // that frame, with FULL dimensions `size` (RoWild's blockDescToBoundingBox
 // halves them).
 //
-// Not modelled (as in RoWild): self-collision between the arm's own links,
-// the gripper fingers, and the base, which is an obstacle in the scene file
-// instead ("Base and mount" in locobot_obs.txt).
+// Self-collision: the link boxes of self_collision_pairs are tested against
+// each other (arm_self_collision.h); RoWild tests none.
+// Not modelled (as in RoWild): the gripper fingers, and the base, which is
+// an obstacle in the scene file instead ("Base and mount" in
+// locobot_obs.txt).
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -43,11 +47,19 @@ struct ArmLinkBox {
   int frame = 0;           // the frame the box moves with
   Eigen::Vector3d offset;  // m, box centre in that frame
   Eigen::Vector3d size;    // m, FULL dimensions along the frame's x, y, z
+  std::string name;        // what messages call it
 };
 
 struct ArmDescription {
   std::array<ArmFrame, kArmFrames> frames;
   std::array<ArmLinkBox, kArmLinkBoxes> links;
+  // The pairs of link boxes (indices into links, first < second) that must
+  // not overlap each other. Boxes on neighbouring frames of the chain are
+  // left out, as a MoveIt SRDF disables adjacent links: whether they
+  // overlap does not depend on the configuration (the upper arm and
+  // forearm, and the forearm and wrist, overlap at their joint; the wrist
+  // and hand turn about their common axis 1 mm apart).
+  std::vector<std::pair<int, int>> self_collision_pairs;
   double joint_min_rad = 0;
   double joint_max_rad = 0;
   std::string source;
@@ -78,6 +90,10 @@ class LocobotArm {
   // Cauchy-Schwarz, with r_j the largest distance from joint j's origin to
   // the box (the chained link lengths plus offset and half diagonal).
   std::array<double, kArmLinkBoxes> SweepRadii() const;
+  // The same bound in the coordinates of frame `frame` (which turns with
+  // joints 0..frame; -1: the base, as SweepRadii): only the joints after
+  // it move box k there. What box k sweeps relative to a box on that frame.
+  double SweepRadius(int k, int frame) const;
 
  private:
   ArmDescription description_;

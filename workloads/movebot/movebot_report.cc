@@ -169,11 +169,15 @@ void WriteOmplBenchmarkLog(const std::string& path, const MoveBotResult& result,
 void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const MoveBotSettings& settings) {
   out << std::setprecision(6);
   std::uint64_t configurations = 0, queries = 0, nodes = 0, nn_queries = 0, nn_nodes = 0;
+  std::uint64_t self_tests = 0, self_collisions = 0, self_only = 0;
   bool nn_has_nodes = false;
   for (const MoveBotRow& r : result.rows) {
     configurations += r.collision.configurations;
     queries += r.collision.queries;
     nodes += r.collision.nodes;
+    self_tests += r.collision.self_tests;
+    self_collisions += r.collision.self_collisions;
+    self_only += r.collision.self_only;
     nn_queries += r.nn.queries;
     nn_nodes += r.nn.nodes_visited;
     nn_has_nodes = nn_has_nodes || r.nn.has_nodes;
@@ -187,6 +191,12 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   if (result.status == MoveBotStatus::kApproximate) out << ", " << result.goal_distance_rad << " rad short of the goal";
   out << "\ncollision kernel        " << configurations << " configurations, " << queries << " link-OBB queries, "
       << (queries ? static_cast<double>(nodes) / queries : 0.0) << " nodes per query\n";
+  out << "self-collision          ";
+  if (result.self_collision_checked)
+    out << self_tests << " link-pair tests on the host (not priced; the kernel's node tests: " << nodes << "), "
+        << self_collisions << " configurations self-colliding, " << self_only << " of them clear of the scene\n";
+  else
+    out << "not checked (--no-self-collision)\n";
   out << "nearest neighbours      " << ToString(settings.nn) << ", " << nn_queries << " queries";
   if (nn_has_nodes && nn_queries) out << ", " << static_cast<double>(nn_nodes) / nn_queries << " nodes per query";
   out << "\n";

@@ -61,6 +61,13 @@ void RequireEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, co
 EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why) {
   if (!checker.arm().WithinLimits(q, why)) return EndpointProblem::kOutsideLimits;
   if (!checker.Collides(q)) return EndpointProblem::kNone;
+  const SelfCollision self = checker.SelfCollisionOf(q);
+  if (self.found()) {
+    if (why)
+      *why =
+          "in self-collision: " + DescribeLinkPair(checker.arm().description(), self.first, self.second) + " overlap";
+    return EndpointProblem::kSelfCollision;
+  }
   if (why) *why = "in collision: a link box overlaps an obstacle";
   return EndpointProblem::kInCollision;
 }
@@ -101,6 +108,7 @@ MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& se
 
   MoveBotResult result;
   result.planner_name = planner->getName();
+  result.self_collision_checked = checker.checks_self_collision();
   std::unique_ptr<BackendLedger> collision_ledger, nn_ledger;
   if (settings.price_backends) {
     collision_ledger = std::make_unique<BackendLedger>(settings.backend_params, settings.ledger);

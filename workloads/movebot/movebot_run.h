@@ -71,13 +71,16 @@ struct MoveBotResult {
   std::string planner_name;
   bool priced = false;
   LedgerSummary collision_pricing, nn_pricing;
+  bool self_collision_checked = false;  // the checker tested link boxes against each other
 };
 
 // Why `q` cannot be a start or goal, for the caller to report as its own
 // kind of error before planning: kOutsideLimits (a joint beyond the arm's
-// limits, or not finite), kInCollision (a link box overlaps an obstacle of
-// the scene). `why` says which joint or that it collides.
-enum class EndpointProblem { kNone, kOutsideLimits, kInCollision };
+// limits, or not finite), kSelfCollision (two of its link boxes overlap,
+// when the checker tests that), kInCollision (a link box overlaps an
+// obstacle of the scene). `why` says which joint, which links, or that it
+// collides.
+enum class EndpointProblem { kNone, kOutsideLimits, kSelfCollision, kInCollision };
 EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why);
 
 // Throws std::invalid_argument naming the problem when the settings are

@@ -15,24 +15,23 @@ double Distance(const ArmConfiguration& a, const ArmConfiguration& b) {
   return std::sqrt(s);
 }
 
-bool Overlaps(const Obbd& link, const Obbd& obstacle, std::uint64_t* exact_tests) {
-  const double reach = link.half.norm() + obstacle.half.norm();
-  if ((link.centre - obstacle.centre).norm() > reach * (1 + 1e-9)) return false;
-  Obbd local;  // the link box in the obstacle's frame
-  local.centre = obstacle.axes.transpose() * (link.centre - obstacle.centre);
-  local.axes = obstacle.axes.transpose() * link.axes;
-  local.half = link.half;
-  Aabbd box;
-  box.centre = Eigen::Vector3d::Zero();
-  box.half = obstacle.half;
+// Whether `box` overlaps `other` (an obstacle or another link box), by the
+// LP in other's frame.
+bool Overlaps(const Obbd& box, const Obbd& other, std::uint64_t* exact_tests) {
+  const double reach = box.half.norm() + other.half.norm();
+  if ((box.centre - other.centre).norm() > reach * (1 + 1e-9)) return false;
+  const Obbd local = InFrameOf(box, other);
+  Aabbd other_box;
+  other_box.centre = Eigen::Vector3d::Zero();
+  other_box.half = other.half;
   ++*exact_tests;
-  return ExactObbAabbOverlap(local, box).overlaps();
+  return ExactObbAabbOverlap(local, other_box).overlaps();
 }
 
 }  // namespace
 
 PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obstacles,
-                            const std::vector<ArmConfiguration>& path, double resolution_rad) {
+                            const std::vector<ArmConfiguration>& path, double resolution_rad, SelfCollisionCheck self) {
   if (!(resolution_rad > 0) || !std::isfinite(resolution_rad))
     throw std::invalid_argument("verification resolution must be > 0 rad");
   PathVerification v;
@@ -40,10 +39,25 @@ PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obst
     ++v.configurations;
     std::string why;
     if (!arm.WithinLimits(q, &why)) {
-      v = {false, v.configurations, v.exact_tests, edge, t, -1, -1, why};
+      v = {false, v.configurations, v.exact_tests, edge, t, -1, -1, -1, why};
       return false;
     }
     const auto links = arm.LinkObbs(q);
+    if (self == SelfCollisionCheck::kOn)
+      for (const auto& [first, second] : arm.description().self_collision_pairs)
+        if (Overlaps(links[second], links[first], &v.exact_tests)) {
+          v = {false,
+               v.configurations,
+               v.exact_tests,
+               edge,
+               t,
+               first,
+               -1,
+               second,
+               DescribeLinkPair(arm.description(), first, second) + " overlap on edge " + std::to_string(edge) +
+                   " at t = " + std::to_string(t)};
+          return false;
+        }
     for (int k = 0; k < kArmLinkBoxes; ++k)
       for (std::size_t o = 0; o < obstacles.size(); ++o)
         if (Overlaps(links[k], obstacles[o], &v.exact_tests)) {
@@ -54,6 +68,7 @@ PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obst
                t,
                k,
                static_cast<long>(o),
+               -1,
                "link " + std::to_string(k) + " overlaps obstacle " + std::to_string(o) + " on edge " +
                    std::to_string(edge) + " at t = " + std::to_string(t)};
           return false;

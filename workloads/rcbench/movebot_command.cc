@@ -7,10 +7,10 @@
 //
 // Exit codes (also in --help): 0 an exact path, verified collision-free;
 // 1 bad input (a file, or a start or goal in collision with the scene);
-// 2 bad usage (also a start or goal outside the joint limits); 3 no exact
-// path within the budget (approximate or none; every output is still
-// written and says so); 4 a path that failed the independent check (a bug;
-// nothing is written).
+// 2 bad usage (also a start or goal outside the joint limits or in
+// self-collision); 3 no exact path within the budget (approximate or none;
+// every output is still written and says so); 4 a path that failed the
+// independent check (a bug; nothing is written).
 //
 //   rcbench movebot                      # shared data's locobot scene, RoWild's start and goal
 #include <cstdlib>
@@ -54,6 +54,7 @@ struct MovebotCli {
   SchedulerCli scheduler;
   std::string timeline_path, anytime_path, ompl_log_path, path_path;
   double verify_resolution_rad = 0.0;
+  bool no_self_collision = false;
   bool ompl_verbose = false;
   MoveBotSettings settings;
 };
@@ -136,12 +137,14 @@ int Run(MovebotCli& cli) {
             << " rad\n";
 
   const LocobotArm arm;
-  ArmCollisionChecker checker(arm, scene);
+  const SelfCollisionCheck self = cli.no_self_collision ? SelfCollisionCheck::kOff : SelfCollisionCheck::kOn;
+  ArmCollisionChecker checker(arm, scene, {}, self);
   for (const auto& [q, option] : {std::pair{&s.start, "--start"}, std::pair{&s.goal, "--goal"}}) {
     std::string why;
     switch (CheckEndpoint(checker, *q, &why)) {
       case EndpointProblem::kNone: break;
       case EndpointProblem::kOutsideLimits:
+      case EndpointProblem::kSelfCollision:
         throw UsageError(fmt::format("{} {:g} rad: {}", option, fmt::join(*q, ","), why));
       case EndpointProblem::kInCollision:
         throw InputError(scene_path, 0, "", fmt::format("{} {:g} rad is {}", option, fmt::join(*q, ","), why));
@@ -151,7 +154,7 @@ int Run(MovebotCli& cli) {
 
   PathVerification verification;
   if (!result.path.empty()) {
-    verification = VerifyPath(arm, check_boxes, result.path, verify_resolution);
+    verification = VerifyPath(arm, check_boxes, result.path, verify_resolution, self);
     if (!verification.ok)
       throw std::runtime_error("the returned path failed the independent collision check: " + verification.message);
   }
@@ -208,6 +211,9 @@ void AddMovebotCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--verify-resolution", cli->verify_resolution_rad,
                   "Spacing of the independent check of the returned path (rad); default resolution / 10");
+  cmd->add_flag("--no-self-collision", cli->no_self_collision,
+                "Do not test the arm's link boxes against each other (RoWild's problem); by default the upper arm is "
+                "tested against the wrist and the hand, the forearm against the hand");
   cmd->add_option("--range", s.range_rad, "RRTstar's range (rad); 0: OMPL's default (0.2 x the space's extent)")
       ->capture_default_str();
   cmd->add_option("--goal-bias", s.goal_bias, "RRTstar's goal bias (probability)")->capture_default_str();
@@ -225,7 +231,8 @@ void AddMovebotCommand(CLI::App& app) {
   cmd->add_flag("--ompl-verbose", cli->ompl_verbose, "Show OMPL's own info messages");
   cmd->footer(ExitCodeFooter(
       "no exact path within the budget (approximate or none; outputs are still written). A start or goal outside "
-      "[-pi/2, pi/2] counts as a bad command line, one in collision with the scene as bad input, and a returned "
+      "[-pi/2, pi/2] or in self-collision counts as a bad command line, one in collision with the scene as bad "
+      "input, and a returned "
       "path that fails the independent collision check as an internal error, with nothing written"));
   cmd->callback([cli] { ExitUnlessSuccess(Run(*cli)); });
 }

@@ -1,0 +1,268 @@
+// The arm's self-collision: which link-box pairs are tested and why, the
+// SACT's verdicts against the exact LP, and what the checker, the endpoint
+// check, the independent path check and a planning run make of a folded
+// arm, with the check on and off.
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <ompl/util/Console.h>
+
+#include "robocore/collision/exact_overlap_reference.h"
+#include "workloads/movebot/arm_collision_checker.h"
+#include "workloads/movebot/arm_self_collision.h"
+#include "workloads/movebot/movebot_run.h"
+#include "workloads/movebot/path_verification.h"
+
+namespace rc {
+namespace {
+
+const bool kQuietOmpl = [] {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  return true;
+}();
+
+// Elbow and wrist pitch at +pi/2: the forearm points down and the wrist
+// and hand fold back into the upper arm (both overlap it; the wrist's pair
+// is listed first).
+constexpr ArmConfiguration kFolded = {0, 0, M_PI / 2, M_PI / 2, 0};
+constexpr ArmConfiguration kStretched = {0, 0, 0, 0, 0};
+
+bool ExactOverlap(const Obbd& a, const Obbd& b) {
+  Aabbd frame_box;
+  frame_box.half = a.half;
+  return ExactObbAabbOverlap(InFrameOf(b, a), frame_box).overlaps();
+}
+
+ArmConfiguration RandomConfiguration(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> joint(-M_PI / 2, M_PI / 2);
+  ArmConfiguration q;
+  for (double& v : q) v = joint(rng);
+  return q;
+}
+
+TEST(ArmSelfCollision, PairsAreTheBoxesNotOnNeighbouringFramesWhoseVerdictNeverChanges) {
+  const ArmDescription& d = LocobotArmDescription();
+  const LocobotArm arm;
+  std::mt19937_64 rng(7);
+  for (int a = 0; a < kArmLinkBoxes; ++a)
+    for (int b = a + 1; b < kArmLinkBoxes; ++b) {
+      const bool neighbours = std::abs(d.links[a].frame - d.links[b].frame) <= 1;
+      const bool listed = std::find(d.self_collision_pairs.begin(), d.self_collision_pairs.end(), std::pair{a, b}) !=
+                          d.self_collision_pairs.end();
+      EXPECT_EQ(listed, !neighbours) << a << "," << b;
+      if (!neighbours) continue;
+      // Why neighbours are left out: the verdict never depends on the
+      // configuration. The upper arm and forearm, and the forearm and wrist,
+      // overlap at their joint; the wrist and hand turn about their common
+      // x axis 1 mm apart and never meet.
+      const bool always = a < 2;
+      for (int i = 0; i < 2000; ++i) {
+        const auto links = arm.LinkObbs(RandomConfiguration(rng));
+        ASSERT_EQ(ExactOverlap(links[a], links[b]), always) << "boxes " << a << " and " << b << ", sample " << i;
+      }
+    }
+}
+
+TEST(ArmSelfCollision, FoldedArmOverlapsItselfAndStretchedArmDoesNot) {
+  const LocobotArm arm;
+  const SelfCollision folded = FindSelfCollision(arm.LinkObbs(kFolded), arm.description(), {});
+  ASSERT_TRUE(folded.found());
+  EXPECT_EQ(folded.first, 0);   // the upper arm
+  EXPECT_EQ(folded.second, 2);  // against the wrist, the first pair listed
+  EXPECT_EQ(folded.tests, 1u);
+  EXPECT_EQ(DescribeLinkPair(arm.description(), 0, 2), "link 0 (upper arm) and link 2 (wrist)");
+  const SelfCollision stretched = FindSelfCollision(arm.LinkObbs(kStretched), arm.description(), {});
+  EXPECT_FALSE(stretched.found());
+  EXPECT_EQ(stretched.tests, arm.description().self_collision_pairs.size());
+}
+
+TEST(ArmSelfCollision, SactAgreesWithTheExactLpOnRandomConfigurations) {
+  const LocobotArm arm;
+  const ArmDescription& d = arm.description();
+  std::mt19937_64 rng(11);
+  int overlapping = 0, disagreements = 0;
+  const int samples = 20000;
+  for (int i = 0; i < samples; ++i) {
+    const auto links = arm.LinkObbs(RandomConfiguration(rng));
+    bool exact = false;
+    for (const auto& [a, b] : d.self_collision_pairs) exact = exact || ExactOverlap(links[a], links[b]);
+    const bool sact = FindSelfCollision(links, d, {}).found();
+    overlapping += exact;
+    // The SACT's epsilon may only err toward overlap, and at random
+    // configurations a pair within its band is rarer than 1 in 20,000.
+    EXPECT_FALSE(exact && !sact) << "the SACT separated overlapping links at sample " << i;
+    disagreements += exact != sact;
+  }
+  EXPECT_EQ(disagreements, 0);
+  // About 4% of the joint box self-collides (measured 4.4%): the test sees both verdicts.
+  EXPECT_GT(overlapping, samples / 50);
+  EXPECT_LT(overlapping, samples / 10);
+}
+
+TEST(ArmSelfCollision, CheckerCountsSelfCollisionsOnlyWhenAskedTo) {
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker on(arm, scene);
+  EXPECT_TRUE(on.checks_self_collision());
+  EXPECT_EQ(on.Collides(std::vector<ArmConfiguration>{kFolded, kStretched}), (std::vector<bool>{true, false}));
+  const CollisionWorkCounters counted = on.TakeCounters();
+  EXPECT_EQ(counted.configurations, 2u);
+  EXPECT_EQ(counted.self_tests, 1u + arm.description().self_collision_pairs.size());
+  EXPECT_EQ(counted.self_collisions, 1u);
+  EXPECT_EQ(counted.self_only, 1u);  // the scene is empty
+  EXPECT_EQ(on.SelfCollisionOf(kFolded).first, 0);
+
+  ArmCollisionChecker off(arm, scene, {}, SelfCollisionCheck::kOff);
+  EXPECT_FALSE(off.checks_self_collision());
+  EXPECT_FALSE(off.Collides(kFolded));
+  EXPECT_EQ(off.TakeCounters().self_tests, 0u);
+  EXPECT_FALSE(off.SelfCollisionOf(kFolded).found());
+}
+
+TEST(ArmSelfCollision, GrownBoxesOfAnEdgeCheckCoverTheLinksNearContact) {
+  // A configuration just clear of self-contact: found by walking the wrist
+  // pitch up from kStretched's side until the next step would overlap.
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker checker(arm, scene);
+  ArmConfiguration q = {0, 0, M_PI / 2, -M_PI / 2, 0};
+  ASSERT_FALSE(checker.Collides(q));
+  while (!checker.Collides(ArmConfiguration{q[0], q[1], q[2], q[3] + 0.001, q[4]})) q[3] += 0.001;
+  ASSERT_LT(q[3], 0.0);  // the wrist meets the upper arm on the way up from -pi/2
+  EXPECT_FALSE(checker.Collides(q));
+  // Grown by what the links sweep within 0.01 rad, the boxes reach the contact 0.001 rad away.
+  EXPECT_TRUE(checker.Collides(std::vector<ArmConfiguration>{q}, 0.01).front());
+}
+
+TEST(ArmSelfCollision, SweepRadiusBoundsHowFarTheSecondBoxMovesInTheFirstsFrame) {
+  const LocobotArm arm;
+  const ArmDescription& d = arm.description();
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  for (const auto& [a, b] : d.self_collision_pairs) {
+    const double radius = arm.SweepRadius(b, d.links[a].frame);
+    EXPECT_LT(radius, arm.SweepRadii()[b]);  // fewer joints than from the base
+    double worst = 0;                        // largest displacement over radius x distance
+    for (int i = 0; i < 3000; ++i) {
+      const ArmConfiguration q = RandomConfiguration(rng);
+      ArmConfiguration step;
+      double norm = 0;
+      for (double& v : step) {
+        v = gauss(rng);
+        norm += v * v;
+      }
+      const double distance = 0.05;
+      ArmConfiguration moved;
+      for (int j = 0; j < kArmJoints; ++j) moved[j] = q[j] + step[j] * distance / std::sqrt(norm);
+      const auto before = arm.LinkObbs(q), after = arm.LinkObbs(moved);
+      for (int corner = 0; corner < 8; ++corner) {
+        Eigen::Vector3d p;
+        for (int k = 0; k < 3; ++k) p[k] = (corner >> k & 1) ? d.links[b].size[k] / 2 : -d.links[b].size[k] / 2;
+        // The corner in the first box's frame, before and after.
+        const Obbd c0 = InFrameOf(before[b], before[a]), c1 = InFrameOf(after[b], after[a]);
+        const double moved_m = ((c1.centre + c1.axes * p) - (c0.centre + c0.axes * p)).norm();
+        worst = std::max(worst, moved_m / (radius * distance));
+      }
+    }
+    EXPECT_LE(worst, 1.0) << "pair " << a << "," << b;
+    EXPECT_GT(worst, 0.2) << "pair " << a << "," << b << ": a bound this loose would reject clear edges";
+  }
+}
+
+TEST(ArmSelfCollision, AnEdgeTheGrownChecksAcceptIsClearAlongItsWholeLength) {
+  // The motion validator's checks (arm_validity.cc) at 0.05 rad spacing,
+  // each grown by what the links sweep within half a spacing, against the
+  // exact LP every 0.0005 rad, on edges through and around the folded region.
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker checker(arm, scene);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> length(0.05, 0.6);
+  std::normal_distribution<double> gauss;
+  int accepted = 0, rejected = 0;
+  for (int e = 0; e < 400; ++e) {
+    const ArmConfiguration a = RandomConfiguration(rng);
+    ArmConfiguration b;
+    double norm = 0;
+    for (double& v : b) {
+      v = gauss(rng);
+      norm += v * v;
+    }
+    const double l = length(rng);
+    bool inside = true;
+    for (int j = 0; j < kArmJoints; ++j) {
+      b[j] = a[j] + b[j] * l / std::sqrt(norm);
+      inside = inside && std::abs(b[j]) <= M_PI / 2;
+    }
+    if (!inside) continue;
+    const unsigned n = static_cast<unsigned>(std::ceil(l / 0.05));
+    std::vector<ArmConfiguration> checks(n + 1);
+    for (unsigned k = 0; k <= n; ++k)
+      for (int j = 0; j < kArmJoints; ++j) checks[k][j] = a[j] + (b[j] - a[j]) * k / n;
+    const std::vector<bool> hit = checker.Collides(checks, l / (2.0 * n));
+    if (std::find(hit.begin(), hit.end(), true) != hit.end()) {
+      ++rejected;
+      continue;
+    }
+    ++accepted;
+    const PathVerification v = VerifyPath(arm, {}, {a, b}, 0.0005);
+    EXPECT_TRUE(v.ok) << "edge " << e << ": " << v.message;
+  }
+  EXPECT_GT(accepted, 100);
+  EXPECT_GT(rejected, 5);
+}
+
+TEST(ArmSelfCollision, AFoldedStartOrGoalIsItsOwnEndpointProblem) {
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker checker(arm, scene);
+  std::string why;
+  EXPECT_EQ(CheckEndpoint(checker, kFolded, &why), EndpointProblem::kSelfCollision);
+  EXPECT_EQ(why, "in self-collision: link 0 (upper arm) and link 2 (wrist) overlap");
+  ArmCollisionChecker off(arm, scene, {}, SelfCollisionCheck::kOff);
+  EXPECT_EQ(CheckEndpoint(off, kFolded, &why), EndpointProblem::kNone);
+}
+
+TEST(ArmSelfCollision, IndependentCheckRejectsAPathThroughAFoldedArm) {
+  const LocobotArm arm;
+  const std::vector<ArmConfiguration> path = {kStretched, kFolded};
+  const PathVerification v = VerifyPath(arm, {}, path, 0.01);
+  ASSERT_FALSE(v.ok);
+  EXPECT_EQ(v.edge, 0);
+  EXPECT_EQ(v.link, 0);
+  // On the way from stretched to folded, the hand reaches the upper arm first.
+  EXPECT_EQ(v.other_link, 3);
+  EXPECT_EQ(v.obstacle, -1);
+  EXPECT_NE(v.message.find("link 0 (upper arm) and link 3 (hand) overlap"), std::string::npos) << v.message;
+  EXPECT_GT(v.t, 0.0);
+  EXPECT_TRUE(VerifyPath(arm, {}, path, 0.01, SelfCollisionCheck::kOff).ok);
+}
+
+TEST(ArmSelfCollision, PlannedStatesAndPathStayClearOfSelfCollision) {
+  // No obstacles: only self-collision can reject a state. The goal lies
+  // beside the folded region (the elbow down, the wrist pitched back).
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker checker(arm, scene);
+  MoveBotSettings s;
+  s.start = {-1.3962634, 0, 0, 0, 0};
+  s.goal = {0, 0, M_PI / 2, -M_PI / 2, 0};
+  s.iterations = 300;
+  s.batch_iterations = 100;
+  s.motion_resolution_rad = 0.05;
+  s.price_backends = false;
+  const MoveBotResult r = RunMoveBot(checker, s);
+  EXPECT_TRUE(r.self_collision_checked);
+  std::uint64_t self_collisions = 0;
+  for (const MoveBotRow& row : r.rows) self_collisions += row.collision.self_collisions;
+  EXPECT_GT(self_collisions, 0u);  // the planner met the folded region and was told
+  ASSERT_EQ(r.status, MoveBotStatus::kExact);
+  const PathVerification v = VerifyPath(arm, {}, r.path, 0.005);
+  EXPECT_TRUE(v.ok) << v.message;
+}
+
+}  // namespace
+}  // namespace rc
