@@ -99,7 +99,8 @@ def movebot(spec, record):
     rows = read_csv_rows(timeline)
     if rows:
         for column in rows[0]:
-            if column in ("collision_queries", "nn_queries", "collision_configurations") or \
+            if column in ("collision_queries", "nn_queries", "collision_configurations", "self_collision_tests",
+                          "self_collisions") or \
                     column.startswith("cycles_") or column == "energy_j":
                 out[f"timeline.{column}"] = sum(number(timeline, i + 1, column, r[column])
                                                 for i, r in enumerate(rows) if r[column] != "")

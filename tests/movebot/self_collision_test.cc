@@ -3,7 +3,9 @@
 // check, the independent path check and a planning run make of a folded
 // arm, with the check on and off.
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,8 +13,10 @@
 #include <ompl/util/Console.h>
 
 #include "robocore/collision/exact_overlap_reference.h"
+#include "support/temp_dir.h"
 #include "workloads/movebot/arm_collision_checker.h"
 #include "workloads/movebot/arm_self_collision.h"
+#include "workloads/movebot/movebot_report.h"
 #include "workloads/movebot/movebot_run.h"
 #include "workloads/movebot/path_verification.h"
 
@@ -262,6 +266,28 @@ TEST(ArmSelfCollision, PlannedStatesAndPathStayClearOfSelfCollision) {
   ASSERT_EQ(r.status, MoveBotStatus::kExact);
   const PathVerification v = VerifyPath(arm, {}, r.path, 0.005);
   EXPECT_TRUE(v.ok) << v.message;
+
+  // The timeline's self-collision columns are the rows' counts.
+  const test::TempDir dir;
+  WriteMoveBotTimeline(dir.Path("timeline.csv"), r);
+  std::ifstream in(dir.Path("timeline.csv"));
+  std::string line, cell;
+  ASSERT_TRUE(std::getline(in, line));
+  std::vector<std::string> header;
+  for (std::istringstream fields(line); std::getline(fields, cell, ',');) header.push_back(cell);
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t tests_at = column("self_collision_tests"), refused_at = column("self_collisions");
+  ASSERT_LT(refused_at, header.size());
+  for (const MoveBotRow& row : r.rows) {
+    ASSERT_TRUE(std::getline(in, line));
+    std::vector<std::string> cells;
+    for (std::istringstream fields(line); std::getline(fields, cell, ',');) cells.push_back(cell);
+    ASSERT_LT(refused_at, cells.size());
+    EXPECT_EQ(cells[tests_at], std::to_string(row.collision.self_tests));
+    EXPECT_EQ(cells[refused_at], std::to_string(row.collision.self_collisions));
+  }
 }
 
 }  // namespace

@@ -48,6 +48,8 @@ void WriteMoveBotTimeline(const std::string& path, const MoveBotResult& result) 
                                       "collision_configurations",
                                       "collision_queries",
                                       "collision_nodes_per_query",
+                                      "self_collision_tests",
+                                      "self_collisions",
                                       "nn_queries",
                                       "nn_nodes_per_query",
                                       "best_cost_rad"};
@@ -70,6 +72,8 @@ void WriteMoveBotTimeline(const std::string& path, const MoveBotResult& result) 
         r.collision.configurations,
         r.collision.queries,
         r.collision.queries ? CsvCell(static_cast<double>(r.collision.nodes) / r.collision.queries) : CsvCell::Empty(),
+        result.self_collision_checked ? CsvCell(r.collision.self_tests) : CsvCell::Empty(),
+        result.self_collision_checked ? CsvCell(r.collision.self_collisions) : CsvCell::Empty(),
         r.nn.queries,
         r.nn.has_nodes && r.nn.queries ? CsvCell(static_cast<double>(r.nn.nodes_visited) / r.nn.queries)
                                        : CsvCell::Empty(),
