@@ -39,7 +39,8 @@ using Obbf = Obb<float>;
 // `box` expressed in the box frame of `frame` (frame's centre the origin,
 // its axes the coordinate axes). There `frame` is the axis-aligned box of
 // half extents frame.half centred at the origin: how a pair of OBBs becomes
-// the OBB/AABB pair that the SACT and the exact reference test.
+// the OBB/AABB pair that the SACT and the exact reference test. frame.axes
+// must be orthonormal (its transpose is taken as its inverse).
 template <typename Scalar>
 Obb<Scalar> InFrameOf(const Obb<Scalar>& box, const Obb<Scalar>& frame) {
   Obb<Scalar> local;

@@ -6,8 +6,8 @@ one flat dict per point, units in the names (the merged CSV's columns).
             defaults included, ...); top-level scalars as summary.KEY;
   movebot   result.exact_path (exit code 0), the last anytime row
             (anytime.best_cost_rad, anytime.time_s, anytime.iterations), the
-            first solution's time, and the timeline's sums of queries and
-            cycles (timeline.*);
+            first solution's time, and the timeline's sums of queries,
+            self-collision tests and refusals, and cycles (timeline.*);
   carribot  per-query timeline aggregated: timeline.queries, timeline.found,
             sums over the queries of lengths, expansions and cycles, and the
             final cum_cycles_policy / _oracle;

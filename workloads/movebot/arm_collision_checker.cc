@@ -6,12 +6,13 @@
 namespace rc {
 
 ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& scene, CollisionOptions<double> options,
-                                         SelfCollisionCheck self)
+                                         SelfCollisionCheck self_check)
     : arm_(arm),
       scene_(scene),
       options_(options),
-      self_(self),
+      self_check_(self_check),
       sweep_radii_(arm.SweepRadii()),
+      self_sweep_radii_(SelfSweepRadii(arm)),
       work_(scene.NewBatch()) {
   std::string error;
   if (!options_.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
@@ -25,18 +26,19 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
   // Against each other, a link's sweep counts only the joints between the
   // two boxes (and only the second box grows, in the first's frame): the
   // growth against the scene would make neighbours' neighbours touch.
-  const std::vector<double> self_growth =
-      self_ == SelfCollisionCheck::kOn && sweep_rad > 0 ? SelfSweepGrowth(arm_, sweep_rad) : std::vector<double>{};
+  self_growth_.clear();
+  if (sweep_rad > 0)
+    for (double radius : self_sweep_radii_) self_growth_.push_back(radius * sweep_rad);
   for (std::size_t i = 0; i < configurations.size(); ++i) {
     const auto links = arm_.LinkObbs(configurations[i]);
     for (int k = 0; k < kArmLinkBoxes; ++k) {
       obbs.push_back(links[k]);
       if (sweep_rad > 0) obbs.back().half.array() += sweep_radii_[k] * sweep_rad;
     }
-    if (self_ == SelfCollisionCheck::kOn) {
-      const SelfCollision self = FindSelfCollision(links, arm_.description(), options_.sact, self_growth);
-      self_tests += self.tests;
-      if (self.found()) {
+    if (self_check_ == SelfCollisionCheck::kOn) {
+      const SelfCollision hit = FindSelfCollision(links, arm_.description(), options_.sact, self_growth_);
+      self_tests += hit.tests;
+      if (hit.found()) {
         out[i] = true;
         ++self_collisions;
       }
@@ -64,7 +66,7 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
 }
 
 SelfCollision ArmCollisionChecker::SelfCollisionOf(const ArmConfiguration& q) const {
-  if (self_ == SelfCollisionCheck::kOff) return {};
+  if (self_check_ == SelfCollisionCheck::kOff) return {};
   return FindSelfCollision(arm_.LinkObbs(q), arm_.description(), options_.sact);
 }
 

@@ -6,8 +6,9 @@
 // to a work log that the planner's timeline takes once per row, so each
 // row prices exactly the kernel work of its iterations. Unless told not
 // to (RoWild's arm tests none), the link boxes are also tested against
-// each other on the host (arm_self_collision.h); every configuration goes
-// to the kernel either way, so its work does not depend on that choice.
+// each other on the host (arm_self_collision.h); every configuration of a
+// batch goes to the kernel either way (the planner's tree, and so its
+// later batches, do depend on the choice).
 //
 // Not thread-safe (OMPL's RRTstar calls it from one thread).
 #include <array>
@@ -26,7 +27,7 @@ struct CollisionWorkCounters {
   std::uint64_t queries = 0;          // link-OBB x frame queries sent to the kernel
   std::uint64_t nodes = 0;            // node fetches (one SACT each)
   std::uint64_t self_tests = 0;       // link-box pairs tested on the host (one SACT each)
-  std::uint64_t self_collisions = 0;  // configurations whose link boxes overlap each other
+  std::uint64_t self_collisions = 0;  // configurations refused for self-collision (grown boxes on edges)
   std::uint64_t self_only = 0;        // of those, the ones clear of the scene
 };
 
@@ -40,8 +41,9 @@ class ArmCollisionChecker {
   // sweep_rad > 0 every link box is grown by SweepRadii()[k] * sweep_rad in
   // each half extent: it then contains everything the link sweeps while the
   // configuration moves up to sweep_rad (joint-space distance) along a
-  // straight line from it; against each other, the pairs' second boxes are
-  // grown by SelfSweepGrowth instead (arm_self_collision.h).
+  // straight line from it; against each other, each pair's second box is
+  // grown by its SelfSweepRadii entry * sweep_rad instead
+  // (arm_self_collision.h).
   std::vector<bool> Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad = 0.0);
   bool Collides(const ArmConfiguration& q) { return Collides(std::vector<ArmConfiguration>{q}).front(); }
 
@@ -53,7 +55,7 @@ class ArmCollisionChecker {
 
   const LocobotArm& arm() const { return arm_; }
   const ArmScene& scene() const { return scene_; }
-  bool checks_self_collision() const { return self_ == SelfCollisionCheck::kOn; }
+  bool checks_self_collision() const { return self_check_ == SelfCollisionCheck::kOn; }
   // The first pair of q's link boxes that overlap each other (none found
   // when self-collision is not checked); counts nothing.
   SelfCollision SelfCollisionOf(const ArmConfiguration& q) const;
@@ -62,8 +64,10 @@ class ArmCollisionChecker {
   const LocobotArm& arm_;
   const ArmScene& scene_;
   CollisionOptions<double> options_;
-  SelfCollisionCheck self_;
+  SelfCollisionCheck self_check_;
   std::array<double, kArmLinkBoxes> sweep_radii_;
+  std::vector<double> self_sweep_radii_;  // m/rad, per self-collision pair
+  std::vector<double> self_growth_;       // m, per pair: the current batch's
   CollisionBatch work_;
   CollisionWorkCounters since_take_, totals_;
 };

@@ -1,5 +1,6 @@
 #include "workloads/movebot/arm_self_collision.h"
 
+#include <stdexcept>
 #include <string>
 
 #include "robocore/collision/aabb.h"
@@ -8,6 +9,8 @@ namespace rc {
 
 SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, const ArmDescription& arm,
                                 const SactOptions<double>& options, const std::vector<double>& growth_m) {
+  if (!growth_m.empty() && growth_m.size() != arm.self_collision_pairs.size())
+    throw std::invalid_argument("FindSelfCollision: one growth per self-collision pair, or none");
   SelfCollision out;
   for (std::size_t p = 0; p < arm.self_collision_pairs.size(); ++p) {
     const auto [first, second] = arm.self_collision_pairs[p];
@@ -25,11 +28,11 @@ SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, co
   return out;
 }
 
-std::vector<double> SelfSweepGrowth(const LocobotArm& arm, double sweep_rad) {
-  std::vector<double> growth;
+std::vector<double> SelfSweepRadii(const LocobotArm& arm) {
+  std::vector<double> radii;
   for (const auto& [first, second] : arm.description().self_collision_pairs)
-    growth.push_back(arm.SweepRadius(second, arm.description().links[first].frame) * sweep_rad);
-  return growth;
+    radii.push_back(arm.SweepRadius(second, arm.description().links[first].frame));
+  return radii;
 }
 
 std::string DescribeLinkPair(const ArmDescription& arm, int first, int second) {

@@ -34,16 +34,18 @@ struct SelfCollision {
 };
 
 // The first of arm.self_collision_pairs, in their order, whose boxes among
-// `links` overlap. With `growth_m` (one entry per pair, m), each pair's
-// second box is grown by its entry in every half extent first.
+// `links` overlap. With `growth_m` (one entry per pair, m; empty for none),
+// each pair's second box is grown by its entry in every half extent first;
+// any other size throws std::invalid_argument.
 SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, const ArmDescription& arm,
                                 const SactOptions<double>& options, const std::vector<double>& growth_m = {});
 
-// Per pair of arm.self_collision_pairs, what its second box can sweep
-// relative to its first while the configuration moves sweep_rad (joint-space
-// distance) along a straight line (LocobotArm::SweepRadius in the first
-// box's frame, m): the growth that makes one check cover that stretch.
-std::vector<double> SelfSweepGrowth(const LocobotArm& arm, double sweep_rad);
+// Per pair of arm.self_collision_pairs, a bound (m/rad) on how far its
+// second box moves relative to its first per joint-space distance along a
+// straight line (LocobotArm::SweepRadius in the first box's frame). Times
+// half a check spacing, the growth that makes one check cover its stretch
+// of an edge.
+std::vector<double> SelfSweepRadii(const LocobotArm& arm);
 
 // "link 0 (upper arm) and link 3 (hand)": how messages name a pair.
 std::string DescribeLinkPair(const ArmDescription& arm, int first, int second);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace rc {
 
@@ -38,7 +40,13 @@ const ArmDescription& LocobotArmDescription() {
   return arm;
 }
 
-LocobotArm::LocobotArm(const ArmDescription& description) : description_(description) {}
+LocobotArm::LocobotArm(const ArmDescription& description) : description_(description) {
+  for (const auto& [first, second] : description_.self_collision_pairs)
+    if (first < 0 || second < 0 || first >= kArmLinkBoxes || second >= kArmLinkBoxes ||
+        description_.links[first].frame >= description_.links[second].frame)
+      throw std::invalid_argument("self-collision pair (" + std::to_string(first) + ", " + std::to_string(second) +
+                                  "): each box must exist, the second on a later frame than the first");
+}
 
 bool LocobotArm::WithinLimits(const ArmConfiguration& q, std::string* why) const {
   for (int j = 0; j < kArmJoints; ++j) {

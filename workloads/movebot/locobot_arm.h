@@ -57,8 +57,10 @@ struct ArmDescription {
   // not overlap each other. Boxes on neighbouring frames of the chain are
   // left out, as a MoveIt SRDF disables adjacent links: whether they
   // overlap does not depend on the configuration (the upper arm and
-  // forearm, and the forearm and wrist, overlap at their joint; the wrist
-  // and hand turn about their common axis 1 mm apart).
+  // forearm, and the forearm and wrist, overlap or touch at their joint;
+  // the wrist and hand turn about their common axis 1 mm apart). Each
+  // pair's second box lies on a later frame than its first (LocobotArm's
+  // constructor checks), which the sweep bound of an edge check needs.
   std::vector<std::pair<int, int>> self_collision_pairs;
   double joint_min_rad = 0;
   double joint_max_rad = 0;
@@ -70,6 +72,8 @@ const ArmDescription& LocobotArmDescription();
 
 class LocobotArm {
  public:
+  // Throws std::invalid_argument when a self-collision pair names a box
+  // out of range, or its second box is not on a later frame than its first.
   explicit LocobotArm(const ArmDescription& description = LocobotArmDescription());
 
   const ArmDescription& description() const { return description_; }

@@ -198,7 +198,8 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   out << "self-collision          ";
   if (result.self_collision_checked)
     out << self_tests << " link-pair tests on the host (not priced; the kernel's node tests: " << nodes << "), "
-        << self_collisions << " configurations self-colliding, " << self_only << " of them clear of the scene\n";
+        << self_collisions << " configurations refused (boxes grown on edges), " << self_only
+        << " of them clear of the scene\n";
   else
     out << "not checked (--no-self-collision)\n";
   out << "nearest neighbours      " << ToString(settings.nn) << ", " << nn_queries << " queries";

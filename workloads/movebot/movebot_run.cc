@@ -61,11 +61,10 @@ void RequireEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, co
 EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why) {
   if (!checker.arm().WithinLimits(q, why)) return EndpointProblem::kOutsideLimits;
   if (!checker.Collides(q)) return EndpointProblem::kNone;
-  const SelfCollision self = checker.SelfCollisionOf(q);
-  if (self.found()) {
+  const SelfCollision hit = checker.SelfCollisionOf(q);
+  if (hit.found()) {
     if (why)
-      *why =
-          "in self-collision: " + DescribeLinkPair(checker.arm().description(), self.first, self.second) + " overlap";
+      *why = "in self-collision: " + DescribeLinkPair(checker.arm().description(), hit.first, hit.second) + " overlap";
     return EndpointProblem::kSelfCollision;
   }
   if (why) *why = "in collision: a link box overlaps an obstacle";

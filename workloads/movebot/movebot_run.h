@@ -78,8 +78,8 @@ struct MoveBotResult {
 // kind of error before planning: kOutsideLimits (a joint beyond the arm's
 // limits, or not finite), kSelfCollision (two of its link boxes overlap,
 // when the checker tests that), kInCollision (a link box overlaps an
-// obstacle of the scene). `why` says which joint, which links, or that it
-// collides.
+// obstacle of the scene), the first that applies in that order. `why`
+// says which joint, which links, or that it collides.
 enum class EndpointProblem { kNone, kOutsideLimits, kSelfCollision, kInCollision };
 EndpointProblem CheckEndpoint(ArmCollisionChecker& checker, const ArmConfiguration& q, std::string* why);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "robocore/collision/exact_overlap_reference.h"
 
@@ -35,44 +37,34 @@ PathVerification VerifyPath(const LocobotArm& arm, const std::vector<Obbd>& obst
   if (!(resolution_rad > 0) || !std::isfinite(resolution_rad))
     throw std::invalid_argument("verification resolution must be > 0 rad");
   PathVerification v;
+  // The first failure, at configuration `t` of edge `edge`.
+  auto fail = [&](long edge, double t, int link, long obstacle, int other_link, std::string message) {
+    v.ok = false;
+    v.edge = edge;
+    v.t = t;
+    v.link = link;
+    v.obstacle = obstacle;
+    v.other_link = other_link;
+    v.message = std::move(message);
+    return false;
+  };
   auto check = [&](const ArmConfiguration& q, long edge, double t) {
     ++v.configurations;
     std::string why;
-    if (!arm.WithinLimits(q, &why)) {
-      v = {false, v.configurations, v.exact_tests, edge, t, -1, -1, -1, why};
-      return false;
-    }
+    if (!arm.WithinLimits(q, &why)) return fail(edge, t, -1, -1, -1, why);
     const auto links = arm.LinkObbs(q);
     if (self == SelfCollisionCheck::kOn)
       for (const auto& [first, second] : arm.description().self_collision_pairs)
-        if (Overlaps(links[second], links[first], &v.exact_tests)) {
-          v = {false,
-               v.configurations,
-               v.exact_tests,
-               edge,
-               t,
-               first,
-               -1,
-               second,
-               DescribeLinkPair(arm.description(), first, second) + " overlap on edge " + std::to_string(edge) +
-                   " at t = " + std::to_string(t)};
-          return false;
-        }
+        if (Overlaps(links[second], links[first], &v.exact_tests))
+          return fail(edge, t, first, -1, second,
+                      DescribeLinkPair(arm.description(), first, second) + " overlap on edge " + std::to_string(edge) +
+                          " at t = " + std::to_string(t));
     for (int k = 0; k < kArmLinkBoxes; ++k)
       for (std::size_t o = 0; o < obstacles.size(); ++o)
-        if (Overlaps(links[k], obstacles[o], &v.exact_tests)) {
-          v = {false,
-               v.configurations,
-               v.exact_tests,
-               edge,
-               t,
-               k,
-               static_cast<long>(o),
-               -1,
-               "link " + std::to_string(k) + " overlaps obstacle " + std::to_string(o) + " on edge " +
-                   std::to_string(edge) + " at t = " + std::to_string(t)};
-          return false;
-        }
+        if (Overlaps(links[k], obstacles[o], &v.exact_tests))
+          return fail(edge, t, k, static_cast<long>(o), -1,
+                      "link " + std::to_string(k) + " overlaps obstacle " + std::to_string(o) + " on edge " +
+                          std::to_string(edge) + " at t = " + std::to_string(t));
     return true;
   };
   if (path.empty()) return v;
