@@ -47,6 +47,21 @@ ArmConfiguration RandomConfiguration(std::mt19937_64& rng) {
   return q;
 }
 
+// `from` moved `distance` (rad, joint-space) in a random direction (not
+// clamped to the limits).
+ArmConfiguration RandomStep(std::mt19937_64& rng, const ArmConfiguration& from, double distance) {
+  std::normal_distribution<double> gauss;
+  ArmConfiguration direction;
+  double norm = 0;
+  for (double& v : direction) {
+    v = gauss(rng);
+    norm += v * v;
+  }
+  ArmConfiguration to;
+  for (int j = 0; j < kArmJoints; ++j) to[j] = from[j] + direction[j] * distance / std::sqrt(norm);
+  return to;
+}
+
 TEST(ArmSelfCollision, PairsAreTheBoxesNotOnNeighbouringFramesWhoseVerdictNeverChanges) {
   const ArmDescription& d = LocobotArmDescription();
   const LocobotArm arm;
@@ -146,22 +161,14 @@ TEST(ArmSelfCollision, SweepRadiusBoundsHowFarTheSecondBoxMovesInTheFirstsFrame)
   const LocobotArm arm;
   const ArmDescription& d = arm.description();
   std::mt19937_64 rng(5);
-  std::normal_distribution<double> gauss;
   for (const auto& [a, b] : d.self_collision_pairs) {
     const double radius = arm.SweepRadius(b, d.links[a].frame);
     EXPECT_LT(radius, arm.SweepRadii()[b]);  // fewer joints than from the base
     double worst = 0;                        // largest displacement over radius x distance
     for (int i = 0; i < 3000; ++i) {
       const ArmConfiguration q = RandomConfiguration(rng);
-      ArmConfiguration step;
-      double norm = 0;
-      for (double& v : step) {
-        v = gauss(rng);
-        norm += v * v;
-      }
       const double distance = 0.05;
-      ArmConfiguration moved;
-      for (int j = 0; j < kArmJoints; ++j) moved[j] = q[j] + step[j] * distance / std::sqrt(norm);
+      const ArmConfiguration moved = RandomStep(rng, q, distance);
       const auto before = arm.LinkObbs(q), after = arm.LinkObbs(moved);
       for (int corner = 0; corner < 8; ++corner) {
         Eigen::Vector3d p;
@@ -186,22 +193,13 @@ TEST(ArmSelfCollision, AnEdgeTheGrownChecksAcceptIsClearAlongItsWholeLength) {
   ArmCollisionChecker checker(arm, scene);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> length(0.05, 0.6);
-  std::normal_distribution<double> gauss;
   int accepted = 0, rejected = 0;
   for (int e = 0; e < 400; ++e) {
     const ArmConfiguration a = RandomConfiguration(rng);
-    ArmConfiguration b;
-    double norm = 0;
-    for (double& v : b) {
-      v = gauss(rng);
-      norm += v * v;
-    }
     const double l = length(rng);
+    const ArmConfiguration b = RandomStep(rng, a, l);
     bool inside = true;
-    for (int j = 0; j < kArmJoints; ++j) {
-      b[j] = a[j] + b[j] * l / std::sqrt(norm);
-      inside = inside && std::abs(b[j]) <= M_PI / 2;
-    }
+    for (int j = 0; j < kArmJoints; ++j) inside = inside && std::abs(b[j]) <= M_PI / 2;
     if (!inside) continue;
     const unsigned n = static_cast<unsigned>(std::ceil(l / 0.05));
     std::vector<ArmConfiguration> checks(n + 1);
