@@ -26,9 +26,9 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
   // Against each other, a link's sweep counts only the joints between the
   // two boxes (and only the second box grows, in the first's frame): the
   // growth against the scene would make neighbours' neighbours touch.
-  self_growth_.clear();
+  std::vector<double> self_growth;  // m, per pair; none without a sweep
   if (sweep_rad > 0)
-    for (double radius : self_sweep_radii_) self_growth_.push_back(radius * sweep_rad);
+    for (double radius : self_sweep_radii_) self_growth.push_back(radius * sweep_rad);
   for (std::size_t i = 0; i < configurations.size(); ++i) {
     const auto links = arm_.LinkObbs(configurations[i]);
     for (int k = 0; k < kArmLinkBoxes; ++k) {
@@ -36,7 +36,7 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
       if (sweep_rad > 0) obbs.back().half.array() += sweep_radii_[k] * sweep_rad;
     }
     if (self_check_ == SelfCollisionCheck::kOn) {
-      const SelfCollision hit = FindSelfCollision(links, arm_.description(), options_.sact, self_growth_);
+      const SelfCollision hit = FindSelfCollision(links, arm_.description(), options_.sact, self_growth);
       self_tests += hit.tests;
       if (hit.found()) {
         out[i] = true;

@@ -67,7 +67,6 @@ class ArmCollisionChecker {
   SelfCollisionCheck self_check_;
   std::array<double, kArmLinkBoxes> sweep_radii_;
   std::vector<double> self_sweep_radii_;  // m/rad, per self-collision pair
-  std::vector<double> self_growth_;       // m, per pair: the current batch's
   CollisionBatch work_;
   CollisionWorkCounters since_take_, totals_;
 };
