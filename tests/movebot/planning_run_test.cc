@@ -194,7 +194,7 @@ TEST(MoveBotPlanning, TinyBudgetIsNeverReportedAsExact) {
 TEST(MoveBotPlanning, NoObstaclesPlansWithoutKernelQueries) {
   const ArmScene scene = ArmScene::FromObstacles({});
   const LocobotArm arm;
-  ArmCollisionChecker checker(arm, scene);
+  ArmCollisionChecker checker(arm, scene, {}, SelfCollisionCheck::kOff);
   MoveBotSettings s = FastSettings(100, 1);
   s.price_backends = true;  // nothing to price: every row has no collision query
   const MoveBotResult r = RunMoveBot(checker, s);
@@ -206,6 +206,28 @@ TEST(MoveBotPlanning, NoObstaclesPlansWithoutKernelQueries) {
   EXPECT_GE(r.path_cost_rad, std::sqrt(straight) - 1e-9);
   EXPECT_LE(r.path_cost_rad, 1.6 * std::sqrt(straight));
   for (const MoveBotRow& row : r.rows) EXPECT_FALSE(row.collision_pricing.priced);
+}
+
+// With self-collision checked, the empty scene's only kernel work is the
+// link pairs: a query per configuration, a node per pair tested, priced
+// like any other.
+TEST(MoveBotPlanning, NoObstaclesPricesTheLinkPairs) {
+  const ArmScene scene = ArmScene::FromObstacles({});
+  const LocobotArm arm;
+  ArmCollisionChecker checker(arm, scene);
+  MoveBotSettings s = FastSettings(100, 1);
+  s.price_backends = true;
+  const MoveBotResult r = RunMoveBot(checker, s);
+  ASSERT_EQ(r.status, MoveBotStatus::kExact);
+  const CollisionWorkCounters& totals = checker.totals();
+  EXPECT_EQ(totals.queries, totals.configurations);
+  EXPECT_EQ(totals.nodes, totals.self_tests);
+  EXPECT_GE(totals.self_tests, totals.queries);
+  for (const MoveBotRow& row : r.rows) {
+    if (row.collision.queries == 0) continue;
+    EXPECT_TRUE(row.collision_pricing.priced);
+    EXPECT_EQ(row.collision_pricing.costs.front().queries, row.collision.queries);
+  }
 }
 
 TEST(MoveBotPlanning, PricedRowsCarryEveryBackendsCycles) {

@@ -130,7 +130,12 @@ TEST(ArmSelfCollision, CheckerCountsSelfCollisionsOnlyWhenAskedTo) {
   EXPECT_EQ(on.Collides(std::vector<ArmConfiguration>{kFolded, kStretched}), (std::vector<bool>{true, false}));
   const CollisionWorkCounters counted = on.TakeCounters();
   EXPECT_EQ(counted.configurations, 2u);
+  // The folded arm stops at its first pair; the stretched one tests all.
+  // Each configuration is one kernel query, a node per pair tested, and the
+  // empty scene adds none.
   EXPECT_EQ(counted.self_tests, 1u + arm.description().self_collision_pairs.size());
+  EXPECT_EQ(counted.queries, 2u);
+  EXPECT_EQ(counted.nodes, counted.self_tests);
   EXPECT_EQ(counted.self_collisions, 1u);
   EXPECT_EQ(counted.self_only, 1u);  // the scene is empty
   EXPECT_EQ(on.SelfCollisionOf(kFolded).first, 0);
@@ -140,6 +145,52 @@ TEST(ArmSelfCollision, CheckerCountsSelfCollisionsOnlyWhenAskedTo) {
   EXPECT_FALSE(off.Collides(kFolded));
   EXPECT_EQ(off.TakeCounters().self_tests, 0u);
   EXPECT_FALSE(off.SelfCollisionOf(kFolded).found());
+}
+
+// The kernel's query answers what the host's search does, grown or not:
+// one query per configuration, one visit per pair tested, each a fetch of
+// its first link's node, laid after the scene's nodes, and each visit's
+// verdict that pair's own.
+TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearch) {
+  const LocobotArm arm;
+  const auto& pairs = arm.description().self_collision_pairs;
+  const std::uint64_t scene_nodes = 15;
+  const SelfCollisionKernel kernel(arm.description(), scene_nodes);
+  EXPECT_EQ(kernel.node_count(), 2u);  // links 0 and 1 are first in a pair
+  CollisionBatch batch;
+  batch.node_count = scene_nodes + kernel.node_count();
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> growth(0.0, 0.01);
+  int found = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const auto links = arm.LinkObbs(RandomConfiguration(rng));
+    std::vector<double> grown;
+    if (i % 2) grown = {growth(rng), growth(rng), growth(rng)};
+    const SelfCollision host = FindSelfCollision(links, arm.description(), {}, grown);
+    const std::size_t q = batch.query_count();
+    const SelfCollision device = kernel.Collide(links, {}, grown, batch);
+    ASSERT_EQ(device.first, host.first) << "configuration " << i;
+    ASSERT_EQ(device.second, host.second) << "configuration " << i;
+    ASSERT_EQ(device.tests, host.tests) << "configuration " << i;
+    ASSERT_EQ(batch.query_count(), q + 1);
+    EXPECT_EQ(batch.outcomes[q].collides, host.found());
+    ASSERT_EQ(batch.visit_offsets[q + 1] - batch.visit_offsets[q], host.tests);
+    EXPECT_EQ(batch.outcomes[q].nodes_visited, host.tests);
+    for (std::size_t p = 0; p < host.tests; ++p) {
+      const NodeVisit& visit = batch.visits[batch.visit_offsets[q] + p];
+      EXPECT_EQ(visit.node, scene_nodes + (pairs[p].first == 0 ? 0 : 1));
+      Aabbd frame_box;
+      frame_box.half = links[pairs[p].first].half;
+      Obbd moving = InFrameOf(links[pairs[p].second], links[pairs[p].first]);
+      if (!grown.empty()) moving.half.array() += grown[p];
+      const SactResult sact = TestObbAabb(moving, frame_box);
+      EXPECT_EQ(visit.overlaps(), sact.overlaps());
+      EXPECT_EQ(visit.exit, sact.separating_axis);
+    }
+    found += host.found();
+  }
+  EXPECT_GT(found, 100);  // both verdicts seen
+  EXPECT_THROW(kernel.Collide(arm.LinkObbs(kFolded), {}, {0.1}, batch), std::invalid_argument);
 }
 
 TEST(ArmSelfCollision, GrownBoxesOfAnEdgeCheckCoverTheLinksNearContact) {

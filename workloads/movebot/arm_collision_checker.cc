@@ -13,7 +13,8 @@ ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& 
       self_check_(self_check),
       sweep_radii_(arm.SweepRadii()),
       self_sweep_radii_(SelfSweepRadii(arm)),
-      work_(scene.NewBatch()) {
+      self_kernel_(arm.description(), scene.node_count()),
+      work_(NewBatch()) {
   std::string error;
   if (!options_.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);
 }
@@ -21,7 +22,8 @@ ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& 
 std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad) {
   std::vector<Obbd> obbs;
   obbs.reserve(configurations.size() * kArmLinkBoxes);
-  std::vector<bool> out(configurations.size(), false);
+  std::vector<std::array<Obbd, kArmLinkBoxes>> links;
+  links.reserve(configurations.size());
   std::uint64_t self_tests = 0, self_collisions = 0, self_only = 0;
   // Against each other, a link's sweep counts only the joints between the
   // two boxes (and only the second box grows, in the first's frame): the
@@ -29,30 +31,30 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
   std::vector<double> self_growth;  // m, per pair; none without a sweep
   if (sweep_rad > 0)
     for (double radius : self_sweep_radii_) self_growth.push_back(radius * sweep_rad);
-  for (std::size_t i = 0; i < configurations.size(); ++i) {
-    const auto links = arm_.LinkObbs(configurations[i]);
+  for (const ArmConfiguration& q : configurations) {
+    links.push_back(arm_.LinkObbs(q));
     for (int k = 0; k < kArmLinkBoxes; ++k) {
-      obbs.push_back(links[k]);
+      obbs.push_back(links.back()[k]);
       if (sweep_rad > 0) obbs.back().half.array() += sweep_radii_[k] * sweep_rad;
-    }
-    if (self_check_ == SelfCollisionCheck::kOn) {
-      const SelfCollision hit = FindSelfCollision(links, arm_.description(), options_.sact, self_growth);
-      self_tests += hit.tests;
-      if (hit.found()) {
-        out[i] = true;
-        ++self_collisions;
-      }
     }
   }
   const std::uint64_t visits_before = work_.visits.size();
   const std::uint64_t queries_before = work_.query_count();
+  // The launch's queries: every link box against the scene, then each
+  // configuration's pairs.
   const std::vector<bool> link_collides = scene_.Collide(obbs, options_, work_);
-  std::vector<bool> scene_collides(configurations.size(), false);
+  std::vector<bool> out(configurations.size(), false);
   for (std::size_t i = 0; i < link_collides.size(); ++i)
-    if (link_collides[i]) scene_collides[i / kArmLinkBoxes] = true;
-  for (std::size_t i = 0; i < configurations.size(); ++i) {
-    if (out[i] && !scene_collides[i]) ++self_only;
-    out[i] = out[i] || scene_collides[i];
+    if (link_collides[i]) out[i / kArmLinkBoxes] = true;
+  if (self_check_ == SelfCollisionCheck::kOn) {
+    for (std::size_t i = 0; i < configurations.size(); ++i) {
+      const SelfCollision hit = self_kernel_.Collide(links[i], options_, self_growth, work_);
+      self_tests += hit.tests;
+      if (!hit.found()) continue;
+      ++self_collisions;
+      if (!out[i]) ++self_only;
+      out[i] = true;
+    }
   }
   for (CollisionWorkCounters* c : {&since_take_, &totals_}) {
     c->configurations += configurations.size();
@@ -70,9 +72,15 @@ SelfCollision ArmCollisionChecker::SelfCollisionOf(const ArmConfiguration& q) co
   return FindSelfCollision(arm_.LinkObbs(q), arm_.description(), options_.sact);
 }
 
+CollisionBatch ArmCollisionChecker::NewBatch() const {
+  CollisionBatch batch = scene_.NewBatch();
+  if (self_check_ == SelfCollisionCheck::kOn) batch.node_count += self_kernel_.node_count();
+  return batch;
+}
+
 CollisionBatch ArmCollisionChecker::TakeWork() {
   CollisionBatch taken = std::move(work_);
-  work_ = scene_.NewBatch();
+  work_ = NewBatch();
   return taken;
 }
 

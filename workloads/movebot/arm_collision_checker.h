@@ -5,10 +5,11 @@
 // link OBB against one scene frame, arm_scene.h). Every batch is appended
 // to a work log that the planner's timeline takes once per row, so each
 // row prices exactly the kernel work of its iterations. Unless told not
-// to (RoWild's arm tests none), the link boxes are also tested against
-// each other on the host (arm_self_collision.h); every configuration of a
-// batch goes to the kernel either way (the planner's tree, and so its
-// later batches, do depend on the choice).
+// to (RoWild's arm tests none), the batch also tests the link boxes
+// against each other, one query per configuration in the same launch
+// (arm_self_collision.h), whatever the scene answered, as a thread per
+// query would (the planner's tree, and so its later batches, do depend on
+// the choice).
 //
 // Not thread-safe (OMPL's RRTstar calls it from one thread).
 #include <array>
@@ -24,9 +25,9 @@ namespace rc {
 
 struct CollisionWorkCounters {
   std::uint64_t configurations = 0;   // arm configurations checked
-  std::uint64_t queries = 0;          // link-OBB x frame queries sent to the kernel
+  std::uint64_t queries = 0;          // kernel queries: link OBB x scene frame, and one per configuration for its pairs
   std::uint64_t nodes = 0;            // node fetches (one SACT each)
-  std::uint64_t self_tests = 0;       // link-box pairs tested on the host (one SACT each)
+  std::uint64_t self_tests = 0;       // of those, link-box pairs tested (up to the first overlap)
   std::uint64_t self_collisions = 0;  // configurations refused for self-collision (grown boxes on edges)
   std::uint64_t self_only = 0;        // of those, the ones clear of the scene
 };
@@ -47,8 +48,9 @@ class ArmCollisionChecker {
   std::vector<bool> Collides(const std::vector<ArmConfiguration>& configurations, double sweep_rad = 0.0);
   bool Collides(const ArmConfiguration& q) { return Collides(std::vector<ArmConfiguration>{q}).front(); }
 
-  // The kernel work since the last take (the scene's layout, possibly no
-  // query), and its counters; both restart from zero.
+  // The kernel work since the last take (the scene's nodes, then the
+  // self-collision nodes when checked; possibly no query), and its
+  // counters; both restart from zero.
   CollisionBatch TakeWork();
   CollisionWorkCounters TakeCounters();
   const CollisionWorkCounters& totals() const { return totals_; }
@@ -61,12 +63,15 @@ class ArmCollisionChecker {
   SelfCollision SelfCollisionOf(const ArmConfiguration& q) const;
 
  private:
+  CollisionBatch NewBatch() const;
+
   const LocobotArm& arm_;
   const ArmScene& scene_;
   CollisionOptions<double> options_;
   SelfCollisionCheck self_check_;
   std::array<double, kArmLinkBoxes> sweep_radii_;
   std::vector<double> self_sweep_radii_;  // m/rad, per self-collision pair
+  SelfCollisionKernel self_kernel_;
   CollisionBatch work_;
   CollisionWorkCounters since_take_, totals_;
 };

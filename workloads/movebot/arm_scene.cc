@@ -62,6 +62,7 @@ CollisionBatch ArmScene::NewBatch() const {
 std::vector<bool> ArmScene::Collide(const std::vector<Obbd>& obbs, const CollisionOptions<double>& options,
                                     CollisionBatch& batch) const {
   std::vector<bool> collides(obbs.size(), false);
+  std::vector<std::uint32_t> pending;  // the traversal's, allocated once per batch
   for (std::size_t i = 0; i < obbs.size(); ++i) {
     for (const SceneFrame& f : frames_) {
       Obbd local = obbs[i];
@@ -70,7 +71,7 @@ std::vector<bool> ArmScene::Collide(const std::vector<Obbd>& obbs, const Collisi
         local.axes = f.rotation.transpose() * obbs[i].axes;
       }
       const std::size_t first = batch.visits.size();
-      TraversalOutcome outcome = CollideObb(f.flat, local, options, &batch.visits);
+      TraversalOutcome outcome = CollideObb(f.flat, local, options, &batch.visits, &pending);
       for (std::size_t k = first; k < batch.visits.size(); ++k) batch.visits[k].node += f.node_offset;
       batch.outcomes.push_back(outcome);
       batch.visit_offsets.push_back(batch.visits.size());

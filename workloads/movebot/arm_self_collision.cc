@@ -1,9 +1,11 @@
 #include "workloads/movebot/arm_self_collision.h"
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
 #include "robocore/collision/aabb.h"
+#include "robocore/collision/box_tree.h"
 
 namespace rc {
 
@@ -24,6 +26,55 @@ SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, co
       out.second = second;
       return out;
     }
+  }
+  return out;
+}
+
+SelfCollisionKernel::SelfCollisionKernel(const ArmDescription& arm, std::uint64_t first_node)
+    : pairs_(arm.self_collision_pairs), first_node_(first_node) {
+  tree_of_link_.fill(-1);
+  for (const auto& [first, second] : pairs_) {
+    if (first < 0 || first >= kArmLinkBoxes || second < 0 || second >= kArmLinkBoxes)
+      throw std::invalid_argument("SelfCollisionKernel: a pair names a link box that does not exist");
+    if (tree_of_link_[first] >= 0) continue;
+    Aabbd box;  // in its own frame: centred at the origin
+    box.half = arm.links[first].size / 2;
+    tree_of_link_[first] = static_cast<int>(trees_.size());
+    trees_.emplace_back(BuildMedianSplitTree({box}));
+  }
+  if (first_node_ + trees_.size() > std::uint64_t{UINT32_MAX})
+    throw std::invalid_argument("SelfCollisionKernel: node indices beyond 32 bits");
+}
+
+SelfCollision SelfCollisionKernel::Collide(const std::array<Obbd, kArmLinkBoxes>& links,
+                                           const CollisionOptions<double>& options,
+                                           const std::vector<double>& growth_m, CollisionBatch& batch) const {
+  if (!growth_m.empty() && growth_m.size() != pairs_.size())
+    throw std::invalid_argument("SelfCollisionKernel: one growth per self-collision pair, or none");
+  SelfCollision out;
+  TraversalOutcome query;
+  std::vector<std::uint32_t> pending;  // the traversal's; a one-node tree needs one entry
+  pending.reserve(1);
+  for (std::size_t p = 0; p < pairs_.size() && !out.found(); ++p) {
+    const auto [first, second] = pairs_[p];
+    ++out.tests;
+    Obbd moving = InFrameOf(links[second], links[first]);
+    if (!growth_m.empty()) moving.half.array() += growth_m[p];
+    const int tree = tree_of_link_[first];
+    const TraversalOutcome pass = CollideObb(trees_[tree], moving, options, &batch.visits, &pending);
+    batch.visits.back().node += static_cast<std::uint32_t>(first_node_ + tree);
+    query.nodes_visited += pass.nodes_visited;
+    query.last_exit = pass.last_exit;
+    if (pass.collides) {
+      query.collides = true;
+      query.colliding_box = static_cast<std::uint32_t>(p);
+      out.first = first;
+      out.second = second;
+    }
+  }
+  if (out.tests > 0) {
+    batch.outcomes.push_back(query);
+    batch.visit_offsets.push_back(batch.visits.size());
   }
   return out;
 }

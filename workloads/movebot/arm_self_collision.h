@@ -9,16 +9,21 @@
 // independent check of a returned path (path_verification.h) tests the
 // same pairs with the exact LP instead.
 //
-// These tests run on the host beside the kernel's batch: a few box-box
-// tests per configuration, against the scene's trees' many nodes, and not
-// priced on the backends (the summary prints both counts).
+// A batch's pairs are collision-kernel work, priced with the scene's
+// queries (SelfCollisionKernel): in the first box's frame the first box is
+// an AABB centred at the origin with the link's half extents, which do not
+// change with the configuration, so a pair is one SACT of the second box
+// against a node holding that AABB. FindSelfCollision is the same search on
+// the host, for a single configuration (a start or goal).
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "robocore/collision/flat_box_tree.h"
 #include "robocore/collision/obb.h"
 #include "robocore/collision/sact.h"
+#include "robocore/collision/tree_collision.h"
 #include "workloads/movebot/locobot_arm.h"
 
 namespace rc {
@@ -39,6 +44,36 @@ struct SelfCollision {
 // any other size throws std::invalid_argument.
 SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, const ArmDescription& arm,
                                 const SactOptions<double>& options, const std::vector<double>& growth_m = {});
+
+// The pairs as collision-kernel work: one query per configuration, a
+// thread that tests its pairs in order, one node pass each, and stops at
+// the first overlap, as a scene query stops at its first colliding leaf
+// (the SACT program's loop runs per node and takes the query's box at its
+// PRE, so a pass prices the same whichever pair it tests). Each link that
+// is first in a pair has one node, a tree of its box in its own frame; the
+// nodes follow the scene's in the device memory (from first_node on), so a
+// batch of scene and pair queries is one recorded launch over one node
+// array.
+class SelfCollisionKernel {
+ public:
+  SelfCollisionKernel(const ArmDescription& arm, std::uint64_t first_node);
+
+  std::uint64_t node_count() const { return trees_.size(); }
+
+  // Appends one query to `batch` (whose node array must include these
+  // nodes; none for an arm without pairs) and returns what
+  // FindSelfCollision returns, bit for bit: the same SACT on the same boxes
+  // in the same order, one visit per pair tested. `growth_m` as there. The
+  // query's outcome names the overlapping pair's index as its box.
+  SelfCollision Collide(const std::array<Obbd, kArmLinkBoxes>& links, const CollisionOptions<double>& options,
+                        const std::vector<double>& growth_m, CollisionBatch& batch) const;
+
+ private:
+  std::vector<std::pair<int, int>> pairs_;
+  std::array<int, kArmLinkBoxes> tree_of_link_;  // index into trees_, -1 for a link never first
+  std::vector<FlatBoxTree<double>> trees_;
+  std::uint64_t first_node_;
+};
 
 // Per pair of arm.self_collision_pairs, a bound (m/rad) on how far its
 // second box moves relative to its first per joint-space distance along a

@@ -193,11 +193,12 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   if (result.status != MoveBotStatus::kNone)
     out << ", cost " << result.path_cost_rad << " rad (joint-space length), " << result.path.size() << " states";
   if (result.status == MoveBotStatus::kApproximate) out << ", " << result.goal_distance_rad << " rad short of the goal";
-  out << "\ncollision kernel        " << configurations << " configurations, " << queries << " link-OBB queries, "
+  out << "\ncollision kernel        " << configurations << " configurations, " << queries << " queries (link OBB x scene frame"
+      << (result.self_collision_checked ? "; link pairs), " : "), ")
       << (queries ? static_cast<double>(nodes) / queries : 0.0) << " nodes per query\n";
   out << "self-collision          ";
   if (result.self_collision_checked)
-    out << self_tests << " link-pair tests on the host (not priced; the kernel's node tests: " << nodes << "), "
+    out << self_tests << " link pairs tested in the kernel (one node each, a query per configuration), "
         << self_collisions << " configurations refused (boxes grown on edges), " << self_only
         << " of them clear of the scene\n";
   else
