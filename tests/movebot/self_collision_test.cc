@@ -18,6 +18,7 @@
 #include "workloads/movebot/arm_self_collision.h"
 #include "workloads/movebot/movebot_report.h"
 #include "workloads/movebot/movebot_run.h"
+#include "workloads/movebot/obstacle_file.h"
 #include "workloads/movebot/path_verification.h"
 
 namespace rc {
@@ -143,7 +144,10 @@ TEST(ArmSelfCollision, CheckerCountsSelfCollisionsOnlyWhenAskedTo) {
   ArmCollisionChecker off(arm, scene, {}, SelfCollisionCheck::kOff);
   EXPECT_FALSE(off.checks_self_collision());
   EXPECT_FALSE(off.Collides(kFolded));
-  EXPECT_EQ(off.TakeCounters().self_tests, 0u);
+  const CollisionWorkCounters off_counted = off.TakeCounters();
+  EXPECT_EQ(off_counted.self_tests, 0u);
+  EXPECT_EQ(off_counted.queries, 0u);
+  EXPECT_EQ(off_counted.nodes, 0u);
   EXPECT_FALSE(off.SelfCollisionOf(kFolded).found());
 }
 
@@ -176,6 +180,10 @@ TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearch) {
     EXPECT_EQ(batch.outcomes[q].collides, host.found());
     ASSERT_EQ(batch.visit_offsets[q + 1] - batch.visit_offsets[q], host.tests);
     EXPECT_EQ(batch.outcomes[q].nodes_visited, host.tests);
+    // The outcome names the overlapping pair by its index, and ends with
+    // the last pass's exit.
+    EXPECT_EQ(batch.outcomes[q].colliding_box, host.found() ? host.tests - 1 : kNoBox);
+    EXPECT_EQ(batch.outcomes[q].last_exit, batch.visits[batch.visit_offsets[q + 1] - 1].exit);
     for (std::size_t p = 0; p < host.tests; ++p) {
       const NodeVisit& visit = batch.visits[batch.visit_offsets[q] + p];
       EXPECT_EQ(visit.node, scene_nodes + (pairs[p].first == 0 ? 0 : 1));
@@ -191,6 +199,64 @@ TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearch) {
   }
   EXPECT_GT(found, 100);  // both verdicts seen
   EXPECT_THROW(kernel.Collide(arm.LinkObbs(kFolded), {}, {0.1}, batch), std::invalid_argument);
+}
+
+// With the traversal's other options (breadth-first, sphere pre-tests) the
+// kernel's query still answers as the host's search with the same options.
+TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearchWithEveryOption) {
+  const LocobotArm arm;
+  const SelfCollisionKernel kernel(arm.description(), 0);
+  CollisionOptions<double> breadth_first, pretests;
+  breadth_first.order = TraversalOrder::kBreadthFirst;
+  pretests.sact.sphere_pretests = true;
+  std::mt19937_64 rng(19);
+  for (const CollisionOptions<double>& options : {breadth_first, pretests}) {
+    CollisionBatch batch;
+    batch.node_count = kernel.node_count();
+    std::vector<std::uint32_t> pending;
+    int found = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const auto links = arm.LinkObbs(RandomConfiguration(rng));
+      const SelfCollision host = FindSelfCollision(links, arm.description(), options.sact);
+      const SelfCollision device = kernel.Collide(links, options, {}, batch, &pending);
+      ASSERT_EQ(device.first, host.first) << i;
+      ASSERT_EQ(device.tests, host.tests) << i;
+      found += host.found();
+    }
+    EXPECT_EQ(batch.visits.size(), batch.visit_offsets.back());
+    EXPECT_GT(found, 20);
+  }
+}
+
+// The checker lays the pair nodes after the scene's: a batch's node array
+// is the scene's nodes and then two more, and every pair query fetches
+// only those two; without the check, the scene's nodes alone.
+TEST(ArmSelfCollision, CheckerLaysThePairNodesAfterTheScenes) {
+  std::vector<Obstacle> obstacles(3);
+  for (int k = 0; k < 3; ++k) {
+    obstacles[k].box.centre = Eigen::Vector3d(2.0 + k, 2.0, 0.5);  // far from the arm
+    obstacles[k].box.half = Eigen::Vector3d(0.1, 0.1, 0.1);
+  }
+  const ArmScene scene = ArmScene::FromObstacles(obstacles);
+  const LocobotArm arm;
+  ArmCollisionChecker on(arm, scene);
+  const std::vector<ArmConfiguration> configurations = {kFolded, kStretched};
+  on.Collides(configurations);
+  const CollisionBatch work = on.TakeWork();
+  EXPECT_EQ(work.node_count, scene.node_count() + 2);
+  const std::size_t scene_queries = configurations.size() * kArmLinkBoxes * scene.frames().size();
+  ASSERT_EQ(work.query_count(), scene_queries + configurations.size());
+  for (std::size_t q = 0; q < work.query_count(); ++q)
+    for (std::uint64_t k = work.visit_offsets[q]; k < work.visit_offsets[q + 1]; ++k) {
+      const bool pair_node = work.visits[k].node >= scene.node_count();
+      EXPECT_EQ(pair_node, q >= scene_queries) << "query " << q;
+      EXPECT_LT(work.visits[k].node, work.node_count);
+    }
+  ArmCollisionChecker off(arm, scene, {}, SelfCollisionCheck::kOff);
+  off.Collides(configurations);
+  const CollisionBatch scene_only = off.TakeWork();
+  EXPECT_EQ(scene_only.node_count, scene.node_count());
+  EXPECT_EQ(scene_only.query_count(), scene_queries);
 }
 
 TEST(ArmSelfCollision, GrownBoxesOfAnEdgeCheckCoverTheLinksNearContact) {

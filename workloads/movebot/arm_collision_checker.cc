@@ -47,8 +47,9 @@ std::vector<bool> ArmCollisionChecker::Collides(const std::vector<ArmConfigurati
   for (std::size_t i = 0; i < link_collides.size(); ++i)
     if (link_collides[i]) out[i / kArmLinkBoxes] = true;
   if (self_check_ == SelfCollisionCheck::kOn) {
+    std::vector<std::uint32_t> pending;  // the traversal's, allocated once per batch
     for (std::size_t i = 0; i < configurations.size(); ++i) {
-      const SelfCollision hit = self_kernel_.Collide(links[i], options_, self_growth, work_);
+      const SelfCollision hit = self_kernel_.Collide(links[i], options_, self_growth, work_, &pending);
       self_tests += hit.tests;
       if (!hit.found()) continue;
       ++self_collisions;
@@ -75,6 +76,9 @@ SelfCollision ArmCollisionChecker::SelfCollisionOf(const ArmConfiguration& q) co
 CollisionBatch ArmCollisionChecker::NewBatch() const {
   CollisionBatch batch = scene_.NewBatch();
   if (self_check_ == SelfCollisionCheck::kOn) batch.node_count += self_kernel_.node_count();
+  // Visits decided by a sphere pre-test ran no SACT stage: the batch says
+  // so, and pricing refuses it (SactKernelRecord).
+  batch.sphere_pretests = options_.sact.sphere_pretests;
   return batch;
 }
 

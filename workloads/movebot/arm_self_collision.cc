@@ -42,27 +42,28 @@ SelfCollisionKernel::SelfCollisionKernel(const ArmDescription& arm, std::uint64_
     tree_of_link_[first] = static_cast<int>(trees_.size());
     trees_.emplace_back(BuildMedianSplitTree({box}));
   }
-  if (first_node_ + trees_.size() > std::uint64_t{UINT32_MAX})
+  if (!trees_.empty() && first_node_ + trees_.size() - 1 > std::uint64_t{UINT32_MAX})
     throw std::invalid_argument("SelfCollisionKernel: node indices beyond 32 bits");
 }
 
 SelfCollision SelfCollisionKernel::Collide(const std::array<Obbd, kArmLinkBoxes>& links,
                                            const CollisionOptions<double>& options,
-                                           const std::vector<double>& growth_m, CollisionBatch& batch) const {
+                                           const std::vector<double>& growth_m, CollisionBatch& batch,
+                                           std::vector<std::uint32_t>* pending) const {
   if (!growth_m.empty() && growth_m.size() != pairs_.size())
     throw std::invalid_argument("SelfCollisionKernel: one growth per self-collision pair, or none");
   SelfCollision out;
   TraversalOutcome query;
-  std::vector<std::uint32_t> pending;  // the traversal's; a one-node tree needs one entry
-  pending.reserve(1);
   for (std::size_t p = 0; p < pairs_.size() && !out.found(); ++p) {
     const auto [first, second] = pairs_[p];
     ++out.tests;
     Obbd moving = InFrameOf(links[second], links[first]);
     if (!growth_m.empty()) moving.half.array() += growth_m[p];
     const int tree = tree_of_link_[first];
-    const TraversalOutcome pass = CollideObb(trees_[tree], moving, options, &batch.visits, &pending);
-    batch.visits.back().node += static_cast<std::uint32_t>(first_node_ + tree);
+    const std::size_t begin = batch.visits.size();
+    const TraversalOutcome pass = CollideObb(trees_[tree], moving, options, &batch.visits, pending);
+    for (std::size_t k = begin; k < batch.visits.size(); ++k)
+      batch.visits[k].node += static_cast<std::uint32_t>(first_node_ + tree);
     query.nodes_visited += pass.nodes_visited;
     query.last_exit = pass.last_exit;
     if (pass.collides) {

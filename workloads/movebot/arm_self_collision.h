@@ -49,7 +49,12 @@ SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, co
 // thread that tests its pairs in order, one node pass each, and stops at
 // the first overlap, as a scene query stops at its first colliding leaf
 // (the SACT program's loop runs per node and takes the query's box at its
-// PRE, so a pass prices the same whichever pair it tests). Each link that
+// PRE, so on the RT units a pass prices the same whichever pair it tests).
+// Not priced: the SIMT kernel sets a query's box up once, where a pair
+// query sets up one per pair it tests, and no backend prices moving the
+// second box into the first's frame (as none prices moving a link box into
+// a rotated scene frame). A query per pair would price those set-ups but
+// costs more to record and price than they are worth. Each link that
 // is first in a pair has one node, a tree of its box in its own frame; the
 // nodes follow the scene's in the device memory (from first_node on), so a
 // batch of scene and pair queries is one recorded launch over one node
@@ -65,8 +70,11 @@ class SelfCollisionKernel {
   // FindSelfCollision returns, bit for bit: the same SACT on the same boxes
   // in the same order, one visit per pair tested. `growth_m` as there. The
   // query's outcome names the overlapping pair's index as its box.
+  // `pending`, if given, is the traversal's reusable list
+  // (CollideObb's scratch), for a caller with many configurations.
   SelfCollision Collide(const std::array<Obbd, kArmLinkBoxes>& links, const CollisionOptions<double>& options,
-                        const std::vector<double>& growth_m, CollisionBatch& batch) const;
+                        const std::vector<double>& growth_m, CollisionBatch& batch,
+                        std::vector<std::uint32_t>* pending = nullptr) const;
 
  private:
   std::vector<std::pair<int, int>> pairs_;

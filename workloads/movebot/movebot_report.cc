@@ -210,7 +210,7 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   // Two kernels, two ledgers: each is scheduled and graded on its own.
   out << "collision kernel, ";
   PrintLedgerSummary(out, result.collision_pricing, settings.ledger, settings.backend_params.gpu.core_clock_hz, "batch",
-                     "nodes per link-OBB query");
+                     "nodes per kernel query");
   const auto& nn_totals = result.nn_pricing.static_total_cycles;
   if (std::all_of(nn_totals.begin(), nn_totals.end(), [](double c) { return c == 0.0; })) {
     out << "nearest-neighbour kernel: no batch ran on the device (" << ToString(settings.nn) << ")\n";
