@@ -6,6 +6,7 @@
 
 #include <omp.h>
 
+#include "robocore/exit_profile.h"
 #include "robocore/shipped_programs.h"
 
 namespace rc {
@@ -55,10 +56,11 @@ class TouchedSectors {
 
 // The batch as a record: query i's fetches are its visits, in order
 // (fetch_offsets = the batch's visit offsets); exit_of maps a visit to its
-// exit. Addresses are kept for the queries `sample` keeps.
+// exit, kept per fetch or tallied per query. Addresses are kept for the
+// queries `sample` keeps. One pass over the visits.
 template <typename ExitOf>
 KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program, StepProgramKind kind,
-                         const AddressSample& sample, ExitOf&& exit_of) {
+                         const AddressSample& sample, RecordedExits exits, ExitOf&& exit_of) {
   KernelRecord record;
   record.program = std::move(program);
   record.step_kind = kind;
@@ -68,28 +70,39 @@ KernelRecord BuildRecord(const CollisionBatch& batch, std::shared_ptr<const Micr
   record.fetch_offsets = batch.visit_offsets;
   const std::size_t n = batch.query_count();
   const std::vector<NodeVisit>& visits = batch.visits;
-  record.node_exits.resize(visits.size());
-  for (std::size_t k = 0; k < visits.size(); ++k) record.node_exits[k] = exit_of(visits[k]);
-  record.address_sample = sample;
-  if (sample.KeepsAll()) {
-    record.fetch_addresses.resize(visits.size());
-    for (std::size_t k = 0; k < visits.size(); ++k) record.fetch_addresses[k] = batch.Address(visits[k]);
-    record.Validate();
-    return record;
+  const bool tally_exits = exits == RecordedExits::kTallied;
+  ExitTally tally;
+  std::shared_ptr<ExitProfile> profile;
+  if (tally_exits) {
+    profile = std::make_shared<ExitProfile>();
+    profile->offsets.assign(n + 1, 0);
+    profile->variant.reserve(n);
+    profile->passes.reserve(n);
+  } else {
+    record.node_exits.resize(visits.size());
   }
-  record.address_offsets = KeptAddressOffsets(record.fetch_offsets, sample);
-  record.fetch_addresses.reserve(record.address_offsets.back());
+  record.address_sample = sample;
+  if (!sample.KeepsAll()) record.address_offsets = KeptAddressOffsets(record.fetch_offsets, sample);
+  record.fetch_addresses.reserve(sample.KeepsAll() ? visits.size() : record.address_offsets.back());
   // Sectors the whole batch touched, numbered from the region's base (the
-  // record's footprint_begin()).
-  TouchedSectors touched(batch.node_count, batch.node_bytes, sample.sector_bytes);
+  // record's footprint_begin()); only a sampled record counts them.
+  const bool mark = !sample.KeepsAll();
+  TouchedSectors touched(mark ? batch.node_count : 0, batch.node_bytes, sample.sector_bytes);
   for (std::size_t q = 0; q < n; ++q) {
     const bool keep = sample.KeepsQuery(q);
     for (std::uint64_t k = batch.visit_offsets[q]; k < batch.visit_offsets[q + 1]; ++k) {
-      touched.Mark(visits[k].node);
+      const std::uint8_t exit = exit_of(visits[k]);
+      if (tally_exits)
+        tally.Add(exit);
+      else
+        record.node_exits[k] = exit;
+      if (mark) touched.Mark(visits[k].node);
       if (keep) record.fetch_addresses.push_back(batch.Address(visits[k]));
     }
+    if (tally_exits) profile->offsets[q + 1] = profile->offsets[q] + tally.Append(profile->variant, profile->passes);
   }
-  record.touched_sectors = touched.Count();
+  if (tally_exits) record.tallied_exits = std::move(profile);
+  if (mark) record.touched_sectors = touched.Count();
   record.Validate();
   return record;
 }
@@ -150,7 +163,7 @@ bool KeepsSactExitContract(const MicroProgram& program, std::string* why) {
 }
 
 KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program,
-                              const AddressSample& sample) {
+                              const AddressSample& sample, RecordedExits exits) {
   if (batch.robot_model != CollisionRobotModel::kObb)
     throw std::invalid_argument("SactKernelRecord: a sphere-robot batch is priced by SphereKernelRecord");
   if (batch.sphere_pretests)
@@ -158,7 +171,7 @@ KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const
   if (!program) program = ShippedStepProgram(StepProgramKind::kSactTest);
   std::string why;
   if (!KeepsSactExitContract(*program, &why)) throw std::invalid_argument("SactKernelRecord: " + why);
-  return BuildRecord(batch, std::move(program), StepProgramKind::kSactTest, sample, SactExitOf);
+  return BuildRecord(batch, std::move(program), StepProgramKind::kSactTest, sample, exits, SactExitOf);
 }
 
 template <typename Scalar>
@@ -341,7 +354,7 @@ KernelRecord SphereKernelRecord(const CollisionBatch& batch, std::shared_ptr<con
   if (!program) program = ShippedStepProgram(StepProgramKind::kSphereTest);
   std::string why;
   if (!KeepsSphereExitContract(*program, &why)) throw std::invalid_argument("SphereKernelRecord: " + why);
-  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, sample,
+  return BuildRecord(batch, std::move(program), StepProgramKind::kSphereTest, sample, RecordedExits::kPerFetch,
                      [](const NodeVisit& v) { return v.overlaps() ? kNoExit : std::uint8_t{0}; });
 }
 

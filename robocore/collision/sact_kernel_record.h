@@ -43,6 +43,13 @@ MemoryRegion TreeNodeRegion(std::uint64_t base_address, std::uint32_t node_bytes
 // false, with the reason in `why`.
 bool KeepsSactExitContract(const MicroProgram& program, std::string* why);
 
+// How a record built from a batch keeps its exits: a byte per fetch
+// (node_exits; what the calibration and ExitAt read), or tallied per query
+// (tallied_exits, equal to ProfileExits of the per-fetch record, so every
+// backend prices the two alike): less to store and no profiling pass when
+// the record is priced.
+enum class RecordedExits { kPerFetch, kTallied };
+
 // Node counts and exits are kept for every query; `sample` says whose
 // addresses are kept (robocore/address_sample.h; the default keeps every
 // query's). A sampled record also counts the sectors the whole batch
@@ -53,7 +60,8 @@ bool KeepsSactExitContract(const MicroProgram& program, std::string* why);
 // sphere pre-tests, or `program` (default: the shipped SACT program) does
 // not keep the SACT exit contract.
 KernelRecord SactKernelRecord(const CollisionBatch& batch, std::shared_ptr<const MicroProgram> program = nullptr,
-                              const AddressSample& sample = AddressSample{});
+                              const AddressSample& sample = AddressSample{},
+                              RecordedExits exits = RecordedExits::kPerFetch);
 
 // CollideBatch and SactKernelRecord in one pass, without keeping the visits
 // (8 bytes each): the same outcomes, and, when `record` is given, the record

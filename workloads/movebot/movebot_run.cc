@@ -145,9 +145,11 @@ MoveBotResult RunMoveBot(ArmCollisionChecker& checker, const MoveBotSettings& se
     if (collision_ledger) {
       std::optional<KernelRecord> collision_record;
       // The ledger's address sample (--replay-sms, --replay-block-stride),
-      // as every workload's records take it.
+      // as every workload's records take it; exits tallied per query, which
+      // prices the same as a byte per fetch with no profiling pass.
       if (collision_work.query_count() > 0)
-        collision_record = SactKernelRecord(collision_work, nullptr, collision_ledger->RecordSample());
+        collision_record = SactKernelRecord(collision_work, nullptr, collision_ledger->RecordSample(),
+                                            RecordedExits::kTallied);
       collision_ledger->BeginIteration();
       row.collision_pricing = collision_ledger->EndIteration(collision_record ? &*collision_record : nullptr);
       nn_ledger->BeginIteration();
