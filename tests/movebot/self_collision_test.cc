@@ -159,7 +159,7 @@ TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearch) {
   const LocobotArm arm;
   const auto& pairs = arm.description().self_collision_pairs;
   const std::uint64_t scene_nodes = 15;
-  const SelfCollisionKernel kernel(arm.description(), scene_nodes);
+  const SelfCollisionKernel kernel(arm, scene_nodes);
   EXPECT_EQ(kernel.node_count(), 2u);  // links 0 and 1 are first in a pair
   CollisionBatch batch;
   batch.node_count = scene_nodes + kernel.node_count();
@@ -205,7 +205,7 @@ TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearch) {
 // kernel's query still answers as the host's search with the same options.
 TEST(ArmSelfCollision, KernelQueryAnswersAsTheHostSearchWithEveryOption) {
   const LocobotArm arm;
-  const SelfCollisionKernel kernel(arm.description(), 0);
+  const SelfCollisionKernel kernel(arm, 0);
   CollisionOptions<double> breadth_first, pretests;
   breadth_first.order = TraversalOrder::kBreadthFirst;
   pretests.sact.sphere_pretests = true;

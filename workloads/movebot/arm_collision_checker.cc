@@ -13,7 +13,7 @@ ArmCollisionChecker::ArmCollisionChecker(const LocobotArm& arm, const ArmScene& 
       self_check_(self_check),
       sweep_radii_(arm.SweepRadii()),
       self_sweep_radii_(SelfSweepRadii(arm)),
-      self_kernel_(arm.description(), scene.node_count()),
+      self_kernel_(arm, scene.node_count()),
       work_(NewBatch()) {
   std::string error;
   if (!options_.sact.IsValid(&error)) throw std::invalid_argument("SACT options: " + error);

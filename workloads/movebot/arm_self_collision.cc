@@ -3,25 +3,43 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "robocore/collision/aabb.h"
 #include "robocore/collision/box_tree.h"
 
 namespace rc {
 
+namespace {
+
+void RequireOneGrowthPerPair(const std::vector<double>& growth_m, std::size_t pairs, const char* caller) {
+  if (!growth_m.empty() && growth_m.size() != pairs)
+    throw std::invalid_argument(std::string(caller) + ": one growth per self-collision pair, or none");
+}
+
+// Pair p's second box in its first box's frame, grown by its growth entry
+// (if any): what the host search and the kernel's pass test against the
+// first box.
+Obbd SecondBoxInFirstFrame(const std::array<Obbd, kArmLinkBoxes>& links, std::pair<int, int> pair,
+                           const std::vector<double>& growth_m, std::size_t p) {
+  Obbd moving = InFrameOf(links[pair.second], links[pair.first]);
+  if (!growth_m.empty()) moving.half.array() += growth_m[p];
+  return moving;
+}
+
+}  // namespace
+
 SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, const ArmDescription& arm,
                                 const SactOptions<double>& options, const std::vector<double>& growth_m) {
-  if (!growth_m.empty() && growth_m.size() != arm.self_collision_pairs.size())
-    throw std::invalid_argument("FindSelfCollision: one growth per self-collision pair, or none");
+  RequireOneGrowthPerPair(growth_m, arm.self_collision_pairs.size(), "FindSelfCollision");
   SelfCollision out;
   for (std::size_t p = 0; p < arm.self_collision_pairs.size(); ++p) {
     const auto [first, second] = arm.self_collision_pairs[p];
     ++out.tests;
     Aabbd frame_box;  // the first box, in its own frame
     frame_box.half = links[first].half;
-    Obbd moving = InFrameOf(links[second], links[first]);
-    if (!growth_m.empty()) moving.half.array() += growth_m[p];
-    if (TestObbAabb(moving, frame_box, options).overlaps()) {
+    if (TestObbAabb(SecondBoxInFirstFrame(links, arm.self_collision_pairs[p], growth_m, p), frame_box, options)
+            .overlaps()) {
       out.first = first;
       out.second = second;
       return out;
@@ -30,15 +48,14 @@ SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, co
   return out;
 }
 
-SelfCollisionKernel::SelfCollisionKernel(const ArmDescription& arm, std::uint64_t first_node)
-    : pairs_(arm.self_collision_pairs), first_node_(first_node) {
+SelfCollisionKernel::SelfCollisionKernel(const LocobotArm& arm, std::uint64_t first_node)
+    : pairs_(arm.description().self_collision_pairs), first_node_(first_node) {
   tree_of_link_.fill(-1);
-  for (const auto& [first, second] : pairs_) {
-    if (first < 0 || first >= kArmLinkBoxes || second < 0 || second >= kArmLinkBoxes)
-      throw std::invalid_argument("SelfCollisionKernel: a pair names a link box that does not exist");
+  for (const auto& pair : pairs_) {  // in range: LocobotArm checked them
+    const int first = pair.first;
     if (tree_of_link_[first] >= 0) continue;
     Aabbd box;  // in its own frame: centred at the origin
-    box.half = arm.links[first].size / 2;
+    box.half = arm.description().links[first].size / 2;
     tree_of_link_[first] = static_cast<int>(trees_.size());
     trees_.emplace_back(BuildMedianSplitTree({box}));
   }
@@ -50,18 +67,16 @@ SelfCollision SelfCollisionKernel::Collide(const std::array<Obbd, kArmLinkBoxes>
                                            const CollisionOptions<double>& options,
                                            const std::vector<double>& growth_m, CollisionBatch& batch,
                                            std::vector<std::uint32_t>* pending) const {
-  if (!growth_m.empty() && growth_m.size() != pairs_.size())
-    throw std::invalid_argument("SelfCollisionKernel: one growth per self-collision pair, or none");
+  RequireOneGrowthPerPair(growth_m, pairs_.size(), "SelfCollisionKernel");
   SelfCollision out;
   TraversalOutcome query;
   for (std::size_t p = 0; p < pairs_.size() && !out.found(); ++p) {
     const auto [first, second] = pairs_[p];
     ++out.tests;
-    Obbd moving = InFrameOf(links[second], links[first]);
-    if (!growth_m.empty()) moving.half.array() += growth_m[p];
     const int tree = tree_of_link_[first];
     const std::size_t begin = batch.visits.size();
-    const TraversalOutcome pass = CollideObb(trees_[tree], moving, options, &batch.visits, pending);
+    const TraversalOutcome pass =
+        CollideObb(trees_[tree], SecondBoxInFirstFrame(links, pairs_[p], growth_m, p), options, &batch.visits, pending);
     for (std::size_t k = begin; k < batch.visits.size(); ++k)
       batch.visits[k].node += static_cast<std::uint32_t>(first_node_ + tree);
     query.nodes_visited += pass.nodes_visited;

@@ -61,7 +61,7 @@ SelfCollision FindSelfCollision(const std::array<Obbd, kArmLinkBoxes>& links, co
 // array.
 class SelfCollisionKernel {
  public:
-  SelfCollisionKernel(const ArmDescription& arm, std::uint64_t first_node);
+  SelfCollisionKernel(const LocobotArm& arm, std::uint64_t first_node);
 
   std::uint64_t node_count() const { return trees_.size(); }
 

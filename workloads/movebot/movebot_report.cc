@@ -193,8 +193,8 @@ void PrintMoveBotSummary(std::ostream& out, const MoveBotResult& result, const M
   if (result.status != MoveBotStatus::kNone)
     out << ", cost " << result.path_cost_rad << " rad (joint-space length), " << result.path.size() << " states";
   if (result.status == MoveBotStatus::kApproximate) out << ", " << result.goal_distance_rad << " rad short of the goal";
-  out << "\ncollision kernel        " << configurations << " configurations, " << queries << " queries (link OBB x scene frame"
-      << (result.self_collision_checked ? "; link pairs), " : "), ")
+  out << "\ncollision kernel        " << configurations << " configurations, " << queries
+      << " queries (link OBB x scene frame" << (result.self_collision_checked ? "; link pairs), " : "), ")
       << (queries ? static_cast<double>(nodes) / queries : 0.0) << " nodes per query\n";
   out << "self-collision          ";
   if (result.self_collision_checked)
